@@ -1,0 +1,21 @@
+#pragma once
+/// \file Timer.hpp
+/// Wall-clock stopwatch for the phase times reported in the JSON summary.
+#include <chrono>
+
+namespace tribos::core {
+
+class Stopwatch {
+ public:
+  Stopwatch() : start_(std::chrono::steady_clock::now()) {}
+  void restart() { start_ = std::chrono::steady_clock::now(); }
+  /// Seconds since construction or the last restart().
+  double seconds() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+
+ private:
+  std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace tribos::core

@@ -1,0 +1,34 @@
+#include "tribos/core/Parallel.hpp"
+
+#include <omp.h>
+
+#include <exception>
+#include <mutex>
+
+namespace tribos::core {
+
+namespace {
+int g_threads = 0;  // 0: use OpenMP's default (OMP_NUM_THREADS)
+}
+
+int numThreads() { return g_threads > 0 ? g_threads : omp_get_max_threads(); }
+
+void setNumThreads(int n) { g_threads = n > 0 ? n : 0; }
+
+void forEachSubdomain(int count, const std::function<void(int)>& body) {
+  std::exception_ptr firstError;
+  std::mutex errorMutex;
+  const int threads = numThreads() < count ? numThreads() : (count > 0 ? count : 1);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+  for (int i = 0; i < count; ++i) {
+    try {
+      body(i);
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(errorMutex);
+      if (!firstError) firstError = std::current_exception();
+    }
+  }
+  if (firstError) std::rethrow_exception(firstError);
+}
+
+}  // namespace tribos::core

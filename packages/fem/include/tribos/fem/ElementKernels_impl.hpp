@@ -1,0 +1,1 @@
+// ElementKernels implementation: to be written

@@ -1,0 +1,64 @@
+#pragma once
+/// \file SubdomainSystem.hpp
+/// Per-subdomain T-FETI data: the floating stiffness K_s (CSR, no Dirichlet rows), the load
+/// f_s and the orthonormal rigid body modes R_s (paper Section 4.1, ALGORITHMS.md 1).
+/// Storage is std::vector so that subdomains can be assembled on threads without managed
+/// Kokkos Views (TOOLCHAIN.md); the kernels work on unmanaged Views over it.
+#include <array>
+#include <string>
+#include <vector>
+
+#include "tribos/fem/Material.hpp"
+#include "tribos/mesh/Decomposition.hpp"
+
+namespace tribos::fem {
+
+/// Square sparse matrix, compressed rows, column indices ascending within a row.
+struct CsrMatrix {
+  LO n = 0;
+  std::vector<LO> rowPtr;       ///< n + 1 entries
+  std::vector<LO> colInd;
+  std::vector<double> values;
+  /// y = A x
+  void apply(const double* x, double* y) const;
+  double frobeniusNorm() const;
+  /// Value at (i, j), 0 when not stored.
+  double at(LO i, LO j) const;
+};
+
+/// Constant surface traction p on the faces of a side set.
+struct Traction {
+  std::string sideSet;
+  std::array<double, 3> p{0, 0, 0};
+};
+
+struct Loads {
+  std::vector<Traction> tractions;
+  /// Volume force density per element block (index as mesh.blocks); empty = none.
+  std::vector<std::array<double, 3>> volumeForce;
+};
+
+struct SubdomainSystem {
+  CsrMatrix K;                 ///< 3*nodes x 3*nodes, dof = 3*localNode + component
+  std::vector<double> f;       ///< load vector
+  std::vector<double> R;       ///< n x 6, column-major, orthonormal columns spanning Ker K
+};
+
+/// Assembles K_s and f_s of one subdomain with Kokkos kernels (element matrices in
+/// parallel over elements, then a race-free gather into CSR rows over nodes) and builds R_s.
+/// `materials[b]` is the material of element block b. Throws core::InputError if a traction
+/// names a side set the mesh lacks, or an element is inverted (naming the element).
+/// Safe to call concurrently for different subdomains (no managed Views inside).
+SubdomainSystem assembleSubdomain(const mesh::Mesh& mesh, const mesh::Subdomain& subdomain,
+                                  const std::vector<Material>& materials, const Loads& loads);
+
+/// The undecomposed stiffness and load of the whole mesh (dof = 3*globalNode + component):
+/// a reference for tests (sum of subdomain matrices) and for direct solves.
+SubdomainSystem assembleGlobal(const mesh::Mesh& mesh, const std::vector<Material>& materials,
+                               const Loads& loads);
+
+/// Orthonormal rigid body modes (3 translations, 3 rotations about the centroid, then
+/// modified Gram-Schmidt) of a set of nodes: n = 3*coords.size() rows, 6 columns, col-major.
+std::vector<double> rigidBodyModes(const std::vector<std::array<double, 3>>& coords);
+
+}  // namespace tribos::fem

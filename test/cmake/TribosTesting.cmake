@@ -1,0 +1,40 @@
+# tribos_add_test(NAME <package.Class.behaviour>
+#                 [SOURCES files... | EXE existing-target | COMMAND cmd args...]
+#                 [ARGS args...] [LIBS libs...] [NP ranks] [THREADS n] [LABELS ...] [TIMEOUT s])
+#
+# SOURCES builds a GoogleTest executable linked with tribos_test_main (MPI + Kokkos set up
+# once, output from rank 0 only, failure on any rank fails all); EXE reuses one already
+# built, so one executable can run under 1, 2 and 4 ranks. NP runs it under mpirun with
+# the flags that work as root (TOOLCHAIN.md); THREADS sets OMP_NUM_THREADS (default 1).
+# Test names follow <package>.<Class>.<behaviour>[_np<N>] (STYLE.md 6).
+include_guard(GLOBAL)
+
+function(tribos_add_test)
+  cmake_parse_arguments(T "" "NAME;NP;THREADS;TIMEOUT;EXE" "SOURCES;COMMAND;ARGS;LIBS;LABELS" ${ARGN})
+  if(NOT T_THREADS)
+    set(T_THREADS 1)
+  endif()
+  if(T_SOURCES)
+    string(REPLACE "." "_" exe "test_${T_NAME}")
+    add_executable(${exe} ${T_SOURCES})
+    target_link_libraries(${exe} PRIVATE tribos_test_main ${T_LIBS})
+    set(cmd $<TARGET_FILE:${exe}> ${T_ARGS})
+  elseif(T_EXE)
+    set(cmd $<TARGET_FILE:${T_EXE}> ${T_ARGS})
+  else()
+    set(cmd ${T_COMMAND} ${T_ARGS})
+  endif()
+  set(procs 1)
+  if(T_NP)
+    set(cmd ${MPIEXEC_EXECUTABLE} --allow-run-as-root --oversubscribe --bind-to none
+            -x OMP_NUM_THREADS=${T_THREADS} ${MPIEXEC_NUMPROC_FLAG} ${T_NP} ${cmd})
+    math(EXPR procs "${T_NP} * ${T_THREADS}")
+  endif()
+  add_test(NAME ${T_NAME} COMMAND ${cmd})
+  if(NOT T_TIMEOUT)
+    set(T_TIMEOUT 300)
+  endif()
+  set_tests_properties(${T_NAME} PROPERTIES
+    LABELS "${T_LABELS}" TIMEOUT ${T_TIMEOUT} PROCESSORS ${procs}
+    ENVIRONMENT "OMP_NUM_THREADS=${T_THREADS};OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1;TRIBOS_SOURCE_DIR=${PROJECT_SOURCE_DIR}")
+endfunction()
