@@ -5,6 +5,8 @@
 
 #include <Kokkos_Core.hpp>
 
+#include "tribos/core/Parallel.hpp"
+
 int main(int argc, char** argv) {
   MPI_Init(&argc, &argv);
   int rank = 0;
@@ -12,6 +14,7 @@ int main(int argc, char** argv) {
   int result = 0;
   {
     Kokkos::ScopeGuard kokkos(argc, argv);
+    tribos::core::warmUpKokkosForThreads();
     ::testing::InitGoogleTest(&argc, argv);
     if (rank != 0) {
       auto& listeners = ::testing::UnitTest::GetInstance()->listeners();

@@ -32,3 +32,14 @@ void forEachSubdomain(int count, const std::function<void(int)>& body) {
 }
 
 }  // namespace tribos::core
+
+#include <Kokkos_Core.hpp>
+
+namespace tribos::core {
+void warmUpKokkosForThreads() {
+  double sum = 0.0;
+  Kokkos::parallel_reduce(
+      "tribos::core::warmUp", Kokkos::RangePolicy<Kokkos::Serial>(0, 16),
+      KOKKOS_LAMBDA(const int i, double& s) { s += i; }, sum);
+}
+}  // namespace tribos::core

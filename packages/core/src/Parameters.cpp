@@ -1,14 +1,19 @@
 #include "tribos/core/Parameters.hpp"
 
+#include <Teuchos_Array.hpp>
 #include <Teuchos_ParameterList.hpp>
 
+#include <cstdlib>
 #include <sstream>
+#include <vector>
 
 #include "tribos/core/Errors.hpp"
 
 namespace tribos::core {
 
 namespace {
+constexpr const char* kAnyName = "*";
+
 // The names (and docs) that are valid at one level, for error messages.
 std::string listValid(const Teuchos::ParameterList& valid) {
   std::ostringstream out;
@@ -27,7 +32,22 @@ std::string listValid(const Teuchos::ParameterList& valid) {
 }
 
 void validateLevel(Teuchos::ParameterList& user, const Teuchos::ParameterList& valid,
-                   const std::string& where, const std::string& path, int depth) {
+                   const std::string& where, const std::string& path, int depth,
+                   bool fillDefaults = true) {
+  // A valid list whose only entry is the sublist kAnyName holds user-named sublists (one
+  // per body, per load, ...), each validated against that template.
+  if (valid.numParams() == 1 && valid.isSublist(kAnyName)) {
+    for (auto it = user.begin(); it != user.end(); ++it) {
+      const std::string here = (path.empty() ? "" : path + "/") + user.name(it);
+      if (!user.entry(it).isList())
+        throw InputError(where + ": \"" + here + "\" must be a sublist (\"" + path +
+                         "\" holds one sublist per named item)");
+      // No defaults at this level: which of a template's alternatives the user gave matters.
+      validateLevel(user.sublist(user.name(it)), valid.sublist(kAnyName), where, here, depth - 1,
+                    /*fillDefaults=*/false);
+    }
+    return;
+  }
   for (auto it = user.begin(); it != user.end(); ++it) {
     const std::string& name = user.name(it);
     const std::string here = path.empty() ? name : path + "/" + name;
@@ -61,6 +81,7 @@ void validateLevel(Teuchos::ParameterList& user, const Teuchos::ParameterList& v
     }
   }
   // Fill in defaults, recursing into sublists that the user did not give.
+  if (!fillDefaults) return;
   for (auto it = valid.begin(); it != valid.end(); ++it) {
     const std::string& name = valid.name(it);
     const auto& entry = valid.entry(it);
@@ -98,6 +119,93 @@ std::string describeParameters(const Teuchos::ParameterList& valid, const std::s
   std::ostringstream out;
   describeLevel(valid, prefix, out);
   return out.str();
+}
+
+}  // namespace tribos::core
+
+namespace tribos::core {
+
+namespace {
+double parseDouble(const std::string& text, const std::string& context) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0') throw InputError(context + ": \"" + text + "\" is not a number");
+  return v;
+}
+
+int parseInt(const std::string& text, const std::string& context) {
+  char* end = nullptr;
+  const long v = std::strtol(text.c_str(), &end, 10);
+  if (text.empty() || *end != '\0' || v < -2147483647L || v > 2147483647L)
+    throw InputError(context + ": \"" + text + "\" is not an integer");
+  return static_cast<int>(v);
+}
+
+// "{a, b, c}" -> {"a", "b", "c"} (braces optional, items trimmed).
+std::vector<std::string> splitArray(std::string text) {
+  auto trim = [](std::string s) {
+    const auto b = s.find_first_not_of(" \t"), e = s.find_last_not_of(" \t");
+    return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
+  };
+  text = trim(text);
+  if (!text.empty() && text.front() == '{' && text.back() == '}') text = text.substr(1, text.size() - 2);
+  std::vector<std::string> items;
+  std::string item;
+  std::istringstream in(text);
+  while (std::getline(in, item, ',')) items.push_back(trim(item));
+  if (items.size() == 1 && items[0].empty()) items.clear();
+  return items;
+}
+}  // namespace
+
+void applyOverride(Teuchos::ParameterList& user, const Teuchos::ParameterList& valid,
+                   const std::string& assignment) {
+  const std::string context = "--set \"" + assignment + "\"";
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw InputError(context + ": expected \"Sublist/Name=value\"");
+  const std::string path = assignment.substr(0, eq), value = assignment.substr(eq + 1);
+
+  std::vector<std::string> names;
+  std::string part;
+  std::istringstream in(path);
+  while (std::getline(in, part, '/')) names.push_back(part);
+
+  const Teuchos::ParameterList* validLevel = &valid;
+  Teuchos::ParameterList* userLevel = &user;
+  for (size_t i = 0; i + 1 < names.size(); ++i) {
+    const bool anyName = validLevel->numParams() == 1 && validLevel->isSublist(kAnyName);
+    const std::string validName = anyName ? kAnyName : names[i];
+    if (!validLevel->isSublist(validName))
+      throw InputError(context + ": no sublist \"" + names[i] + "\"; valid names are:\n" + listValid(*validLevel));
+    validLevel = &validLevel->sublist(validName);
+    userLevel = &userLevel->sublist(names[i]);
+  }
+  const std::string& name = names.back();
+  if (!validLevel->isParameter(name) || validLevel->isSublist(name))
+    throw InputError(context + ": no parameter \"" + name + "\" there; valid names are:\n" + listValid(*validLevel));
+
+  const auto& any = validLevel->getEntry(name).getAny(false);
+  if (any.type() == typeid(int)) {
+    userLevel->set(name, parseInt(value, context));
+  } else if (any.type() == typeid(double)) {
+    userLevel->set(name, parseDouble(value, context));
+  } else if (any.type() == typeid(bool)) {
+    if (value != "true" && value != "false") throw InputError(context + ": expected true or false");
+    userLevel->set(name, value == "true");
+  } else if (any.type() == typeid(std::string)) {
+    userLevel->set(name, value);
+  } else if (any.type() == typeid(Teuchos::Array<double>)) {
+    Teuchos::Array<double> a;
+    for (const auto& item : splitArray(value)) a.push_back(parseDouble(item, context));
+    userLevel->set(name, a);
+  } else if (any.type() == typeid(Teuchos::Array<std::string>)) {
+    Teuchos::Array<std::string> a;
+    for (const auto& item : splitArray(value)) a.push_back(item);
+    userLevel->set(name, a);
+  } else {
+    throw InputError(context + ": parameters of type " + any.typeName() + " cannot be set from the command line");
+  }
 }
 
 }  // namespace tribos::core

@@ -44,3 +44,35 @@ TEST(Parameters, wrongTypeIsAnError) {
   EXPECT_THROW(tribos::core::validateAndSetDefaults(user, validList(), "scene.xml"),
                tribos::core::InputError);
 }
+
+#include <Teuchos_Array.hpp>
+
+TEST(Parameters, overridesTakeTheValidType) {
+  Teuchos::ParameterList valid = validList();
+  valid.sublist("Loads").sublist("*").set("Traction", Teuchos::Array<double>(3, 0.0), "p");
+  Teuchos::ParameterList user("Tribos");
+  tribos::core::applyOverride(user, valid, "Mesh/H Over h=5");
+  tribos::core::applyOverride(user, valid, "Solver/Tolerance=1e-8");
+  tribos::core::applyOverride(user, valid, "Loads/my load/Traction={1, 0, 20}");
+  EXPECT_EQ(user.sublist("Mesh").get<int>("H Over h"), 5);
+  EXPECT_DOUBLE_EQ(user.sublist("Solver").get<double>("Tolerance"), 1e-8);
+  const auto& t = user.sublist("Loads").sublist("my load").get<Teuchos::Array<double>>("Traction");
+  ASSERT_EQ(t.size(), 3u);
+  EXPECT_DOUBLE_EQ(t[2], 20.0);
+  tribos::core::validateAndSetDefaults(user, valid, "cli");  // user-named sublist accepted
+  EXPECT_FALSE(user.sublist("Loads").sublist("my load").isParameter("Side Set"));  // no template defaults
+}
+
+TEST(Parameters, badOverridesNameTheAssignment) {
+  const Teuchos::ParameterList valid = validList();
+  Teuchos::ParameterList user("Tribos");
+  for (const char* bad : {"Mesh/H Over h=2.5", "Mesh/H Over h", "Mesh/Nope=1", "Nope/H Over h=1",
+                          "Solver/Tolerance=abc"}) {
+    try {
+      tribos::core::applyOverride(user, valid, bad);
+      ADD_FAILURE() << "accepted " << bad;
+    } catch (const tribos::core::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(bad), std::string::npos) << e.what();
+    }
+  }
+}

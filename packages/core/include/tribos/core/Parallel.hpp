@@ -23,3 +23,9 @@ void setNumThreads(int n);
 void forEachSubdomain(int count, const std::function<void(int)>& body);
 
 }  // namespace tribos::core
+
+namespace tribos::core {
+/// Call once on the main thread right after Kokkos::initialize: runs one scalar reduction
+/// so that the Serial back end's global scratch buffer exists before threads use kernels.
+void warmUpKokkosForThreads();
+}  // namespace tribos::core

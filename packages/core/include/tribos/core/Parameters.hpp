@@ -13,11 +13,25 @@ namespace tribos::core {
 /// Validates `user` against `valid` (names, types, validators) to `depth` levels of
 /// sublists and fills in defaults. Any unknown or mistyped name throws InputError whose
 /// message starts with `where` (e.g. the XML file and the sublist path) and lists the
-/// valid names with their documentation.
+/// valid names with their documentation. A valid sublist that contains only a sublist named
+/// "*" accepts user sublists of any name, each validated against "*" (materials per body,
+/// loads); no defaults are filled in at that level.
 void validateAndSetDefaults(Teuchos::ParameterList& user, const Teuchos::ParameterList& valid,
                             const std::string& where, int depth = 1000);
 
 /// One line per parameter: "Path/Name  (type, default value)  doc", recursing into sublists.
 std::string describeParameters(const Teuchos::ParameterList& valid, const std::string& prefix = "");
+
+}  // namespace tribos::core
+
+namespace tribos::core {
+
+/// Applies a command-line override "Sublist/.../Name=value" to `user`. The type of the
+/// value is the type of that parameter in `valid` (int, double, bool, string,
+/// Array(double) as "{1, 0, 20}", Array(string) as "{a, b}"); user-named sublists under a
+/// "*" template (see validateAndSetDefaults) are accepted. Throws InputError naming the
+/// override when the path is unknown (listing the valid names) or the value does not parse.
+void applyOverride(Teuchos::ParameterList& user, const Teuchos::ParameterList& valid,
+                   const std::string& assignment);
 
 }  // namespace tribos::core

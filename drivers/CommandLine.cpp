@@ -1,0 +1,62 @@
+#include "CommandLine.hpp"
+
+#include "tribos/core/Errors.hpp"
+
+namespace tribos::driver {
+
+std::string usage() {
+  return R"(tribos: 3D contact of elastic bodies with (orthotropic) Coulomb friction by
+Total FETI + SMALSE-M + MPGP (Haslinger & Kucera).
+
+Usage: [mpirun -np N] tribos --input SCENE.xml [options]
+
+  --input FILE        Teuchos XML parameter list of the scene (top-level list "Tribos")
+  --set "A/B=value"   override one parameter (repeatable), e.g. --set "Mesh/H Over h=4"
+  --dry-run           build mesh, decomposition and subdomain matrices, print the
+                      dimensions and stop
+  --summary FILE      write the JSON summary (dimensions, counts, times)
+  --output FILE       write the results (mesh, element variable "subdomain") to Exodus II
+  --list-parameters   print every valid parameter with its default and documentation
+  --help              this text
+
+Threads per rank: Parallel/Threads or OMP_NUM_THREADS. As root, mpirun needs
+--allow-run-as-root (and --oversubscribe beyond the core count).
+
+Exit status: 0 success, 1 internal error, 2 bad input (the message names the file or
+parameter), 3 the solver did not converge (results still written, flagged).
+
+Examples:
+  tribos --input input/two_bricks.xml --dry-run
+  tribos --input input/two_bricks.xml --set "Mesh/Subdomains Per Brick=4x2x2" --set "Mesh/H Over h=3" --summary s.json
+  mpirun -np 4 tribos --input input/two_bricks.xml --output two_bricks.exo
+)";
+}
+
+CommandLine parseCommandLine(int argc, char** argv) {
+  CommandLine cl;
+  auto value = [&](int& i, const std::string& flag) -> std::string {
+    if (i + 1 >= argc) throw core::InputError("command line: " + flag + " needs a value (see --help)");
+    return argv[++i];
+  };
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    // Accept both "--flag value" and "--flag=value".
+    const auto eq = arg.find('=');
+    const std::string flag = arg.rfind("--", 0) == 0 && eq != std::string::npos ? arg.substr(0, eq) : arg;
+    auto get = [&]() { return eq != std::string::npos && flag != arg ? arg.substr(eq + 1) : value(i, flag); };
+    if (flag == "--input") cl.input = get();
+    else if (flag == "--set") cl.overrides.push_back(get());
+    else if (flag == "--output") cl.output = get();
+    else if (flag == "--summary") cl.summary = get();
+    else if (arg == "--dry-run") cl.dryRun = true;
+    else if (arg == "--help" || arg == "-h") cl.help = true;
+    else if (arg == "--list-parameters") cl.listParameters = true;
+    else if (arg.rfind("--kokkos", 0) == 0) continue;  // consumed by Kokkos
+    else throw core::InputError("command line: unknown argument \"" + arg + "\" (see --help)");
+  }
+  if (!cl.help && !cl.listParameters && cl.input.empty())
+    throw core::InputError("command line: --input SCENE.xml is required (see --help)");
+  return cl;
+}
+
+}  // namespace tribos::driver

@@ -1,0 +1,42 @@
+#pragma once
+/// \file Scene.hpp
+/// A scene: the mesh, its decomposition into subdomains, materials, loads and boundary
+/// parts, built from a validated parameter list. Every rank builds the whole (global) mesh
+/// and decomposition — cheap next to the subdomain work — and then works on its own
+/// subdomains (mesh::firstSubdomain).
+#include <string>
+#include <vector>
+
+#include "tribos/fem/SubdomainSystem.hpp"
+#include "tribos/mesh/Decomposition.hpp"
+#include "tribos/mesh/Mesh.hpp"
+
+namespace Teuchos {
+class ParameterList;
+}
+
+namespace tribos::stack {
+
+struct ContactSettings {
+  std::string frictionModel;  ///< None | Tresca | Coulomb | Bonded
+  double F1 = 0.0, F2 = 0.0;  ///< friction coefficients along t1, t2
+  std::string slaveSideSet, masterSideSet;
+};
+
+struct Scene {
+  std::string source;                      ///< where the parameters came from (for messages)
+  mesh::Mesh mesh;
+  mesh::Decomposition decomposition;
+  std::vector<fem::Material> materials;    ///< per element block
+  fem::Loads loads;
+  std::vector<std::string> dirichletNodeSets;
+  ContactSettings contact;
+  double meshSeconds = 0.0, decompositionSeconds = 0.0;
+};
+
+/// Builds the scene from the "Tribos" list, which must already be validated against
+/// sceneValidParameters() (defaults filled in). Throws core::InputError naming the
+/// parameter, file or mesh entity on bad input. `source` names the XML file in messages.
+Scene buildScene(const Teuchos::ParameterList& tribos, const std::string& source);
+
+}  // namespace tribos::stack

@@ -1,0 +1,178 @@
+#include "tribos/stack/Scene.hpp"
+
+#include <Teuchos_Array.hpp>
+#include <Teuchos_ParameterList.hpp>
+
+#include <cmath>
+
+#include "tribos/core/Errors.hpp"
+#include "tribos/core/Timer.hpp"
+#include "tribos/mesh/ExodusIO.hpp"
+#include "tribos/mesh/TwoBricks.hpp"
+
+namespace tribos::stack {
+
+namespace {
+using core::InputError;
+using Teuchos::ParameterList;
+
+// The paper's materials (Section 6): Lame constants in MPa.
+const fem::Material kAluminium{2.792e4, 2.593e4};
+const fem::Material kSteel{6.360e4, 8.301e4};
+
+// get() with a default on a const list (Teuchos only offers it on non-const lists).
+template <class T>
+T getOr(const ParameterList& pl, const std::string& name, const T& fallback) {
+  return pl.isParameter(name) ? pl.get<T>(name) : fallback;
+}
+
+fem::Material materialFrom(const ParameterList& body, const std::string& where) {
+  const bool lame = body.isParameter("Lame Lambda") || body.isParameter("Lame Mu");
+  const bool young = body.isParameter("Young Modulus") || body.isParameter("Poisson Ratio");
+  if (lame == young)
+    throw InputError(where + ": give either \"Lame Lambda\" and \"Lame Mu\" or \"Young Modulus\" "
+                             "and \"Poisson Ratio\"");
+  if (lame) {
+    const double lambda = getOr(body, "Lame Lambda", 0.0), mu = getOr(body, "Lame Mu", 0.0);
+    core::requireInput(mu > 0.0 && 3.0 * lambda + 2.0 * mu > 0.0,
+                       where + ": Lame constants must satisfy mu > 0 and 3 lambda + 2 mu > 0 (got lambda = " +
+                           std::to_string(lambda) + ", mu = " + std::to_string(mu) + ")");
+    return fem::Material{lambda, mu};
+  }
+  const double E = getOr(body, "Young Modulus", 0.0), nu = getOr(body, "Poisson Ratio", 0.0);
+  core::requireInput(E > 0.0 && nu > -1.0 && nu < 0.5,
+                     where + ": need Young Modulus > 0 and -1 < Poisson Ratio < 0.5");
+  return fem::Material::fromYoungPoisson(E, nu);
+}
+
+std::array<double, 3> vector3(const ParameterList& pl, const std::string& name, const std::string& where) {
+  const auto& a = pl.get<Teuchos::Array<double>>(name);
+  core::requireInput(a.size() == 3, where + "/" + name + ": needs exactly 3 components, got " +
+                                        std::to_string(a.size()));
+  for (double v : a) core::requireInput(std::isfinite(v), where + "/" + name + ": not a finite number");
+  return {a[0], a[1], a[2]};
+}
+
+void readMesh(const ParameterList& meshList, const std::string& source, Scene& scene) {
+  core::Stopwatch watch;
+  const auto generator = meshList.get<std::string>("Generator");
+  const auto decomposition = meshList.get<std::string>("Decomposition");
+  std::vector<int> parts;
+  if (generator == "Two Bricks") {
+    mesh::TwoBricksSpec spec;
+    spec.subdomainsPerBrick =
+        mesh::BrickGrid::parse(meshList.get<std::string>("Subdomains Per Brick"), "Mesh/Subdomains Per Brick");
+    spec.hOverH = meshList.get<int>("H Over h");
+    scene.mesh = mesh::generateTwoBricks(spec);
+    scene.meshSeconds = watch.seconds();
+    watch.restart();
+    parts = decomposition == "Structured" ? mesh::structuredPartition(scene.mesh, spec)
+                                          : mesh::metisPartition(scene.mesh, meshList.get<int>("Subdomains"));
+  } else {
+    const auto file = meshList.get<std::string>("File");
+    core::requireInput(!file.empty(), source + ": Mesh/Generator is \"Exodus\" but Mesh/File is empty");
+    scene.mesh = mesh::readExodus(file).mesh;
+    scene.meshSeconds = watch.seconds();
+    watch.restart();
+    parts = mesh::metisPartition(scene.mesh, meshList.get<int>("Subdomains"));
+  }
+  scene.decomposition = mesh::buildDecomposition(scene.mesh, parts);
+  scene.decompositionSeconds = watch.seconds();
+}
+
+void readMaterials(const ParameterList& list, const std::string& source, bool paperDefaults, Scene& scene) {
+  const auto& blocks = scene.mesh.blocks;
+  scene.materials.assign(blocks.size(), fem::Material{});
+  if (list.numParams() == 0 && paperDefaults) {
+    scene.materials = {kAluminium, kSteel};
+    return;
+  }
+  std::vector<bool> given(blocks.size(), false);
+  for (auto it = list.begin(); it != list.end(); ++it) {
+    const std::string where = source + ": Materials/" + list.name(it);
+    int b = -1;
+    try {
+      b = scene.mesh.blockIndex(list.name(it));
+    } catch (const InputError& e) {
+      throw InputError(where + ": " + e.what());
+    }
+    scene.materials[b] = materialFrom(list.sublist(list.name(it)), where);
+    given[b] = true;
+  }
+  for (size_t b = 0; b < blocks.size(); ++b)
+    core::requireInput(given[b], source + ": no material for element block \"" + blocks[b].name +
+                                     "\" (add a sublist Materials/" + blocks[b].name + ")");
+}
+
+void readLoads(const ParameterList& list, const std::string& source, bool paperDefaults, Scene& scene) {
+  if (list.numParams() == 0 && paperDefaults) {
+    // The paper's tractions (Section 6): p = (1, 0, 20) on x = 20, p = (0, 0, -30) on z = 20.
+    scene.loads.tractions = {{"load_end", {1.0, 0.0, 20.0}}, {"load_top", {0.0, 0.0, -30.0}}};
+    return;
+  }
+  for (auto it = list.begin(); it != list.end(); ++it) {
+    const std::string where = source + ": Loads/" + list.name(it);
+    const ParameterList& load = list.sublist(list.name(it));
+    const auto sideSet = getOr(load, "Side Set", std::string());
+    const auto block = getOr(load, "Element Block", std::string());
+    core::requireInput(sideSet.empty() != block.empty(),
+                       where + ": give exactly one of \"Side Set\" (with Traction) or \"Element Block\" "
+                               "(with Volume Force)");
+    try {
+      if (!sideSet.empty()) {
+        scene.mesh.sideSet(sideSet);  // existence check, names the set
+        scene.loads.tractions.push_back(fem::Traction{sideSet, vector3(load, "Traction", where)});
+      } else {
+        const int b = scene.mesh.blockIndex(block);
+        scene.loads.volumeForce.resize(scene.mesh.blocks.size(), {0.0, 0.0, 0.0});
+        const auto force = vector3(load, "Volume Force", where);
+        for (int c = 0; c < 3; ++c) scene.loads.volumeForce[b][c] += force[c];
+      }
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      if (what.rfind(where, 0) == 0) throw;
+      throw InputError(where + ": " + what);
+    }
+  }
+}
+}  // namespace
+
+Scene buildScene(const ParameterList& tribos, const std::string& source) {
+  Scene scene;
+  scene.source = source;
+  const ParameterList& meshList = tribos.sublist("Mesh");
+  const bool twoBricks = meshList.get<std::string>("Generator") == "Two Bricks";
+  readMesh(meshList, source, scene);
+  readMaterials(tribos.sublist("Materials"), source, twoBricks, scene);
+  readLoads(tribos.sublist("Loads"), source, twoBricks, scene);
+
+  for (const auto& name : tribos.sublist("Boundary").get<Teuchos::Array<std::string>>("Dirichlet Node Sets")) {
+    try {
+      scene.mesh.nodeSet(name);
+    } catch (const InputError& e) {
+      throw InputError(source + ": Boundary/Dirichlet Node Sets: " + e.what());
+    }
+    scene.dirichletNodeSets.push_back(name);
+  }
+
+  const ParameterList& contact = tribos.sublist("Contact");
+  scene.contact.frictionModel = contact.get<std::string>("Friction Model");
+  scene.contact.F1 = contact.get<double>("F1");
+  scene.contact.F2 = contact.get<double>("F2");
+  scene.contact.slaveSideSet = contact.get<std::string>("Slave Side Set");
+  scene.contact.masterSideSet = contact.get<std::string>("Master Side Set");
+  core::requireInput(scene.contact.slaveSideSet.empty() == scene.contact.masterSideSet.empty(),
+                     source + ": Contact: give both \"Slave Side Set\" and \"Master Side Set\", or "
+                              "neither (no contact)");
+  for (const auto* name : {&scene.contact.slaveSideSet, &scene.contact.masterSideSet}) {
+    if (name->empty()) continue;
+    try {
+      scene.mesh.sideSet(*name);
+    } catch (const InputError& e) {
+      throw InputError(source + ": Contact: " + e.what());
+    }
+  }
+  return scene;
+}
+
+}  // namespace tribos::stack

@@ -1,0 +1,111 @@
+#include "tribos/stack/SceneParameters.hpp"
+
+#include <Teuchos_Array.hpp>
+#include <Teuchos_StandardParameterEntryValidators.hpp>
+
+namespace tribos::stack {
+
+namespace {
+using Teuchos::ParameterList;
+
+template <class T>
+Teuchos::RCP<Teuchos::EnhancedNumberValidator<T>> atLeast(T min) {
+  auto v = Teuchos::rcp(new Teuchos::EnhancedNumberValidator<T>());
+  v->setMin(min);
+  return v;
+}
+
+void meshParameters(ParameterList& pl) {
+  Teuchos::setStringToIntegralParameter<int>(
+      "Generator", "Two Bricks",
+      "\"Two Bricks\": the paper's model problem (Section 6), generated; \"Exodus\": read "
+      "Mesh/File (element blocks = bodies, node sets / side sets name the boundary parts)",
+      Teuchos::tuple<std::string>("Two Bricks", "Exodus"), &pl);
+  pl.set("Subdomains Per Brick", std::string("2x1x1"),
+         "Two Bricks: subdomain grid NXxNYxNZ of each brick, cubic subdomains (NX = 2 NY = 2 NZ); "
+         "the paper's s = NX*NY*NZ (Table 1: 2x1x1, 4x2x2, 6x3x3, 8x4x4, 10x5x5)");
+  pl.set("H Over h", 2, "Two Bricks: elements per subdomain edge, H/h >= 1", atLeast<int>(1));
+  pl.set("File", std::string(""), "Exodus: path of the Exodus II mesh (linear tetrahedra)");
+  pl.set("Subdomains", 4,
+         "Exodus, or Decomposition = METIS: number of subdomains (METIS parts, split among bodies "
+         "in proportion to their element counts; at least one per body)",
+         atLeast<int>(1));
+  Teuchos::setStringToIntegralParameter<int>(
+      "Decomposition", "Structured",
+      "\"Structured\": the brick grid of Subdomains Per Brick (Two Bricks only); \"METIS\": "
+      "METIS_PartMeshDual per body into Mesh/Subdomains parts (always used for Exodus meshes)",
+      Teuchos::tuple<std::string>("Structured", "METIS"), &pl);
+}
+
+void materialParameters(ParameterList& pl) {
+  // One sublist per element block, named after the block; "*" is the template.
+  ParameterList& body = pl.sublist("*", false,
+                                   "one sublist per element block (body), named after the block; "
+                                   "give either the Lame constants or (E, nu)");
+  body.set("Lame Lambda", 0.0, "Lame's first parameter lambda [stress], with Lame Mu");
+  body.set("Lame Mu", 0.0, "shear modulus mu > 0 [stress], with Lame Lambda");
+  body.set("Young Modulus", 0.0, "E > 0 [stress], with Poisson Ratio (instead of Lame constants)");
+  body.set("Poisson Ratio", 0.0, "-1 < nu < 0.5, with Young Modulus");
+}
+
+void loadParameters(ParameterList& pl) {
+  ParameterList& load = pl.sublist("*", false,
+                                   "one sublist per load, any name: a constant traction on a side set "
+                                   "or a volume force on an element block");
+  load.set("Side Set", std::string(""), "side set that carries the traction (Traction)");
+  load.set("Traction", Teuchos::Array<double>(3, 0.0), "{px, py, pz}: traction density [stress]");
+  load.set("Element Block", std::string(""), "element block that carries the volume force");
+  load.set("Volume Force", Teuchos::Array<double>(3, 0.0), "{bx, by, bz}: force per volume");
+}
+
+void boundaryParameters(ParameterList& pl) {
+  pl.set("Dirichlet Node Sets",
+         Teuchos::Array<std::string>(
+             Teuchos::tuple<std::string>("dirichlet_aluminium", "dirichlet_steel")),
+         "node sets with zero displacement (enforced by multipliers: T-FETI)");
+}
+
+void contactParameters(ParameterList& pl) {
+  Teuchos::setStringToIntegralParameter<int>(
+      "Friction Model", "Coulomb",
+      "\"None\" (frictionless), \"Tresca\" (given slip bound), \"Coulomb\" (successive "
+      "approximations on the slip bound), \"Bonded\" (contact rows as equalities)",
+      Teuchos::tuple<std::string>("None", "Tresca", "Coulomb", "Bonded"), &pl);
+  pl.set("F1", 0.3, "friction coefficient along t1 (isotropic when F1 = F2), >= 0", atLeast<double>(0.0));
+  pl.set("F2", 0.3, "friction coefficient along t2, >= 0", atLeast<double>(0.0));
+  pl.set("Slave Side Set", std::string("contact_aluminium"), "contact surface of the slave body");
+  pl.set("Master Side Set", std::string("contact_steel"), "contact surface of the master body");
+}
+
+void solverParameters(ParameterList& pl) {
+  pl.set("Tolerance", 1e-5, "the paper's epsilon: relative tolerance of SMALSE-M, > 0", atLeast<double>(0.0));
+  pl.set("Max Outer Iterations", 100, "cap on SMALSE-M outer iterations", atLeast<int>(1));
+}
+
+void parallelParameters(ParameterList& pl) {
+  pl.set("Threads", 0,
+         "threads per MPI rank over its subdomains; 0 = OMP_NUM_THREADS (or all cores)",
+         atLeast<int>(0));
+}
+}  // namespace
+
+Teuchos::RCP<const Teuchos::ParameterList> sceneValidParameters() {
+  static const Teuchos::RCP<const ParameterList> valid = [] {
+    auto pl = Teuchos::rcp(new ParameterList("Tribos"));
+    meshParameters(pl->sublist("Mesh", false, "the mesh and its decomposition"));
+    materialParameters(pl->sublist("Materials", false,
+                                   "materials per element block; Two Bricks defaults to the paper's "
+                                   "aluminium and steel when this list is empty"));
+    loadParameters(pl->sublist("Loads", false,
+                               "loads; Two Bricks defaults to the paper's tractions on load_end and "
+                               "load_top when this list is empty"));
+    boundaryParameters(pl->sublist("Boundary", false, "Dirichlet boundary"));
+    contactParameters(pl->sublist("Contact", false, "contact pair and friction law"));
+    solverParameters(pl->sublist("Solver", false, "SMALSE-M outer loop"));
+    parallelParameters(pl->sublist("Parallel", false, "hybrid MPI + threads"));
+    return Teuchos::rcp_const_cast<const ParameterList>(pl);
+  }();
+  return valid;
+}
+
+}  // namespace tribos::stack

@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Installs what Tribos needs on Debian 12 (only what is missing: quiet and fast when all is
+# there), then configures and builds into build/ (Release, ccache when present, -j2).
+# Usage: scripts/setup.sh [extra cmake -D options]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+packages=(build-essential cmake ninja-build ccache
+  libtrilinos-tpetra-dev libtrilinos-amesos2-dev libtrilinos-belos-dev libtrilinos-teuchos-dev
+  libtrilinos-kokkos-dev libtrilinos-kokkos-kernels-dev
+  libtrilinos-shylu-dev libtrilinos-epetra-dev libtrilinos-epetraext-dev libtrilinos-triutils-dev
+  libtrilinos-thyra-dev libtrilinos-rtop-dev libtrilinos-xpetra-dev libtrilinos-aztecoo-dev
+  libptscotch-dev libmetis-dev libopenmpi-dev openmpi-bin libexodusii-dev libsuitesparse-dev
+  libopenblas0-serial netcdf-bin nlohmann-json3-dev libgtest-dev)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "setup: installing ${#missing[@]} missing Debian package(s): ${missing[*]}"
+  sudo_cmd=()
+  [ "$(id -u)" -ne 0 ] && sudo_cmd=(sudo)
+  export DEBIAN_FRONTEND=noninteractive
+  "${sudo_cmd[@]}" apt-get update -qq
+  "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+jobs=${TRIBOS_BUILD_JOBS:-2}
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
+cmake --build build -j "$jobs"
