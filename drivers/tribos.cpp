@@ -5,11 +5,12 @@
 //   tribos --input input/two_bricks.xml --set "Mesh/H Over h=4" --summary s.json --output r.exo
 //   mpirun --allow-run-as-root -np 4 tribos --input input/two_bricks.xml --dry-run
 //
-// The contact solver (T-FETI dual operator, SMALSE-M, MPGP, Coulomb fixed point) is not in
-// this version yet: a run without --dry-run performs the set-up and says so.
+// Scenes without contact, or with Contact/Friction Model = "Bonded", are solved by linear
+// T-FETI (projected CG). The contact solver (SMALSE-M, MPGP, Coulomb fixed point) is not in
+// this version yet: for such scenes a run performs the set-up and says so.
 #include <mpi.h>
 
-#include <Kokkos_Core.hpp>
+#include <Tpetra_Core.hpp>
 #include <Teuchos_ParameterList.hpp>
 #include <Teuchos_XMLParameterListHelpers.hpp>
 
@@ -25,6 +26,8 @@
 #include "tribos/core/Parameters.hpp"
 #include "tribos/core/Timer.hpp"
 #include "tribos/mesh/ExodusIO.hpp"
+#include "tribos/feti/ConstraintMatrix.hpp"
+#include "tribos/stack/LinearFetiSolve.hpp"
 #include "tribos/stack/Scene.hpp"
 #include "tribos/stack/SceneParameters.hpp"
 
@@ -62,12 +65,13 @@ Teuchos::ParameterList readSceneXml(const std::string& path, int rank) {
 }
 
 nlohmann::json summaryJson(const stack::Scene& scene, const stack::SetupReport& report,
-                           const driver::CommandLine& cl, double setupSeconds, double totalSeconds) {
+                           const feti::ConstraintMatrix& B, const driver::CommandLine& cl) {
   nlohmann::json j;
   j["input"] = cl.input;
   j["dry_run"] = cl.dryRun;
-  j["solver"] = "not available in this version: set-up only";
   j["n_primal"] = report.nPrimal;
+  j["n_dual"] = B.numRows;
+  j["removed_redundant_rows"] = B.removedRedundantRows;
   j["n_rigid"] = report.nRigid;
   j["n_subdomains"] = report.nSubdomains;
   j["n_ranks"] = report.nRanks;
@@ -75,17 +79,25 @@ nlohmann::json summaryJson(const stack::Scene& scene, const stack::SetupReport& 
   j["n_nodes"] = scene.mesh.numNodes();
   j["n_elements"] = scene.mesh.numElements();
   j["stiffness_nonzeros"] = report.nnz;
+  j["contact_nodes_paired"] = B.contact.size();
   j["times"] = {{"mesh_s", scene.meshSeconds},
                 {"decomposition_s", scene.decompositionSeconds},
-                {"assembly_s", report.assemblySeconds},
-                {"setup_s", setupSeconds},
-                {"total_s", totalSeconds}};
+                {"assembly_s", report.assemblySeconds}};
   return j;
 }
 
-void writeOutput(const std::string& path, const stack::Scene& scene) {
+void writeOutput(const std::string& path, const stack::Scene& scene,
+                 const std::vector<std::array<double, 3>>* displacement) {
   mesh::TimeStep step;
-  step.time = 0.0;
+  step.time = displacement ? 1.0 : 0.0;
+  if (displacement) {
+    const char* names[3] = {"displ_x", "displ_y", "displ_z"};
+    for (int c = 0; c < 3; ++c) {
+      mesh::Field f{names[c], std::vector<double>(scene.mesh.numNodes())};
+      for (LO n = 0; n < scene.mesh.numNodes(); ++n) f.values[n] = (*displacement)[n][c];
+      step.nodal.push_back(std::move(f));
+    }
+  }
   mesh::Field subdomain{"subdomain", std::vector<double>(scene.mesh.numElements())};
   for (LO e = 0; e < scene.mesh.numElements(); ++e) subdomain.values[e] = scene.decomposition.elementPart[e];
   step.element.push_back(std::move(subdomain));
@@ -113,37 +125,89 @@ int run(int argc, char** argv, int rank) {
   if (const int threads = params.sublist("Parallel").get<int>("Threads"); threads > 0)
     core::setNumThreads(threads);
 
-  // (3) Mesh, decomposition, per-subdomain assembly.
+  // (3) Mesh, decomposition, per-subdomain assembly, constraint matrix B.
   core::Stopwatch setup;
   const stack::Scene scene = stack::buildScene(params, cl.input);
   std::vector<fem::SubdomainSystem> systems;
   const stack::SetupReport report = stack::assembleOwnedSubdomains(scene, MPI_COMM_WORLD, systems);
+  int numRanks = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &numRanks);
+  core::Stopwatch constraintWatch;
+  const feti::ConstraintMatrix B =
+      feti::buildConstraintMatrix(scene.mesh, scene.decomposition, stack::constraintSpec(scene), numRanks);
+  const double constraintSeconds = constraintWatch.seconds();
   const double setupSeconds = setup.seconds();
 
-  // (4) Report and results.
   if (rank == 0) {
     std::cout << "tribos: " << cl.input << "\n"
               << "  mesh: " << scene.mesh.numNodes() << " nodes, " << scene.mesh.numElements()
               << " tetrahedra, " << scene.mesh.numBlocks() << " bodies\n"
               << "  subdomains: " << report.nSubdomains << " on " << report.nRanks << " rank(s) x "
               << report.nThreads << " thread(s)\n"
-              << "  n_primal = " << report.nPrimal << ", n_rigid = " << report.nRigid << "\n"
-              << "  set-up: " << setupSeconds << " s (assembly " << report.assemblySeconds << " s)\n";
-    if (!cl.dryRun)
-      std::cout << "  note: the contact solver is not available in this version; only the set-up "
-                   "(mesh, decomposition, subdomain stiffness, loads, rigid body modes) was run.\n";
+              << "  n_primal = " << report.nPrimal << ", n_dual = " << B.numRows << " (removed "
+              << B.removedRedundantRows << " redundant rows), n_rigid = " << report.nRigid << "\n"
+              << "  set-up: " << setupSeconds << " s (assembly " << report.assemblySeconds << " s, B "
+              << constraintSeconds << " s)\n";
+  }
+  nlohmann::json summary = summaryJson(scene, report, B, cl);
+  summary["times"]["constraints_s"] = constraintSeconds;
+  summary["times"]["setup_s"] = setupSeconds;
+  int status = core::kExitOk;
+  const std::vector<std::array<double, 3>>* displacement = nullptr;
+  stack::LinearFetiResult linear;
+
+  // (4) Solve: linear T-FETI for bonded / contact-free scenes.
+  const bool linearProblem = !scene.contact.hasContact() || scene.contact.frictionModel == "Bonded";
+  if (cl.dryRun) {
+    summary["solver"] = "dry run: not solved";
+  } else if (!linearProblem) {
+    summary["solver"] = "not run: the contact solver (SMALSE-M/MPGP) is not available in this version";
+    if (rank == 0)
+      std::cout << "  note: the contact solver (SMALSE-M, MPGP, Coulomb successive approximations) is not "
+                   "available in this version; only the set-up was run. Contact/Friction Model = \"Bonded\" "
+                   "solves the tied problem by linear T-FETI.\n";
+  } else {
+    const double tolerance = params.sublist("Solver").get<double>("Tolerance");
+    linear = stack::solveLinearFeti(scene, std::move(systems), B, params.sublist("FETI"), tolerance, MPI_COMM_WORLD);
+    displacement = &linear.displacement;
+    status = linear.converged ? core::kExitOk : core::kExitNotConverged;
+    summary["solver"] = "linear T-FETI (projected CG, preconditioner " +
+                        params.sublist("FETI").get<std::string>("Preconditioner") + ")";
+    summary["converged"] = linear.converged;
+    summary["tolerance"] = tolerance;
+    summary["outer_iterations"] = linear.iterations;
+    summary["pfp_applications"] = linear.fApplications;
+    summary["condition_estimate"] = linear.conditionEstimate;
+    summary["kkt"] = {{"projected_residual", linear.relativeResidual},
+                      {"equilibrium", linear.equilibriumResidual},
+                      {"equality_constraints", linear.constraintResidual},
+                      {"max_copy_jump", linear.maxCopyJump}};
+    summary["times"]["factorization_s"] = linear.factorizationSeconds;
+    summary["times"]["solve_s"] = linear.solveSeconds;
+    if (rank == 0)
+      std::cout << "  projected CG: " << (linear.converged ? "converged" : "NOT CONVERGED") << " in "
+                << linear.iterations << " iterations (" << linear.fApplications << " F applications), "
+                << "||Pr||/||Ph|| = " << linear.relativeResidual << ", kappa ~ " << linear.conditionEstimate
+                << "\n  KKT: equilibrium " << linear.equilibriumResidual << ", ||Bu - c||/||u|| "
+                << linear.constraintResidual << "\n  times: factorization " << linear.factorizationSeconds
+                << " s, solve " << linear.solveSeconds << " s\n";
+  }
+  summary["times"]["total_s"] = total.seconds();
+
+  // (5) Results.
+  if (rank == 0) {
     if (!cl.output.empty()) {
-      writeOutput(cl.output, scene);
+      writeOutput(cl.output, scene, displacement);
       std::cout << "  wrote " << cl.output << "\n";
     }
     if (!cl.summary.empty()) {
       std::ofstream out(cl.summary);
       if (!out) throw core::InputError(cl.summary + ": cannot write the summary file");
-      out << summaryJson(scene, report, cl, setupSeconds, total.seconds()).dump(2) << "\n";
+      out << summary.dump(2) << "\n";
       std::cout << "  wrote " << cl.summary << "\n";
     }
   }
-  return core::kExitOk;
+  return status;
 }
 }  // namespace
 
@@ -154,7 +218,7 @@ int main(int argc, char** argv) {
   MPI_Comm_size(MPI_COMM_WORLD, &size);
   int status = core::kExitOk;
   {
-    Kokkos::ScopeGuard kokkos(argc, argv);
+    Tpetra::ScopeGuard tpetra(&argc, &argv);  // Kokkos too; MPI is already up
     core::warmUpKokkosForThreads();
     try {
       status = run(argc, argv, rank);

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 #include <mpi.h>
 
-#include <Kokkos_Core.hpp>
+#include <Tpetra_Core.hpp>
 
 #include "tribos/core/Parallel.hpp"
 
@@ -13,7 +13,7 @@ int main(int argc, char** argv) {
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   int result = 0;
   {
-    Kokkos::ScopeGuard kokkos(argc, argv);
+    Tpetra::ScopeGuard tpetra(&argc, &argv);  // Kokkos too; MPI is already up
     tribos::core::warmUpKokkosForThreads();
     ::testing::InitGoogleTest(&argc, argv);
     if (rank != 0) {

@@ -161,6 +161,8 @@ Scene buildScene(const ParameterList& tribos, const std::string& source) {
   scene.contact.F2 = contact.get<double>("F2");
   scene.contact.slaveSideSet = contact.get<std::string>("Slave Side Set");
   scene.contact.masterSideSet = contact.get<std::string>("Master Side Set");
+  scene.contact.t1Direction = vector3(contact, "T1 Direction", source + ": Contact");
+  scene.contact.searchDistance = contact.get<double>("Search Distance");
   core::requireInput(scene.contact.slaveSideSet.empty() == scene.contact.masterSideSet.empty(),
                      source + ": Contact: give both \"Slave Side Set\" and \"Master Side Set\", or "
                               "neither (no contact)");

@@ -75,6 +75,31 @@ void contactParameters(ParameterList& pl) {
   pl.set("F2", 0.3, "friction coefficient along t2, >= 0", atLeast<double>(0.0));
   pl.set("Slave Side Set", std::string("contact_aluminium"), "contact surface of the slave body");
   pl.set("Master Side Set", std::string("contact_steel"), "contact surface of the master body");
+  pl.set("T1 Direction", Teuchos::Array<double>(Teuchos::tuple<double>(1.0, 0.0, 0.0)),
+         "{x, y, z}: the first tangential direction t1 (F1 acts along it), projected on each node's "
+         "tangent plane");
+  pl.set("Search Distance", 1e-6,
+         "node-to-node pairing: a slave node pairs with the nearest master node within this distance "
+         "[length]; the initial gap d is their distance along the normal",
+         atLeast<double>(0.0));
+}
+
+void fetiParameters(ParameterList& pl) {
+  Teuchos::setStringToIntegralParameter<int>(
+      "Factorization", "CHOLMOD",
+      "sparse Cholesky of the regularised subdomain stiffness K_reg and of G G^T (doc/factorization.md)",
+      Teuchos::tuple<std::string>("CHOLMOD", "Tacho"), &pl);
+  Teuchos::setStringToIntegralParameter<int>(
+      "Dual Operator", "Implicit",
+      "F = B K^dagger B^T: \"Implicit\" (two triangular solves per subdomain and application) or "
+      "\"Explicit\" (dense local F_s assembled once, then dense matrix-vector products)",
+      Teuchos::tuple<std::string>("Implicit", "Explicit"), &pl);
+  Teuchos::setStringToIntegralParameter<int>(
+      "Preconditioner", "None",
+      "linear (bonded / no contact) solves: projected CG preconditioner \"None\", \"Lumped\" "
+      "(P B K B^T P) or \"Dirichlet\" (P B S B^T P, S the Schur complement on the constrained dofs)",
+      Teuchos::tuple<std::string>("None", "Lumped", "Dirichlet"), &pl);
+  pl.set("Max Iterations", 1000, "linear solves: cap on projected CG iterations", atLeast<int>(1));
 }
 
 void solverParameters(ParameterList& pl) {
@@ -102,6 +127,7 @@ Teuchos::RCP<const Teuchos::ParameterList> sceneValidParameters() {
     boundaryParameters(pl->sublist("Boundary", false, "Dirichlet boundary"));
     contactParameters(pl->sublist("Contact", false, "contact pair and friction law"));
     solverParameters(pl->sublist("Solver", false, "SMALSE-M outer loop"));
+    fetiParameters(pl->sublist("FETI", false, "T-FETI operators and the linear (projected CG) solver"));
     parallelParameters(pl->sublist("Parallel", false, "hybrid MPI + threads"));
     return Teuchos::rcp_const_cast<const ParameterList>(pl);
   }();

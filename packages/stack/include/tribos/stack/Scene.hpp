@@ -4,6 +4,7 @@
 /// parts, built from a validated parameter list. Every rank builds the whole (global) mesh
 /// and decomposition — cheap next to the subdomain work — and then works on its own
 /// subdomains (mesh::firstSubdomain).
+#include <array>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,9 @@ struct ContactSettings {
   std::string frictionModel;  ///< None | Tresca | Coulomb | Bonded
   double F1 = 0.0, F2 = 0.0;  ///< friction coefficients along t1, t2
   std::string slaveSideSet, masterSideSet;
+  std::array<double, 3> t1Direction{1.0, 0.0, 0.0};
+  double searchDistance = 1e-6;
+  bool hasContact() const { return !slaveSideSet.empty(); }
 };
 
 struct Scene {

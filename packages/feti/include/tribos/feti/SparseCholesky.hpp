@@ -1,0 +1,39 @@
+#pragma once
+/// \file SparseCholesky.hpp
+/// One interface for the supernodal sparse Cholesky factorisations of SPD matrices (the
+/// regularised subdomain stiffness K_reg, and GG^T). Implementations: "CHOLMOD"
+/// (SuiteSparse) and "Tacho" (Trilinos's Tacho::Driver), both with a METIS fill-reducing
+/// ordering; see doc/factorization.md for the measured choice of the default.
+///
+/// Thread safety: different objects may factorize and solve concurrently from the threads
+/// of core::forEachSubdomain (each object used by one thread at a time).
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tribos/fem/SubdomainSystem.hpp"
+
+namespace tribos::feti {
+
+class SparseCholesky {
+ public:
+  virtual ~SparseCholesky() = default;
+  /// Symbolic analysis + numeric factorisation of the SPD matrix A (full symmetric CSR:
+  /// both triangles stored). Throws std::runtime_error if A is not positive definite.
+  virtual void factorize(const fem::CsrMatrix& A) = 0;
+  /// Solves A X = B for `nrhs` right-hand sides stored column-major (leading dimension n);
+  /// x and b may not alias.
+  virtual void solve(const double* b, double* x, int nrhs = 1) const = 0;
+  virtual LO size() const = 0;
+  /// Stored entries of the factor (for memory reports).
+  virtual long long factorNonzeros() const = 0;
+  virtual std::string name() const = 0;
+};
+
+/// Names accepted by makeSparseCholesky.
+std::vector<std::string> sparseCholeskyNames();
+/// Creates a factorisation by name ("CHOLMOD" or "Tacho"); throws core::InputError naming
+/// the parameter "FETI/Factorization" and the valid names otherwise.
+std::unique_ptr<SparseCholesky> makeSparseCholesky(const std::string& name);
+
+}  // namespace tribos::feti

@@ -1,0 +1,47 @@
+#pragma once
+/// \file SubdomainSolver.hpp
+/// Generalised inverses of a floating subdomain stiffness K_s (paper Section 4.1, Lemma 1;
+/// ALGORITHMS.md 1): fixing-node regularisation K_reg = K + rho_f R_f R_f^T (R_f = R
+/// restricted to the 9 dofs of 3 non-collinear, far-apart nodes), factorised once; then
+///   K^+ x = K_reg^{-1} x                       (K K^+ K = K)
+///   K^dagger x = (I - R R^T) K^+ (I - R R^T) x  (Moore-Penrose, eq. (11)).
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tribos/feti/SparseCholesky.hpp"
+
+namespace tribos::feti {
+
+class SubdomainSolver {
+ public:
+  /// Picks the fixing nodes from `coords` (local node coordinates), builds K_reg and
+  /// factorises it with `factorization` ("CHOLMOD" | "Tacho"). `system.R` must be the
+  /// orthonormal kernel basis of system.K. The solver keeps references to nothing: it
+  /// copies R. Safe to call concurrently for different objects.
+  void compute(const fem::SubdomainSystem& system, const std::vector<std::array<double, 3>>& coords,
+               const std::string& factorization);
+
+  /// y = K^+ x for nrhs column-major vectors of length n (Lemma 1's generalised inverse).
+  void applyGeneralizedInverse(const double* x, double* y, int nrhs = 1) const;
+  /// y = K^dagger x (Moore-Penrose), nrhs column-major vectors; uses `work` scratch.
+  void applyPseudoInverse(const double* x, double* y, int nrhs = 1) const;
+
+  LO size() const { return n_; }
+  const std::vector<double>& kernel() const { return R_; }  ///< n x 6 column-major, orthonormal
+  const std::array<LO, 3>& fixingNodes() const { return fixingNodes_; }
+  const SparseCholesky& factor() const { return *factor_; }
+
+ private:
+  LO n_ = 0;
+  std::vector<double> R_;
+  std::array<LO, 3> fixingNodes_{};
+  std::unique_ptr<SparseCholesky> factor_;
+};
+
+/// The three fixing nodes: the node farthest from the centroid, the node farthest from it,
+/// the node farthest from the line through both (ALGORITHMS.md 1). Exposed for tests.
+std::array<LO, 3> chooseFixingNodes(const std::vector<std::array<double, 3>>& coords);
+
+}  // namespace tribos::feti

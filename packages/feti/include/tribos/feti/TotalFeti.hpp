@@ -1,0 +1,112 @@
+#pragma once
+/// \file TotalFeti.hpp
+/// The dual (T-FETI) operators of one MPI rank (paper Section 4.2, ALGORITHMS.md 3):
+///   F = B K^dagger B^T, d~ = B K^dagger f - c, G = R^T B^T, e = R^T f,
+///   lambda_Im = G^T (G G^T)^{-1} e, P = I - G^T (G G^T)^{-1} G,
+/// and the recovery u = K^dagger (f - B^T lambda) + R alpha.
+///
+/// Distribution: dual vectors live on `dualMap()` (each row of B owned by one rank); an
+/// application of F imports lambda to the rows that touch this rank's subdomains, applies
+/// B_s K_s^dagger B_s^T per subdomain on threads, and export-adds the result. Coarse
+/// vectors (length l = 6 x subdomains) are replicated on every rank; G G^T is assembled and
+/// factorised on every rank (it is small and sparse), so the coarse solve needs no
+/// communication beyond one all-reduce of G lambda.
+#include <Teuchos_Comm.hpp>
+#include <Tpetra_Import_decl.hpp>
+#include <Tpetra_Map_decl.hpp>
+#include <Tpetra_Vector_decl.hpp>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tribos/feti/ConstraintMatrix.hpp"
+#include "tribos/feti/SparseCholesky.hpp"
+#include "tribos/feti/SubdomainSolver.hpp"
+
+namespace tribos::feti {
+
+using DualMap = Tpetra::Map<LO, GO>;
+using DualVector = Tpetra::Vector<Scalar, LO, GO>;
+
+struct TotalFetiSettings {
+  std::string factorization = "CHOLMOD";  ///< SparseCholesky for K_reg and G G^T
+  bool explicitF = false;                 ///< dense local F_s assembled once vs two solves per apply
+  bool dirichletPreconditioner = false;   ///< factorise K_ii per subdomain for applyDirichlet
+};
+
+class TotalFeti {
+ public:
+  /// `owned[i]` is the assembled system of subdomain firstOwned + i (mesh::firstSubdomain).
+  /// Factorises every owned K_reg (threads over subdomains), builds the maps, G G^T, e,
+  /// d~ and lambda_Im. Collective over `comm`.
+  TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decomposition,
+            std::vector<fem::SubdomainSystem> owned, const ConstraintMatrix& B,
+            const Teuchos::RCP<const Teuchos::Comm<int>>& comm, const TotalFetiSettings& settings);
+  ~TotalFeti();
+
+  Teuchos::RCP<const DualMap> dualMap() const { return dualMap_; }
+  Teuchos::RCP<DualVector> createDualVector() const;
+  GO numDual() const { return B_.numRows; }
+  int numCoarse() const { return 6 * numSubdomains_; }  ///< l
+
+  /// y = F x. Counts one F application.
+  void applyF(const DualVector& x, DualVector& y) const;
+  /// gx = G x (length l, replicated).
+  void applyG(const DualVector& x, std::vector<double>& gx) const;
+  /// y = G^T a (a of length l, replicated).
+  void applyGt(const std::vector<double>& a, DualVector& y) const;
+  /// a := (G G^T)^{-1} a.
+  void solveCoarse(std::vector<double>& a) const;
+  /// y = P x = x - G^T (G G^T)^{-1} G x (y may be x).
+  void project(const DualVector& x, DualVector& y) const;
+  /// y = B K B^T x (the lumped preconditioner, before projection).
+  void applyLumped(const DualVector& x, DualVector& y) const;
+  /// y = B S B^T x with S_s = K_bb - K_bi K_ii^{-1} K_ib the Schur complement of each
+  /// subdomain on the dofs that B touches (the Dirichlet preconditioner, before projection).
+  /// Requires settings.dirichletPreconditioner.
+  void applyDirichlet(const DualVector& x, DualVector& y) const;
+
+  const DualVector& dTilde() const { return *dTilde_; }    ///< d~ = B K^dagger f - c
+  const DualVector& lambdaIm() const { return *lambdaIm_; }  ///< G^T (G G^T)^{-1} e
+  const std::vector<double>& e() const { return e_; }       ///< R^T f
+
+  /// alpha = (G G^T)^{-1} G (F lambda - d~) over all rows (all constraints active: the
+  /// linear case); returns alpha (length l).
+  std::vector<double> rigidBodyCoefficients(const DualVector& lambda) const;
+  /// y = B u for displacements u of the owned subdomains (u[i] of subdomain firstOwned + i).
+  void applyB(const std::vector<std::vector<double>>& u, DualVector& y) const;
+  /// max over owned subdomains of ||K_s u_s - f_s + B_s^T lambda_s||_inf (equilibrium).
+  double equilibriumResidual(const DualVector& lambda, const std::vector<std::vector<double>>& u) const;
+  /// u_s = K_s^dagger (f_s - B_s^T lambda) + R_s alpha_s for every owned subdomain.
+  std::vector<std::vector<double>> recoverDisplacements(const DualVector& lambda,
+                                                        const std::vector<double>& alpha) const;
+
+  long long fApplications() const { return fApplications_; }
+  int firstOwnedSubdomain() const { return firstOwned_; }
+  int numOwnedSubdomains() const { return static_cast<int>(local_.size()); }
+  const SubdomainSolver& subdomainSolver(int i) const;
+  double factorizationSeconds() const { return factorizationSeconds_; }
+
+  struct Local;  ///< one owned subdomain (implementation detail, defined in TotalFeti.cpp)
+
+ private:
+  // x (owned) -> overlap values -> per-subdomain op -> export-add into y (owned).
+  template <class LocalOp>
+  void applyBlockwise(const DualVector& x, DualVector& y, LocalOp op) const;
+
+  const ConstraintMatrix& B_;
+  Teuchos::RCP<const Teuchos::Comm<int>> comm_;
+  TotalFetiSettings settings_;
+  int numSubdomains_ = 0, firstOwned_ = 0;
+  std::vector<std::unique_ptr<Local>> local_;
+  Teuchos::RCP<const DualMap> dualMap_, overlapMap_;
+  Teuchos::RCP<const Tpetra::Import<LO, GO>> importer_;
+  std::unique_ptr<SparseCholesky> coarse_;  ///< G G^T, replicated
+  std::vector<double> e_;
+  Teuchos::RCP<DualVector> dTilde_, lambdaIm_;
+  mutable long long fApplications_ = 0;
+  double factorizationSeconds_ = 0.0;
+};
+
+}  // namespace tribos::feti

@@ -1,0 +1,51 @@
+#pragma once
+/// \file Mpgp.hpp
+/// MPGP: modified proportioning with (reduced) gradient projections for
+///     min 1/2 x^T A x - b^T x   s.t.  x in Omega (separable: bounds and ellipses),
+/// ALGORITHMS.md 5 (Dostal & Kozubek; the paper's ref. [17]). CG steps on the free set,
+/// expansion steps by the reduced free gradient, proportioning steps by gradient projection.
+#include <functional>
+#include <string>
+
+#include "tribos/qp/DualTypes.hpp"
+#include "tribos/qp/SeparableSet.hpp"
+
+namespace Teuchos {
+class ParameterList;
+}
+
+namespace tribos::qp {
+
+struct MpgpSettings {
+  double stepScale = 1.9;   ///< alpha_bar = stepScale / ||A||, in (0, 2)
+  double gamma = 1.0;       ///< Gamma > 0: proportioning test ||beta||^2 <= Gamma^2 phi~^T phi
+  int maxIterations = 10000;
+};
+
+struct MpgpCounters {
+  int iterations = 0, cgSteps = 0, expansionSteps = 0, proportioningSteps = 0;
+  long long operatorApplications = 0;  ///< products with A
+  double projectedGradientNorm = 0.0;  ///< ||g^P|| at return
+  bool converged = false;
+};
+
+class Mpgp {
+ public:
+  explicit Mpgp(MpgpSettings settings = {}) : settings_(settings) {}
+  /// Minimises from x (projected onto Omega first) until stop(||g^P||, x) returns true or
+  /// maxIterations. `normA` >= ||A|| (the power method gives it). On return x is the
+  /// iterate and g = A x - b.
+  MpgpCounters solve(const SymmetricOperator& A, const Vector& b, const SeparableSet& omega, double normA,
+                     Vector& x, Vector& g, const std::function<bool(double, const Vector&)>& stop) const;
+
+ private:
+  MpgpSettings settings_;
+};
+
+/// ||A|| by the power method from a deterministic start: `iterations` products with A (or
+/// fewer when the Rayleigh quotient changes by less than `tolerance`). Returns the estimate
+/// and adds the products made to *applications.
+double powerMethod(const SymmetricOperator& A, const Map& map, int iterations, double tolerance,
+                   long long* applications);
+
+}  // namespace tribos::qp

@@ -1,0 +1,120 @@
+#include "tribos/stack/LinearFetiSolve.hpp"
+
+#include <Teuchos_DefaultMpiComm.hpp>
+#include <Teuchos_ParameterList.hpp>
+#include <Tpetra_Vector.hpp>
+
+#include <cmath>
+#include <limits>
+
+#include "tribos/core/Timer.hpp"
+#include "tribos/feti/ProjectedCg.hpp"
+#include "tribos/feti/TotalFeti.hpp"
+
+namespace tribos::stack {
+
+feti::ConstraintSpec constraintSpec(const Scene& scene) {
+  feti::ConstraintSpec spec;
+  spec.dirichletNodeSets = scene.dirichletNodeSets;
+  if (scene.contact.hasContact()) {
+    spec.slaveSideSet = scene.contact.slaveSideSet;
+    spec.masterSideSet = scene.contact.masterSideSet;
+  }
+  spec.tangentialRows = scene.contact.frictionModel != "None";
+  spec.t1Direction = scene.contact.t1Direction;
+  spec.searchDistance = scene.contact.searchDistance;
+  return spec;
+}
+
+LinearFetiResult solveLinearFeti(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
+                                 const feti::ConstraintMatrix& B, const Teuchos::ParameterList& fetiList,
+                                 double tolerance, MPI_Comm comm) {
+  LinearFetiResult result;
+  auto teuchosComm = Teuchos::rcp(new Teuchos::MpiComm<int>(comm));
+  const int rank = teuchosComm->getRank();
+
+  double fNormLocal = 0.0;
+  for (const auto& s : owned)
+    for (double v : s.f) fNormLocal = std::max(fNormLocal, std::abs(v));
+  double fNorm = 0.0;
+  MPI_Allreduce(&fNormLocal, &fNorm, 1, MPI_DOUBLE, MPI_MAX, comm);
+
+  feti::TotalFetiSettings settings;
+  settings.factorization = fetiList.get<std::string>("Factorization");
+  settings.explicitF = fetiList.get<std::string>("Dual Operator") == "Explicit";
+  settings.dirichletPreconditioner = fetiList.get<std::string>("Preconditioner") == "Dirichlet";
+  const feti::TotalFeti feti(scene.mesh, scene.decomposition, std::move(owned), B, teuchosComm, settings);
+  result.factorizationSeconds = feti.factorizationSeconds();
+
+  // Projected CG on P F P (paper Section 4.2), then alpha and u (ALGORITHMS.md 7).
+  core::Stopwatch watch;
+  feti::ProjectedCgSettings cg;
+  cg.tolerance = tolerance;
+  cg.maxIterations = fetiList.get<int>("Max Iterations");
+  cg.preconditioner = fetiList.get<std::string>("Preconditioner");
+  auto lambda = feti.createDualVector();
+  const auto solve = feti::solveProjectedCg(feti, *lambda, cg);
+  const auto alpha = feti.rigidBodyCoefficients(*lambda);
+  const auto u = feti.recoverDisplacements(*lambda, alpha);
+  result.solveSeconds = watch.seconds();
+  result.converged = solve.converged;
+  result.iterations = solve.iterations;
+  result.relativeResidual = solve.relativeResidual;
+  result.conditionEstimate = solve.conditionEstimate;
+  result.fApplications = feti.fApplications();
+
+  // KKT of the discrete problem: equilibrium per subdomain, and B u = c.
+  result.equilibriumResidual = feti.equilibriumResidual(*lambda, u) / (fNorm > 0.0 ? fNorm : 1.0);
+  auto Bu = feti.createDualVector();
+  feti.applyB(u, *Bu);
+  {
+    auto data = Bu->getLocalViewHost(Tpetra::Access::ReadWrite);
+    const GO first = B.firstRowOfRank[rank];
+    for (size_t i = 0; i < data.extent(0); ++i) data(i, 0) -= B.c[first + static_cast<GO>(i)];
+  }
+  double uNormLocal = 0.0;
+  for (const auto& us : u)
+    for (double v : us) uNormLocal += v * v;
+  double uNorm = 0.0;
+  MPI_Allreduce(&uNormLocal, &uNorm, 1, MPI_DOUBLE, MPI_SUM, comm);
+  uNorm = std::sqrt(uNorm);
+  result.constraintResidual = Bu->norm2() / (uNorm > 0.0 ? uNorm : 1.0);
+
+  // Global displacement = mean over the copies of a node; the spread of the copies is the
+  // gluing error that a user sees.
+  const LO numNodes = scene.mesh.numNodes();
+  std::vector<double> sum(4 * static_cast<size_t>(numNodes), 0.0);
+  std::vector<double> lo(3 * static_cast<size_t>(numNodes), std::numeric_limits<double>::max());
+  std::vector<double> hi(3 * static_cast<size_t>(numNodes), std::numeric_limits<double>::lowest());
+  for (int i = 0; i < feti.numOwnedSubdomains(); ++i) {
+    const auto& nodes = scene.decomposition.subdomains[feti.firstOwnedSubdomain() + i].nodes;
+    for (size_t k = 0; k < nodes.size(); ++k) {
+      const size_t g = static_cast<size_t>(nodes[k]);
+      for (int c = 0; c < 3; ++c) {
+        const double v = u[i][3 * k + c];
+        sum[4 * g + c] += v;
+        lo[3 * g + c] = std::min(lo[3 * g + c], v);
+        hi[3 * g + c] = std::max(hi[3 * g + c], v);
+      }
+      sum[4 * g + 3] += 1.0;
+    }
+  }
+  std::vector<double> sumAll(rank == 0 ? sum.size() : 0), loAll(rank == 0 ? lo.size() : 0),
+      hiAll(rank == 0 ? hi.size() : 0);
+  MPI_Reduce(sum.data(), sumAll.data(), static_cast<int>(sum.size()), MPI_DOUBLE, MPI_SUM, 0, comm);
+  MPI_Reduce(lo.data(), loAll.data(), static_cast<int>(lo.size()), MPI_DOUBLE, MPI_MIN, 0, comm);
+  MPI_Reduce(hi.data(), hiAll.data(), static_cast<int>(hi.size()), MPI_DOUBLE, MPI_MAX, 0, comm);
+  if (rank == 0) {
+    result.displacement.assign(numNodes, {0.0, 0.0, 0.0});
+    for (LO g = 0; g < numNodes; ++g) {
+      const double copies = sumAll[4 * static_cast<size_t>(g) + 3];
+      for (int c = 0; c < 3; ++c) {
+        result.displacement[g][c] = copies > 0 ? sumAll[4 * static_cast<size_t>(g) + c] / copies : 0.0;
+        if (copies > 0) result.maxCopyJump = std::max(result.maxCopyJump, hiAll[3 * g + c] - loAll[3 * g + c]);
+      }
+    }
+  }
+  return result;
+}
+
+}  // namespace tribos::stack

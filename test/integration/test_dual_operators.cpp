@@ -1,0 +1,132 @@
+// Properties of the T-FETI dual operators (paper Section 4.2) on the bonded two bricks,
+// distributed over however many ranks this runs on: F symmetric positive semidefinite,
+// P^2 = P, G P = 0, G lambda_Im = e, implicit F = explicit F to 1e-12, and a bounded
+// condition number of P F P on Ker G as the number of subdomains grows (Lanczos estimate).
+#include <gtest/gtest.h>
+#include <mpi.h>
+
+#include <Teuchos_DefaultMpiComm.hpp>
+#include <Teuchos_ParameterList.hpp>
+#include <Tpetra_Vector.hpp>
+
+#include <cmath>
+
+#include "tribos/core/Parameters.hpp"
+#include "tribos/feti/ConstraintMatrix.hpp"
+#include "tribos/feti/ProjectedCg.hpp"
+#include "tribos/feti/TotalFeti.hpp"
+#include "tribos/stack/LinearFetiSolve.hpp"
+#include "tribos/stack/Scene.hpp"
+#include "tribos/stack/SceneParameters.hpp"
+#include "tribos/stack/SubdomainSetup.hpp"
+
+namespace {
+using namespace tribos;
+
+struct Problem {
+  stack::Scene scene;
+  feti::ConstraintMatrix B;
+  std::unique_ptr<feti::TotalFeti> feti;
+};
+
+std::unique_ptr<Problem> makeProblem(const std::string& grid, int hOverH, bool explicitF) {
+  int size = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  Teuchos::ParameterList params("Tribos");
+  const auto valid = stack::sceneValidParameters();
+  core::applyOverride(params, *valid, "Mesh/Subdomains Per Brick=" + grid);
+  core::applyOverride(params, *valid, "Mesh/H Over h=" + std::to_string(hOverH));
+  core::applyOverride(params, *valid, "Contact/Friction Model=Bonded");
+  core::validateAndSetDefaults(params, *valid, "test");
+  auto p = std::make_unique<Problem>();
+  p->scene = stack::buildScene(params, "test");
+  std::vector<fem::SubdomainSystem> systems;
+  stack::assembleOwnedSubdomains(p->scene, MPI_COMM_WORLD, systems);
+  p->B = feti::buildConstraintMatrix(p->scene.mesh, p->scene.decomposition, stack::constraintSpec(p->scene), size);
+  feti::TotalFetiSettings settings;
+  settings.explicitF = explicitF;
+  p->feti = std::make_unique<feti::TotalFeti>(p->scene.mesh, p->scene.decomposition, std::move(systems), p->B,
+                                              Teuchos::rcp(new Teuchos::MpiComm<int>(MPI_COMM_WORLD)), settings);
+  return p;
+}
+
+void randomize(feti::DualVector& v, int seed) {
+  // Deterministic in the global row id, so every rank count sees the same vector.
+  auto data = v.getLocalViewHost(Tpetra::Access::OverwriteAll);
+  const auto& map = *v.getMap();
+  for (size_t i = 0; i < data.extent(0); ++i) {
+    const GO g = map.getGlobalElement(static_cast<LO>(i));
+    data(i, 0) = std::sin(1.0 + 0.37 * static_cast<double>(g) * (seed + 1)) + 0.1 * std::cos(3.1 * g + seed);
+  }
+}
+}  // namespace
+
+TEST(TotalFeti, dualOperatorIsSymmetricPositiveSemidefinite) {
+  auto p = makeProblem("4x2x2", 2, false);
+  auto x = p->feti->createDualVector(), y = p->feti->createDualVector(), Fx = p->feti->createDualVector(),
+       Fy = p->feti->createDualVector();
+  for (int seed = 0; seed < 3; ++seed) {
+    randomize(*x, seed);
+    randomize(*y, seed + 10);
+    p->feti->applyF(*x, *Fx);
+    p->feti->applyF(*y, *Fy);
+    const double xFy = x->dot(*Fy), yFx = y->dot(*Fx);
+    EXPECT_NEAR(xFy, yFx, 1e-12 * (std::abs(xFy) + std::abs(yFx)));
+    EXPECT_GE(x->dot(*Fx), -1e-14 * Fx->norm2() * x->norm2());
+  }
+}
+
+TEST(TotalFeti, projectorIsIdempotentAndAnnihilatedByG) {
+  auto p = makeProblem("4x2x2", 2, false);
+  auto x = p->feti->createDualVector(), Px = p->feti->createDualVector(), PPx = p->feti->createDualVector();
+  randomize(*x, 1);
+  p->feti->project(*x, *Px);
+  p->feti->project(*Px, *PPx);
+  PPx->update(-1.0, *Px, 1.0);
+  EXPECT_LT(PPx->norm2(), 1e-12 * x->norm2());
+  std::vector<double> GPx;
+  p->feti->applyG(*Px, GPx);
+  double norm = 0.0;
+  for (double v : GPx) norm += v * v;
+  EXPECT_LT(std::sqrt(norm), 1e-12 * x->norm2());
+
+  // lambda_Im satisfies the equality constraint G lambda = e.
+  std::vector<double> g;
+  p->feti->applyG(p->feti->lambdaIm(), g);
+  double diff = 0.0, eNorm = 0.0;
+  for (size_t i = 0; i < g.size(); ++i) {
+    diff += std::pow(g[i] - p->feti->e()[i], 2);
+    eNorm += std::pow(p->feti->e()[i], 2);
+  }
+  EXPECT_LT(std::sqrt(diff), 1e-10 * std::sqrt(eNorm));
+}
+
+TEST(TotalFeti, implicitAndExplicitDualOperatorsAgree) {
+  auto implicitF = makeProblem("4x2x2", 3, false);
+  auto explicitF = makeProblem("4x2x2", 3, true);
+  auto x = implicitF->feti->createDualVector(), a = implicitF->feti->createDualVector(),
+       b = implicitF->feti->createDualVector();
+  randomize(*x, 2);
+  implicitF->feti->applyF(*x, *a);
+  explicitF->feti->applyF(*x, *b);
+  b->update(-1.0, *a, 1.0);
+  EXPECT_LT(b->norm2(), 1e-12 * a->norm2());
+}
+
+TEST(TotalFeti, conditionNumberStaysBoundedAsSubdomainsGrow) {
+  // Numerical scalability (paper Section 4): at fixed H/h, kappa(P F P | Ker G) does not
+  // grow with the number of subdomains. Estimated from projected CG's Lanczos coefficients.
+  std::vector<double> kappa;
+  for (const char* grid : {"2x1x1", "4x2x2", "6x3x3"}) {
+    auto p = makeProblem(grid, 2, false);
+    auto lambda = p->feti->createDualVector();
+    feti::ProjectedCgSettings cg;
+    cg.tolerance = 1e-10;
+    const auto r = feti::solveProjectedCg(*p->feti, *lambda, cg);
+    EXPECT_TRUE(r.converged);
+    kappa.push_back(r.conditionEstimate);
+    RecordProperty(std::string("kappa_") + grid, std::to_string(r.conditionEstimate));
+  }
+  for (double k : kappa) EXPECT_GT(k, 1.0);
+  EXPECT_LT(kappa[2], 1.5 * kappa[1]) << "kappa(108 subdomains) vs kappa(32): " << kappa[2] << " vs " << kappa[1];
+}
