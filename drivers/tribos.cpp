@@ -6,8 +6,8 @@
 //   mpirun --allow-run-as-root -np 4 tribos --input input/two_bricks.xml --dry-run
 //
 // Scenes without contact, or with Contact/Friction Model = "Bonded", are solved by linear
-// T-FETI (projected CG). The contact solver (SMALSE-M, MPGP, Coulomb fixed point) is not in
-// this version yet: for such scenes a run performs the set-up and says so.
+// T-FETI (projected CG); contact scenes (None, Tresca, Coulomb) by T-FETI + SMALSE-M + MPGP
+// (+ successive approximations on the slip bound for Coulomb).
 #include <mpi.h>
 
 #include <Tpetra_Core.hpp>
@@ -27,6 +27,7 @@
 #include "tribos/core/Timer.hpp"
 #include "tribos/mesh/ExodusIO.hpp"
 #include "tribos/feti/ConstraintMatrix.hpp"
+#include "tribos/stack/ContactSolve.hpp"
 #include "tribos/stack/LinearFetiSolve.hpp"
 #include "tribos/stack/Scene.hpp"
 #include "tribos/stack/SceneParameters.hpp"
@@ -86,8 +87,12 @@ nlohmann::json summaryJson(const stack::Scene& scene, const stack::SetupReport& 
   return j;
 }
 
+struct ContactFields {
+  const std::vector<double>*normal = nullptr, *t1 = nullptr, *t2 = nullptr, *status = nullptr, *pressure = nullptr;
+};
+
 void writeOutput(const std::string& path, const stack::Scene& scene,
-                 const std::vector<std::array<double, 3>>* displacement) {
+                 const std::vector<std::array<double, 3>>* displacement, const ContactFields& contact) {
   mesh::TimeStep step;
   step.time = displacement ? 1.0 : 0.0;
   if (displacement) {
@@ -97,6 +102,13 @@ void writeOutput(const std::string& path, const stack::Scene& scene,
       for (LO n = 0; n < scene.mesh.numNodes(); ++n) f.values[n] = (*displacement)[n][c];
       step.nodal.push_back(std::move(f));
     }
+  }
+  if (contact.normal) {
+    step.nodal.push_back({"contact_normal", *contact.normal});
+    step.nodal.push_back({"contact_t1", *contact.t1});
+    step.nodal.push_back({"contact_t2", *contact.t2});
+    step.nodal.push_back({"contact_status", *contact.status});
+    step.nodal.push_back({"contact_pressure", *contact.pressure});
   }
   mesh::Field subdomain{"subdomain", std::vector<double>(scene.mesh.numElements())};
   for (LO e = 0; e < scene.mesh.numElements(); ++e) subdomain.values[e] = scene.decomposition.elementPart[e];
@@ -155,17 +167,64 @@ int run(int argc, char** argv, int rank) {
   int status = core::kExitOk;
   const std::vector<std::array<double, 3>>* displacement = nullptr;
   stack::LinearFetiResult linear;
+  stack::ContactSolveResult contactSolve;
+  ContactFields contactFields;
 
   // (4) Solve: linear T-FETI for bonded / contact-free scenes.
   const bool linearProblem = !scene.contact.hasContact() || scene.contact.frictionModel == "Bonded";
   if (cl.dryRun) {
     summary["solver"] = "dry run: not solved";
   } else if (!linearProblem) {
-    summary["solver"] = "not run: the contact solver (SMALSE-M/MPGP) is not available in this version";
+    if (rank == 0) std::cout << "  solver chain: " << stack::describeContactChain(params) << "\n";
+    contactSolve = stack::solveContactScene(scene, std::move(systems), B, params, MPI_COMM_WORLD);
+    const auto& r = contactSolve.contact;
+    displacement = &contactSolve.displacement.value;
+    contactFields = {&contactSolve.contactNormal, &contactSolve.contactT1, &contactSolve.contactT2,
+                     &contactSolve.contactStatus, &contactSolve.contactPressure};
+    status = r.converged ? core::kExitOk : core::kExitNotConverged;
+    summary["solver"] = contactSolve.chain;
+    summary["converged"] = r.converged;
+    summary["message"] = r.message;
+    summary["tolerance"] = params.sublist("Solver").get<double>("Tolerance");
+    summary["outer_iterations"] = r.counters.outerIterations;
+    summary["inner_iterations"] = r.counters.innerIterations;
+    summary["cg_steps"] = r.counters.cgSteps;
+    summary["expansion_steps"] = r.counters.expansionSteps;
+    summary["proportioning_steps"] = r.counters.proportioningSteps;
+    summary["pfp_applications"] = r.counters.operatorApplications;
+    summary["f_applications"] = contactSolve.fApplications;
+    summary["fixed_point_iterations"] = r.fixedPointIterations;
+    summary["fixed_point_change"] = r.fixedPointChange;
+    summary["energy"] = r.energy;
+    summary["kkt"] = {{"projected_gradient", r.counters.projectedGradient},
+                      {"equality_constraint", r.counters.equalityResidual},
+                      {"equilibrium", r.kkt.equilibrium},
+                      {"gluing_dirichlet", r.kkt.equality},
+                      {"non_penetration", r.kkt.nonPenetration},
+                      {"complementarity", r.kkt.complementarity},
+                      {"normal_sign", r.kkt.normalSign},
+                      {"friction_admissibility", r.kkt.frictionAdmissibility},
+                      {"slip_rule", r.kkt.slipRule},
+                      {"stick_rule", r.kkt.stickRule},
+                      {"max_copy_jump", contactSolve.displacement.maxCopyJump}};
+    summary["contact_nodes"] = {{"no_contact", r.statusCounts[0]}, {"stick", r.statusCounts[1]},
+                                {"slip", r.statusCounts[2]}};
+    summary["total_normal_force"] = contactSolve.totalNormalForce;
+    summary["total_contact_force"] = contactSolve.totalContactForce;
+    summary["times"]["factorization_s"] = contactSolve.factorizationSeconds;
+    summary["times"]["solve_s"] = contactSolve.solveSeconds;
     if (rank == 0)
-      std::cout << "  note: the contact solver (SMALSE-M, MPGP, Coulomb successive approximations) is not "
-                   "available in this version; only the set-up was run. Contact/Friction Model = \"Bonded\" "
-                   "solves the tied problem by linear T-FETI.\n";
+      std::cout << "  SMALSE-M: " << (r.converged ? "converged" : "NOT CONVERGED (" + r.message + ")") << ": "
+                << r.counters.outerIterations << " outer, " << r.counters.innerIterations << " inner iterations, "
+                << r.counters.operatorApplications << " PFP applications, " << r.fixedPointIterations
+                << " slip-bound updates\n"
+                << "  contact nodes: " << r.statusCounts[0] << " no contact, " << r.statusCounts[1] << " stick, "
+                << r.statusCounts[2] << " slip; total normal force " << contactSolve.totalNormalForce << "\n"
+                << "  KKT: equilibrium " << r.kkt.equilibrium << ", gluing/Dirichlet " << r.kkt.equality
+                << ", penetration " << r.kkt.nonPenetration << ", complementarity " << r.kkt.complementarity
+                << ", friction " << r.kkt.frictionAdmissibility << ", slip rule " << r.kkt.slipRule << "\n"
+                << "  times: factorization " << contactSolve.factorizationSeconds << " s, solve "
+                << contactSolve.solveSeconds << " s\n";
   } else {
     const double tolerance = params.sublist("Solver").get<double>("Tolerance");
     linear = stack::solveLinearFeti(scene, std::move(systems), B, params.sublist("FETI"), tolerance, MPI_COMM_WORLD);
@@ -197,7 +256,7 @@ int run(int argc, char** argv, int rank) {
   // (5) Results.
   if (rank == 0) {
     if (!cl.output.empty()) {
-      writeOutput(cl.output, scene, displacement);
+      writeOutput(cl.output, scene, displacement, contactFields);
       std::cout << "  wrote " << cl.output << "\n";
     }
     if (!cl.summary.empty()) {

@@ -140,7 +140,7 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
     L->subdomain = firstOwned_ + i;
     L->block = &B.blocks[L->subdomain];
     L->system = std::move(owned[i]);
-    L->system.R = R[L->subdomain];
+    L->system.R = R[L->subdomain];  // the same bits as every rank's copy
     for (GO row : L->block->rows) L->overlapIndex.push_back(overlapMap_->getLocalElement(row));
     L->in.assign(L->m(), 0.0);
     L->out.assign(L->m(), 0.0);
@@ -170,39 +170,9 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
   double seconds = watch.seconds();
   Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &seconds, &factorizationSeconds_);
 
-  // (4) G G^T from g_{s,r} = R_s^T (row r of B_s)^T, replicated on every rank:
-  // (G G^T)_{st} = sum over rows r touching s and t of g_{s,r} g_{t,r}^T.
-  std::vector<std::vector<std::pair<int, std::array<double, 6>>>> byRow(B.numRows);
-  for (int s = 0; s < numSubdomains_; ++s) {
-    const auto& b = B.blocks[s];
-    const LO n = 3 * static_cast<LO>(decomposition.subdomains[s].nodes.size());
-    for (size_t i = 0; i < b.rows.size(); ++i) {
-      std::array<double, 6> g{};
-      for (LO k = b.rowPtr[i]; k < b.rowPtr[i + 1]; ++k)
-        for (int j = 0; j < 6; ++j) g[j] += b.value[k] * R[s][static_cast<size_t>(j) * n + b.dof[k]];
-      byRow[b.rows[i]].push_back({s, g});
-    }
-  }
-  std::vector<std::map<int, std::array<double, 36>>> blocks(numSubdomains_);
-  for (const auto& touching : byRow)
-    for (const auto& [s, gs] : touching)
-      for (const auto& [t, gt] : touching) {
-        auto& blk = blocks[s][t];
-        for (int a = 0; a < 6; ++a)
-          for (int c = 0; c < 6; ++c) blk[a * 6 + c] += gs[a] * gt[c];
-      }
-  fem::CsrMatrix GGt;
-  GGt.n = 6 * numSubdomains_;
-  GGt.rowPtr.assign(GGt.n + 1, 0);
-  for (int s = 0; s < numSubdomains_; ++s)
-    for (int a = 0; a < 6; ++a) {
-      for (const auto& [t, blk] : blocks[s])
-        for (int c = 0; c < 6; ++c) {
-          GGt.colInd.push_back(6 * t + c);
-          GGt.values.push_back(blk[a * 6 + c]);
-        }
-      GGt.rowPtr[6 * s + a + 1] = static_cast<LO>(GGt.colInd.size());
-    }
+  // (4) G G^T, replicated, factorised once.
+  R_ = std::move(R);
+  const fem::CsrMatrix GGt = assembleCoarse(nullptr);
   coarse_ = makeSparseCholesky(settings_.factorization);
   try {
     coarse_->factorize(GGt);
@@ -236,6 +206,69 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
   std::vector<double> a = e_;
   solveCoarse(a);
   applyGt(a, *lambdaIm_);
+}
+
+fem::CsrMatrix TotalFeti::assembleCoarse(const std::vector<char>* rowMask) const {
+  // g_{s,r} = R_s^T (row r of B_s)^T, and (G G^T)_{st} = sum over rows r touching both s
+  // and t of g_{s,r} g_{t,r}^T: 6x6 blocks for subdomains that share a row of B.
+  std::vector<std::vector<std::pair<int, std::array<double, 6>>>> byRow(B_.numRows);
+  for (int s = 0; s < numSubdomains_; ++s) {
+    const auto& b = B_.blocks[s];
+    const LO n = static_cast<LO>(R_[s].size() / 6);
+    for (size_t i = 0; i < b.rows.size(); ++i) {
+      if (rowMask && !(*rowMask)[b.rows[i]]) continue;
+      std::array<double, 6> g{};
+      for (LO k = b.rowPtr[i]; k < b.rowPtr[i + 1]; ++k)
+        for (int j = 0; j < 6; ++j) g[j] += b.value[k] * R_[s][static_cast<size_t>(j) * n + b.dof[k]];
+      byRow[b.rows[i]].push_back({s, g});
+    }
+  }
+  std::vector<std::map<int, std::array<double, 36>>> blocks(numSubdomains_);
+  for (const auto& touching : byRow)
+    for (const auto& [s, gs] : touching)
+      for (const auto& [t, gt] : touching) {
+        auto& blk = blocks[s][t];
+        for (int a = 0; a < 6; ++a)
+          for (int c = 0; c < 6; ++c) blk[a * 6 + c] += gs[a] * gt[c];
+      }
+  fem::CsrMatrix GGt;
+  GGt.n = 6 * numSubdomains_;
+  GGt.rowPtr.assign(GGt.n + 1, 0);
+  for (int s = 0; s < numSubdomains_; ++s)
+    for (int a = 0; a < 6; ++a) {
+      for (const auto& [t, blk] : blocks[s])
+        for (int c = 0; c < 6; ++c) {
+          GGt.colInd.push_back(6 * t + c);
+          GGt.values.push_back(blk[a * 6 + c]);
+        }
+      GGt.rowPtr[6 * s + a + 1] = static_cast<LO>(GGt.colInd.size());
+    }
+  return GGt;
+}
+
+std::vector<double> TotalFeti::rigidBodyCoefficients(const DualVector& lambda,
+                                                     const std::vector<char>& rowMask) const {
+  DualVector residual(dualMap_);
+  applyF(lambda, residual);
+  residual.update(-1.0, *dTilde_, 1.0);
+  {
+    auto data = residual.getLocalViewHost(Tpetra::Access::ReadWrite);
+    const GO first = dualMap_->getMinGlobalIndex();
+    for (size_t i = 0; i < data.extent(0); ++i)
+      if (!rowMask[first + static_cast<GO>(i)]) data(i, 0) = 0.0;
+  }
+  std::vector<double> alpha;
+  applyG(residual, alpha);
+  auto factor = makeSparseCholesky(settings_.factorization);
+  try {
+    factor->factorize(assembleCoarse(&rowMask));
+  } catch (const std::exception& e) {
+    throw std::runtime_error(std::string("tribos::feti::TotalFeti::rigidBodyCoefficients: G_I G_I^T is singular "
+                                         "(the inactive rows do not fix every rigid body mode): ") + e.what());
+  }
+  std::vector<double> rhs = alpha;
+  factor->solve(rhs.data(), alpha.data());
+  return alpha;
 }
 
 Teuchos::RCP<DualVector> TotalFeti::createDualVector() const { return Teuchos::rcp(new DualVector(dualMap_)); }
@@ -383,6 +416,27 @@ double TotalFeti::equilibriumResidual(const DualVector& lambda, const std::vecto
   }
   double global = 0.0;
   Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 1, &worst, &global);
+  return global;
+}
+
+double TotalFeti::energy(const std::vector<std::vector<double>>& u) const {
+  double local = 0.0;
+  for (size_t i = 0; i < local_.size(); ++i) {
+    Local& L = *local_[i];
+    L.system.K.apply(u[i].data(), L.y.data());
+    for (LO k = 0; k < L.n(); ++k) local += 0.5 * u[i][k] * L.y[k] - L.system.f[k] * u[i][k];
+  }
+  double global = 0.0;
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, 1, &local, &global);
+  return global;
+}
+
+double TotalFeti::loadNormInf() const {
+  double local = 0.0;
+  for (const auto& L : local_)
+    for (double v : L->system.f) local = std::max(local, std::abs(v));
+  double global = 0.0;
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 1, &local, &global);
   return global;
 }
 

@@ -5,9 +5,9 @@
 #include <Tpetra_Vector.hpp>
 
 #include <cmath>
-#include <limits>
 
 #include "tribos/core/Timer.hpp"
+#include "tribos/stack/GlobalFields.hpp"
 #include "tribos/feti/ProjectedCg.hpp"
 #include "tribos/feti/TotalFeti.hpp"
 
@@ -82,38 +82,9 @@ LinearFetiResult solveLinearFeti(const Scene& scene, std::vector<fem::SubdomainS
 
   // Global displacement = mean over the copies of a node; the spread of the copies is the
   // gluing error that a user sees.
-  const LO numNodes = scene.mesh.numNodes();
-  std::vector<double> sum(4 * static_cast<size_t>(numNodes), 0.0);
-  std::vector<double> lo(3 * static_cast<size_t>(numNodes), std::numeric_limits<double>::max());
-  std::vector<double> hi(3 * static_cast<size_t>(numNodes), std::numeric_limits<double>::lowest());
-  for (int i = 0; i < feti.numOwnedSubdomains(); ++i) {
-    const auto& nodes = scene.decomposition.subdomains[feti.firstOwnedSubdomain() + i].nodes;
-    for (size_t k = 0; k < nodes.size(); ++k) {
-      const size_t g = static_cast<size_t>(nodes[k]);
-      for (int c = 0; c < 3; ++c) {
-        const double v = u[i][3 * k + c];
-        sum[4 * g + c] += v;
-        lo[3 * g + c] = std::min(lo[3 * g + c], v);
-        hi[3 * g + c] = std::max(hi[3 * g + c], v);
-      }
-      sum[4 * g + 3] += 1.0;
-    }
-  }
-  std::vector<double> sumAll(rank == 0 ? sum.size() : 0), loAll(rank == 0 ? lo.size() : 0),
-      hiAll(rank == 0 ? hi.size() : 0);
-  MPI_Reduce(sum.data(), sumAll.data(), static_cast<int>(sum.size()), MPI_DOUBLE, MPI_SUM, 0, comm);
-  MPI_Reduce(lo.data(), loAll.data(), static_cast<int>(lo.size()), MPI_DOUBLE, MPI_MIN, 0, comm);
-  MPI_Reduce(hi.data(), hiAll.data(), static_cast<int>(hi.size()), MPI_DOUBLE, MPI_MAX, 0, comm);
-  if (rank == 0) {
-    result.displacement.assign(numNodes, {0.0, 0.0, 0.0});
-    for (LO g = 0; g < numNodes; ++g) {
-      const double copies = sumAll[4 * static_cast<size_t>(g) + 3];
-      for (int c = 0; c < 3; ++c) {
-        result.displacement[g][c] = copies > 0 ? sumAll[4 * static_cast<size_t>(g) + c] / copies : 0.0;
-        if (copies > 0) result.maxCopyJump = std::max(result.maxCopyJump, hiAll[3 * g + c] - loAll[3 * g + c]);
-      }
-    }
-  }
+  auto global = gatherDisplacement(scene, feti.firstOwnedSubdomain(), u, comm);
+  result.displacement = std::move(global.value);
+  result.maxCopyJump = global.maxCopyJump;
   return result;
 }
 

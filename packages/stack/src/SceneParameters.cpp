@@ -75,6 +75,13 @@ void contactParameters(ParameterList& pl) {
   pl.set("F2", 0.3, "friction coefficient along t2, >= 0", atLeast<double>(0.0));
   pl.set("Slave Side Set", std::string("contact_aluminium"), "contact surface of the slave body");
   pl.set("Master Side Set", std::string("contact_steel"), "contact surface of the master body");
+  pl.set("Slip Bound", 0.0, "Tresca: the given slip bound g as a nodal force [force], >= 0", atLeast<double>(0.0));
+  Teuchos::setStringToIntegralParameter<int>(
+      "Fixed Point", "Inexact",
+      "Coulomb: \"Inexact\" updates the slip bound g := lambda_nu after every SMALSE-M outer iteration "
+      "(the paper's choice); \"Exact\" solves every Tresca problem to Solver/Tolerance first",
+      Teuchos::tuple<std::string>("Inexact", "Exact"), &pl);
+  pl.set("Max Fixed Point Iterations", 50, "Coulomb, Exact: cap on the Tresca solves", atLeast<int>(1));
   pl.set("T1 Direction", Teuchos::Array<double>(Teuchos::tuple<double>(1.0, 0.0, 0.0)),
          "{x, y, z}: the first tangential direction t1 (F1 acts along it), projected on each node's "
          "tangent plane");
@@ -103,8 +110,27 @@ void fetiParameters(ParameterList& pl) {
 }
 
 void solverParameters(ParameterList& pl) {
-  pl.set("Tolerance", 1e-5, "the paper's epsilon: relative tolerance of SMALSE-M, > 0", atLeast<double>(0.0));
+  pl.set("Tolerance", 1e-5,
+         "the paper's epsilon > 0: SMALSE-M stops when ||g^P|| and ||G mu|| are <= epsilon ||P h|| (and "
+         "Coulomb's slip bound moved by <= epsilon); linear solves: ||P r|| <= epsilon ||P h||",
+         atLeast<double>(0.0));
   pl.set("Max Outer Iterations", 100, "cap on SMALSE-M outer iterations", atLeast<int>(1));
+  ParameterList& smalse = pl.sublist("SMALSE-M", false, "augmented Lagrangian (paper Section 5)");
+  smalse.set("eta", 1.0, "eta > 0, relative to ||P h||: cap of the inner stopping bound min(M ||G mu||, eta)",
+             atLeast<double>(0.0));
+  smalse.set("rho", 1.0, "rho > 0, relative to ||PFP||: penalty of A_rho = PFP + rho Q", atLeast<double>(0.0));
+  smalse.set("initial M", 1e-6, "M_0 > 0, relative to ||PFP||: inner precision control", atLeast<double>(0.0));
+  smalse.set("beta", 0.1, "0 < beta_M < 1: M is multiplied by it when the Lagrangian does not grow enough",
+             atLeast<double>(0.0));
+  Teuchos::setStringToIntegralParameter<int>(
+      "equality test", "Conventional",
+      "outer test on ||G mu||: \"Conventional\" (<= epsilon ||P h||) or \"Paper\" (<= epsilon M_0 ||mu||)",
+      Teuchos::tuple<std::string>("Conventional", "Paper"), &smalse);
+  smalse.set("power iterations", 50, "products with PFP in the power method for ||PFP||", atLeast<int>(1));
+  ParameterList& mpgp = pl.sublist("MPGP", false, "inner solver for the bound and elliptic-cone constraints");
+  mpgp.set("step scale", 1.9, "alpha_bar = step scale / ||A_rho||, in (0, 2)", atLeast<double>(0.0));
+  mpgp.set("Gamma", 1.0, "Gamma > 0: proportioning parameter", atLeast<double>(0.0));
+  mpgp.set("max iterations", 100000, "cap on MPGP iterations per inner solve", atLeast<int>(1));
 }
 
 void parallelParameters(ParameterList& pl) {

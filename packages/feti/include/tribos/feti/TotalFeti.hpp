@@ -74,6 +74,10 @@ class TotalFeti {
   /// alpha = (G G^T)^{-1} G (F lambda - d~) over all rows (all constraints active: the
   /// linear case); returns alpha (length l).
   std::vector<double> rigidBodyCoefficients(const DualVector& lambda) const;
+  /// alpha = (G_I G_I^T)^{-1} G_I (F lambda - d~)_I over the rows I where rowMask[r] != 0
+  /// (rowMask global, identical on every rank): the rows where the dual constraints are not
+  /// active, so that the dual gradient vanishes there (ALGORITHMS.md 7).
+  std::vector<double> rigidBodyCoefficients(const DualVector& lambda, const std::vector<char>& rowMask) const;
   /// y = B u for displacements u of the owned subdomains (u[i] of subdomain firstOwned + i).
   void applyB(const std::vector<std::vector<double>>& u, DualVector& y) const;
   /// max over owned subdomains of ||K_s u_s - f_s + B_s^T lambda_s||_inf (equilibrium).
@@ -81,6 +85,13 @@ class TotalFeti {
   /// u_s = K_s^dagger (f_s - B_s^T lambda) + R_s alpha_s for every owned subdomain.
   std::vector<std::vector<double>> recoverDisplacements(const DualVector& lambda,
                                                         const std::vector<double>& alpha) const;
+
+  /// 1/2 u^T K u - f^T u summed over all subdomains (collective).
+  double energy(const std::vector<std::vector<double>>& u) const;
+  /// ||f||_inf over all subdomains (collective).
+  double loadNormInf() const;
+  const Teuchos::RCP<const Teuchos::Comm<int>>& comm() const { return comm_; }
+  const ConstraintMatrix& constraints() const { return B_; }
 
   long long fApplications() const { return fApplications_; }
   int firstOwnedSubdomain() const { return firstOwned_; }
@@ -102,6 +113,10 @@ class TotalFeti {
   std::vector<std::unique_ptr<Local>> local_;
   Teuchos::RCP<const DualMap> dualMap_, overlapMap_;
   Teuchos::RCP<const Tpetra::Import<LO, GO>> importer_;
+  /// G_I G_I^T over the rows with mask != 0 (all rows: G G^T), replicated on every rank.
+  fem::CsrMatrix assembleCoarse(const std::vector<char>* rowMask) const;
+
+  std::vector<std::vector<double>> R_;       ///< R_s of every subdomain (all ranks)
   std::unique_ptr<SparseCholesky> coarse_;  ///< G G^T, replicated
   std::vector<double> e_;
   Teuchos::RCP<DualVector> dTilde_, lambdaIm_;

@@ -1,0 +1,76 @@
+#pragma once
+/// \file ContactSolver.hpp
+/// The contact problem on top of T-FETI (paper Sections 2, 5; ALGORITHMS.md 4-7):
+///  - friction models: None (frictionless: only normal rows), Tresca (given slip bound g),
+///    Coulomb (successive approximations on g, eq. (20)), each isotropic or orthotropic
+///    (F = diag(F1, F2) in the frame (t1, t2));
+///  - the dual QP  min 1/2 mu^T (PFP + rho Q) mu - mu^T (P h - G^T beta)  s.t.
+///    mu + lambda_Im in Lambda(g), solved by SMALSE-M with MPGP inner iterations;
+///  - Coulomb: the inexact fixed point updates g := mu_nu + lambda_Im,nu after every
+///    SMALSE-M outer iteration (the paper's choice); the exact variant solves every Tresca
+///    problem to epsilon before updating g. Stagnation / divergence of the fixed point is
+///    detected and reported, never returned as converged;
+///  - recovery of alpha over the rows where the dual constraints are inactive, of u, of the
+///    contact status (no contact / stick / slip) and the KKT residuals of the discrete problem.
+#include <array>
+#include <string>
+#include <vector>
+
+#include "tribos/feti/TotalFeti.hpp"
+#include "tribos/qp/SmalseM.hpp"
+
+namespace tribos::contact {
+
+struct FrictionSettings {
+  std::string model = "Coulomb";   ///< "None" | "Tresca" | "Coulomb"
+  double F1 = 0.3, F2 = 0.3;       ///< friction coefficients along t1, t2
+  double slipBound = 0.0;          ///< Tresca: g as a nodal force [force]
+  std::string fixedPoint = "Inexact";  ///< Coulomb: "Inexact" (update g every outer iteration) | "Exact"
+  int maxFixedPointIterations = 50;    ///< Exact variant: cap on Tresca solves
+  /// Divergence: the fixed-point change grew in this many consecutive updates (after the
+  /// first few) -> stop and report "fixed point diverges".
+  int divergenceWindow = 8;
+};
+
+enum class ContactStatus : int { NoContact = 0, Stick = 1, Slip = 2 };
+
+/// Normalised residuals of the KKT conditions of the discrete problem (ALGORITHMS.md 7).
+struct KktReport {
+  double equilibrium = 0.0;       ///< max ||K_s u_s - f_s + B_s^T lambda_s||_inf / ||f||_inf
+  double equality = 0.0;          ///< ||B_E u|| / ||u|| (gluing, Dirichlet)
+  double nonPenetration = 0.0;    ///< max(N u - c, 0) / ||u||_inf
+  double complementarity = 0.0;   ///< |lambda_nu^T (N u - c)| / (||lambda_nu|| ||u||_inf)
+  double normalSign = 0.0;        ///< max(-lambda_nu, 0) / ||lambda_nu||_inf
+  double frictionAdmissibility = 0.0;  ///< max(||F^-1 lambda_t|| - g, 0) / ||lambda_nu||_inf
+  double slipRule = 0.0;          ///< max over slip nodes of 1 - cos(F^-1 lambda_t, F v)
+  double stickRule = 0.0;         ///< max over stick nodes of ||v|| / ||u||_inf
+};
+
+/// One contact node owned by this rank, as the user sees it.
+struct ContactNodeResult {
+  LO slaveNode = -1;
+  std::array<double, 3> force{};  ///< physical nodal force of slave on master in (nu, t1, t2)
+  std::array<double, 3> relativeDisplacement{};  ///< (u_slave - u_master) in (nu, t1, t2)
+  double slipBound = 0.0;         ///< g (force units) of the last Tresca problem
+  ContactStatus status = ContactStatus::NoContact;
+};
+
+struct ContactResult {
+  bool converged = false;
+  std::string message;            ///< why it stopped
+  qp::SmalseCounters counters;    ///< summed over all SMALSE-M runs
+  int fixedPointIterations = 0;   ///< updates of g (Coulomb)
+  double fixedPointChange = 0.0;  ///< ||g_{k+1} - g_k|| / ||g_k|| at the end
+  KktReport kkt;
+  std::array<int, 3> statusCounts{0, 0, 0};  ///< no contact, stick, slip (global)
+  double energy = 0.0;            ///< 1/2 u^T K u - f^T u (global)
+  std::vector<std::vector<double>> displacement;  ///< u_s of the owned subdomains
+  std::vector<ContactNodeResult> nodes;           ///< contact nodes whose rows this rank owns
+};
+
+/// Solves the contact problem. B's contact rows must have tangential rows unless model is
+/// "None". Collective.
+ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMatrix& B,
+                           const FrictionSettings& friction, const qp::SmalseSettings& smalse);
+
+}  // namespace tribos::contact

@@ -1,0 +1,47 @@
+#pragma once
+/// \file ContactSolve.hpp
+/// The scene -> contact solver wiring: the solver stack T-FETI (coarse projector, F) ->
+/// SMALSE-M -> MPGP -> friction law, built from the parameter list, and the results mapped
+/// back onto the user's global mesh.
+#include <mpi.h>
+
+#include <string>
+#include <vector>
+
+#include "tribos/contact/ContactSolver.hpp"
+#include "tribos/stack/GlobalFields.hpp"
+
+namespace Teuchos {
+class ParameterList;
+}
+
+namespace tribos::stack {
+
+struct ContactSolveResult {
+  contact::ContactResult contact;   ///< counters, KKT, status counts (node list: this rank's)
+  GlobalDisplacement displacement;  ///< rank 0
+  /// Per global node (rank 0), zero off the slave surface: force of the slave body on the
+  /// master body in (nu, t1, t2), status (0 none, 1 stick, 2 slip), pressure (normal force
+  /// per tributary area).
+  std::vector<double> contactNormal, contactT1, contactT2, contactStatus, contactPressure;
+  double totalNormalForce = 0.0;    ///< sum of the normal nodal forces (rank 0)
+  std::array<double, 3> totalContactForce{};  ///< sum of nodal contact forces in x, y, z (rank 0)
+  double factorizationSeconds = 0.0, solveSeconds = 0.0;
+  long long fApplications = 0;
+  std::string chain;                ///< the solver chain that was built, for verbose output
+};
+
+/// Solver settings from the validated "Tribos" list (exposed for tests and perf tools).
+contact::FrictionSettings frictionSettings(const Teuchos::ParameterList& tribos);
+qp::SmalseSettings smalseSettings(const Teuchos::ParameterList& tribos);
+
+/// The chain solveContactScene builds, in words (printed at the start of a run).
+std::string describeContactChain(const Teuchos::ParameterList& tribos);
+
+/// Solves a contact scene (Friction Model None, Tresca or Coulomb). `owned`: this rank's
+/// assembled systems, consumed. Collective over `comm`.
+ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
+                                     const feti::ConstraintMatrix& B, const Teuchos::ParameterList& tribos,
+                                     MPI_Comm comm);
+
+}  // namespace tribos::stack

@@ -1,0 +1,118 @@
+#include "tribos/stack/ContactSolve.hpp"
+
+#include <Teuchos_DefaultMpiComm.hpp>
+#include <Teuchos_ParameterList.hpp>
+
+#include <sstream>
+
+#include "tribos/core/Timer.hpp"
+#include "tribos/feti/TotalFeti.hpp"
+
+namespace tribos::stack {
+
+contact::FrictionSettings frictionSettings(const Teuchos::ParameterList& tribos) {
+  const auto& c = tribos.sublist("Contact");
+  contact::FrictionSettings f;
+  f.model = c.get<std::string>("Friction Model");
+  f.F1 = c.get<double>("F1");
+  f.F2 = c.get<double>("F2");
+  f.slipBound = c.get<double>("Slip Bound");
+  f.fixedPoint = c.get<std::string>("Fixed Point");
+  f.maxFixedPointIterations = c.get<int>("Max Fixed Point Iterations");
+  return f;
+}
+
+qp::SmalseSettings smalseSettings(const Teuchos::ParameterList& tribos) {
+  const auto& solver = tribos.sublist("Solver");
+  const auto& sm = solver.sublist("SMALSE-M");
+  const auto& mp = solver.sublist("MPGP");
+  qp::SmalseSettings s;
+  s.tolerance = solver.get<double>("Tolerance");
+  s.maxOuterIterations = solver.get<int>("Max Outer Iterations");
+  s.eta = sm.get<double>("eta");
+  s.rho = sm.get<double>("rho");
+  s.M0 = sm.get<double>("initial M");
+  s.betaM = sm.get<double>("beta");
+  s.equalityTest = sm.get<std::string>("equality test");
+  s.powerIterations = sm.get<int>("power iterations");
+  s.mpgp.stepScale = mp.get<double>("step scale");
+  s.mpgp.gamma = mp.get<double>("Gamma");
+  s.mpgp.maxIterations = mp.get<int>("max iterations");
+  return s;
+}
+
+std::string describeContactChain(const Teuchos::ParameterList& tribos) {
+  const auto& fetiList = tribos.sublist("FETI");
+  const auto friction = frictionSettings(tribos);
+  const auto smalse = smalseSettings(tribos);
+  std::ostringstream chain;
+  chain << "T-FETI (" << fetiList.get<std::string>("Factorization") << " K_reg, "
+        << fetiList.get<std::string>("Dual Operator") << " F, coarse projector P = I - G^T (G G^T)^-1 G) -> SMALSE-M (eps "
+        << smalse.tolerance << ", rho " << smalse.rho << " ||PFP||, M0 " << smalse.M0 << " ||PFP||, eta " << smalse.eta
+        << " ||Ph||, beta " << smalse.betaM << ", " << smalse.equalityTest << " test) -> MPGP (alpha_bar "
+        << smalse.mpgp.stepScale << "/||A||, Gamma " << smalse.mpgp.gamma << ") -> " << friction.model;
+  if (friction.model == "Coulomb")
+    chain << " (" << friction.fixedPoint << " successive approximations, F1 " << friction.F1 << ", F2 " << friction.F2
+          << ")";
+  if (friction.model == "Tresca") chain << " (g = " << friction.slipBound << ", F1 " << friction.F1 << ", F2 "
+                                        << friction.F2 << ")";
+  return chain.str();
+}
+
+ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
+                                     const feti::ConstraintMatrix& B, const Teuchos::ParameterList& tribos,
+                                     MPI_Comm comm) {
+  ContactSolveResult out;
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  const auto& fetiList = tribos.sublist("FETI");
+  feti::TotalFetiSettings settings;
+  settings.factorization = fetiList.get<std::string>("Factorization");
+  settings.explicitF = fetiList.get<std::string>("Dual Operator") == "Explicit";
+  const auto friction = frictionSettings(tribos);
+  const auto smalse = smalseSettings(tribos);
+  out.chain = describeContactChain(tribos);
+
+  const feti::TotalFeti feti(scene.mesh, scene.decomposition, std::move(owned), B,
+                             Teuchos::rcp(new Teuchos::MpiComm<int>(comm)), settings);
+  out.factorizationSeconds = feti.factorizationSeconds();
+  core::Stopwatch watch;
+  out.contact = contact::solveContact(feti, B, friction, smalse);
+  out.solveSeconds = watch.seconds();
+  out.fApplications = feti.fApplications();
+  out.displacement = gatherDisplacement(scene, feti.firstOwnedSubdomain(), out.contact.displacement, comm);
+
+  // Contact fields on the global mesh: every contact node's rows belong to one rank.
+  const size_t numNodes = static_cast<size_t>(scene.mesh.numNodes());
+  std::vector<double> fields(5 * numNodes, 0.0), all(rank == 0 ? fields.size() : 0);
+  for (const auto& node : out.contact.nodes) {
+    const size_t g = static_cast<size_t>(node.slaveNode);
+    for (int j = 0; j < 3; ++j) fields[5 * g + j] = node.force[j];
+    fields[5 * g + 3] = static_cast<double>(node.status);
+    fields[5 * g + 4] = 1.0;
+  }
+  MPI_Reduce(fields.data(), all.data(), static_cast<int>(fields.size()), MPI_DOUBLE, MPI_SUM, 0, comm);
+  if (rank == 0) {
+    out.contactNormal.assign(numNodes, 0.0);
+    out.contactT1.assign(numNodes, 0.0);
+    out.contactT2.assign(numNodes, 0.0);
+    out.contactStatus.assign(numNodes, 0.0);
+    out.contactPressure.assign(numNodes, 0.0);
+    const auto area = scene.contact.hasContact() ? tributaryArea(scene.mesh, scene.contact.slaveSideSet)
+                                                 : std::vector<double>(numNodes, 0.0);
+    for (const auto& c : B.contact) {
+      const size_t g = static_cast<size_t>(c.slaveNode);
+      out.contactNormal[g] = all[5 * g];
+      out.contactT1[g] = all[5 * g + 1];
+      out.contactT2[g] = all[5 * g + 2];
+      out.contactStatus[g] = all[5 * g + 3];
+      out.contactPressure[g] = area[g] > 0.0 ? all[5 * g] / area[g] : 0.0;
+      out.totalNormalForce += all[5 * g];
+      for (int x = 0; x < 3; ++x)
+        out.totalContactForce[x] += all[5 * g] * c.normal[x] + all[5 * g + 1] * c.t1[x] + all[5 * g + 2] * c.t2[x];
+    }
+  }
+  return out;
+}
+
+}  // namespace tribos::stack
