@@ -18,6 +18,8 @@ void setNumThreads(int n) { g_threads = n > 0 ? n : 0; }
 void forEachSubdomain(int count, const std::function<void(int)>& body) {
   std::exception_ptr firstError;
   std::mutex errorMutex;
+  // Threads run over subdomains; no library below may open a second level of threads.
+  omp_set_max_active_levels(1);
   const int threads = numThreads() < count ? numThreads() : (count > 0 ? count : 1);
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
   for (int i = 0; i < count; ++i) {

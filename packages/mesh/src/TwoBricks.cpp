@@ -1,1 +1,151 @@
-// placeholder until implemented
+#include "tribos/mesh/TwoBricks.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+
+#include "tribos/core/Errors.hpp"
+
+namespace tribos::mesh {
+
+BrickGrid BrickGrid::parse(const std::string& text, const std::string& parameter) {
+  BrickGrid g;
+  int* parts[3] = {&g.nx, &g.ny, &g.nz};
+  size_t pos = 0;
+  for (int d = 0; d < 3; ++d) {
+    const size_t end = d < 2 ? text.find('x', pos) : text.size();
+    const std::string item = end == std::string::npos ? "" : text.substr(pos, end - pos);
+    char* stop = nullptr;
+    const long v = item.empty() ? 0 : std::strtol(item.c_str(), &stop, 10);
+    if (item.empty() || *stop != '\0' || v < 1 || v > 100000)
+      throw core::InputError(parameter + ": \"" + text + "\" is not a subdomain grid \"NXxNYxNZ\" of positive integers");
+    *parts[d] = static_cast<int>(v);
+    pos = end + 1;
+  }
+  return g;
+}
+
+namespace {
+// Cube corners v = (i&1, (i>>1)&1, (i>>2)&1). The 5-tet split keeps one "central" tet whose
+// 4 vertices are pairwise joined by face diagonals and cuts off the 4 other corners. The
+// even split uses the central set {0,3,5,6}, the odd split {1,2,4,7}; alternating with the
+// parity of i+j+k makes the face diagonals of neighbouring cubes coincide (conformity).
+constexpr int kEvenSplit[5][4] = {{0, 3, 5, 6}, {1, 0, 3, 5}, {2, 0, 3, 6}, {4, 0, 5, 6}, {7, 3, 5, 6}};
+constexpr int kOddSplit[5][4] = {{1, 2, 4, 7}, {0, 1, 2, 4}, {3, 1, 2, 7}, {5, 1, 4, 7}, {6, 2, 4, 7}};
+
+struct Brick {
+  int ex, ey, ez;          // cubes per direction
+  double z0;               // bottom of the brick
+  LO firstNode;
+  LO node(int i, int j, int k) const { return firstNode + i + (ex + 1) * (j + (ey + 1) * k); }
+  LO numNodes() const { return (ex + 1) * (ey + 1) * (ez + 1); }
+};
+
+double signedVolume(const Mesh& m, const std::array<LO, 4>& t) {
+  const auto& a = m.coords[t[0]];
+  double e[3][3];
+  for (int v = 0; v < 3; ++v)
+    for (int c = 0; c < 3; ++c) e[v][c] = m.coords[t[v + 1]][c] - a[c];
+  return (e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) - e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+          e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0])) /
+         6.0;
+}
+}  // namespace
+
+Mesh generateTwoBricks(const TwoBricksSpec& spec) {
+  const BrickGrid& g = spec.subdomainsPerBrick;
+  const int m = spec.hOverH;
+  core::requireInput(m >= 1, "Mesh/H Over h: must be >= 1, got " + std::to_string(m));
+  // Cubic subdomains: 20/nx == 10/ny == 10/nz.
+  core::requireInput(g.nx == 2 * g.ny && g.ny == g.nz,
+                     "Mesh/Subdomains Per Brick: the subdomains of the (20 x 10 x 10) bricks must be cubes, i.e. "
+                     "NX = 2 NY = 2 NZ (e.g. 2x1x1, 4x2x2), got " +
+                         std::to_string(g.nx) + "x" + std::to_string(g.ny) + "x" + std::to_string(g.nz));
+  const double h = 20.0 / (g.nx * m);
+  Mesh mesh;
+  Brick bricks[2];
+  for (int b = 0; b < 2; ++b) {
+    bricks[b] = {g.nx * m, g.ny * m, g.nz * m, 10.0 * b, b == 0 ? 0 : bricks[0].numNodes()};
+    const Brick& br = bricks[b];
+    for (int k = 0; k <= br.ez; ++k)
+      for (int j = 0; j <= br.ey; ++j)
+        for (int i = 0; i <= br.ex; ++i) mesh.coords.push_back({i * h, j * h, br.z0 + k * h});
+  }
+  const char* names[2] = {"aluminium", "steel"};
+  for (int b = 0; b < 2; ++b) {
+    const Brick& br = bricks[b];
+    ElementBlock block{names[b], b + 1, static_cast<LO>(mesh.tets.size()), 0};
+    for (int k = 0; k < br.ez; ++k)
+      for (int j = 0; j < br.ey; ++j)
+        for (int i = 0; i < br.ex; ++i) {
+          LO corner[8];
+          for (int v = 0; v < 8; ++v) corner[v] = br.node(i + (v & 1), j + ((v >> 1) & 1), k + ((v >> 2) & 1));
+          const auto& split = (i + j + k) % 2 == 0 ? kEvenSplit : kOddSplit;
+          for (const auto& t : split) {
+            std::array<LO, 4> tet{corner[t[0]], corner[t[1]], corner[t[2]], corner[t[3]]};
+            if (signedVolume(mesh, tet) < 0.0) std::swap(tet[2], tet[3]);
+            mesh.tets.push_back(tet);
+          }
+        }
+    block.count = static_cast<LO>(mesh.tets.size()) - block.first;
+    mesh.blocks.push_back(block);
+  }
+
+  // Boundary parts: (name, brick, axis, plane index). A face belongs to the part when its 3
+  // vertices lie on the plane (tested on grid indices, not on floating-point coordinates).
+  struct Part {
+    const char* name;
+    int brick, axis;
+    bool upper;
+  };
+  const Part parts[6] = {{"dirichlet_aluminium", 0, 0, false}, {"dirichlet_steel", 1, 0, false},
+                         {"contact_aluminium", 0, 2, true},    {"contact_steel", 1, 2, false},
+                         {"load_end", 1, 0, true},             {"load_top", 1, 2, true}};
+  auto onPlane = [&](LO node, const Part& p) {
+    const Brick& br = bricks[p.brick];
+    const LO local = node - br.firstNode;
+    if (local < 0 || local >= br.numNodes()) return false;
+    const int idx[3] = {local % (br.ex + 1), (local / (br.ex + 1)) % (br.ey + 1), local / ((br.ex + 1) * (br.ey + 1))};
+    const int extent[3] = {br.ex, br.ey, br.ez};
+    return idx[p.axis] == (p.upper ? extent[p.axis] : 0);
+  };
+  for (int p = 0; p < 6; ++p) {
+    const Part& part = parts[p];
+    NodeSet ns{part.name, p + 1, {}};
+    SideSet ss{part.name, p + 1, {}, {}};
+    const ElementBlock& block = mesh.blocks[part.brick];
+    for (LO e = block.first; e < block.first + block.count; ++e)
+      for (int side = 0; side < 4; ++side) {
+        bool all = true;
+        for (int v : kTetFaceVertices[side]) all = all && onPlane(mesh.tets[e][v], part);
+        if (!all) continue;
+        ss.elements.push_back(e);
+        ss.sides.push_back(side);
+        for (int v : kTetFaceVertices[side]) ns.nodes.push_back(mesh.tets[e][v]);
+      }
+    std::sort(ns.nodes.begin(), ns.nodes.end());
+    ns.nodes.erase(std::unique(ns.nodes.begin(), ns.nodes.end()), ns.nodes.end());
+    mesh.nodeSets.push_back(std::move(ns));
+    mesh.sideSets.push_back(std::move(ss));
+  }
+  mesh.validate("two-bricks generator");
+  return mesh;
+}
+
+std::vector<int> structuredPartition(const Mesh& mesh, const TwoBricksSpec& spec) {
+  const BrickGrid& g = spec.subdomainsPerBrick;
+  const int m = spec.hOverH;
+  const int ex = g.nx * m, ey = g.ny * m, ez = g.nz * m;
+  const LO perBrick = 5 * ex * ey * ez;
+  if (mesh.numElements() != 2 * perBrick)
+    throw core::InputError("structured partition: the mesh is not the two-brick mesh of this grid");
+  std::vector<int> part(mesh.numElements());
+  for (LO e = 0; e < mesh.numElements(); ++e) {
+    const int brick = e / perBrick;
+    const LO cube = (e % perBrick) / 5;  // elements are generated cube by cube, x fastest
+    const int i = cube % ex, j = (cube / ex) % ey, k = cube / (ex * ey);
+    part[e] = brick * g.count() + (i / m) + g.nx * ((j / m) + g.ny * (k / m));
+  }
+  return part;
+}
+
+}  // namespace tribos::mesh

@@ -2,7 +2,7 @@
 /// \file ElementKernels.hpp
 /// P1 tetrahedron kernels, callable from Kokkos kernels on the host (KOKKOS_INLINE_FUNCTION)
 /// and from plain C++. Dof ordering inside an element: 3*vertex + component.
-#include <Kokkos_Macros.hpp>
+#include <Kokkos_Core.hpp>
 
 namespace tribos::fem {
 

@@ -1,0 +1,49 @@
+#pragma once
+// Shared set-up for the contact integration tests: a two-brick scene from parameter
+// overrides, solved end to end on MPI_COMM_WORLD.
+#include <mpi.h>
+
+#include <Teuchos_ParameterList.hpp>
+
+#include <string>
+#include <vector>
+
+#include "tribos/core/Parameters.hpp"
+#include "tribos/feti/ConstraintMatrix.hpp"
+#include "tribos/stack/ContactSolve.hpp"
+#include "tribos/stack/LinearFetiSolve.hpp"
+#include "tribos/stack/Scene.hpp"
+#include "tribos/stack/SceneParameters.hpp"
+#include "tribos/stack/SubdomainSetup.hpp"
+
+namespace tribos::test {
+
+struct SolvedContactScene {
+  Teuchos::ParameterList params{"Tribos"};
+  stack::Scene scene;
+  feti::ConstraintMatrix B;
+  stack::ContactSolveResult result;
+};
+
+inline SolvedContactScene solveContactScene(const std::vector<std::string>& overrides) {
+  int size = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  SolvedContactScene s;
+  const auto valid = stack::sceneValidParameters();
+  for (const auto& o : overrides) core::applyOverride(s.params, *valid, o);
+  core::validateAndSetDefaults(s.params, *valid, "test");
+  s.scene = stack::buildScene(s.params, "test");
+  std::vector<fem::SubdomainSystem> systems;
+  stack::assembleOwnedSubdomains(s.scene, MPI_COMM_WORLD, systems);
+  s.B = feti::buildConstraintMatrix(s.scene.mesh, s.scene.decomposition, stack::constraintSpec(s.scene), size);
+  s.result = stack::solveContactScene(s.scene, std::move(systems), s.B, s.params, MPI_COMM_WORLD);
+  return s;
+}
+
+inline int worldRank() {
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  return rank;
+}
+
+}  // namespace tribos::test
