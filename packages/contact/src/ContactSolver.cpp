@@ -138,6 +138,7 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
   mu->putScalar(0.0);
   const double eps = smalseSettings.tolerance;
 
+  long long applicationsBefore = 0;  // products with A of the earlier SMALSE-M runs (exact variant)
   auto accumulate = [&](const qp::SmalseCounters& k) {
     auto& s = result.counters;
     s.outerIterations += k.outerIterations;
@@ -146,6 +147,7 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
     s.expansionSteps += k.expansionSteps;
     s.proportioningSteps += k.proportioningSteps;
     s.operatorApplications += k.operatorApplications;
+    applicationsBefore = s.operatorApplications;
     s.projectedGradient = k.projectedGradient;
     s.equalityResidual = k.equalityResidual;
     s.normA = k.normA;
@@ -153,7 +155,14 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
   };
 
   // (3) Solve: one SMALSE-M run (None, Tresca, inexact Coulomb) or a sequence (exact Coulomb).
-  const qp::SmalseM smalse(smalseSettings);
+  qp::SmalseSettings settings = smalseSettings;
+  if (friction.progress)
+    settings.monitor = [&](const qp::SmalseProgress& p) {
+      qp::SmalseProgress total = p;
+      total.operatorApplications += applicationsBefore;
+      friction.progress(total, result.fixedPointChange);
+    };
+  const qp::SmalseM smalse(settings);
   try {
     if (friction.model == "Coulomb" && friction.fixedPoint == "Inexact") {
       // Inexact successive approximations (20): g := mu_nu + lambda_Im,nu after every outer

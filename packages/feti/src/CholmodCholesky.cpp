@@ -127,8 +127,13 @@ std::vector<LO> nestedDissection(const fem::CsrMatrix& A) {
   METIS_SetDefaultOptions(options);
   options[METIS_OPTION_NUMBERING] = 0;
   std::vector<idx_t> p(A.n), ip(A.n);
-  if (METIS_NodeND(&n, xadj.data(), adjncy.data(), nullptr, options, p.data(), ip.data()) != METIS_OK)
-    throw std::runtime_error("METIS_NodeND failed");
+  int status = METIS_OK;
+  // METIS keeps its random number state in a global: concurrent calls from the threads of
+  // core::forEachSubdomain would race on it and make the orderings (and so the rounding of
+  // every solve) differ from run to run. Each call reseeds it, so one at a time suffices.
+#pragma omp critical(tribos_metis)
+  status = METIS_NodeND(&n, xadj.data(), adjncy.data(), nullptr, options, p.data(), ip.data());
+  if (status != METIS_OK) throw std::runtime_error("METIS_NodeND failed");
   for (LO i = 0; i < A.n; ++i) perm[i] = p[i];
   return perm;
 }

@@ -10,6 +10,7 @@
 namespace tribos::mesh {
 
 namespace {
+// Called on the main thread only (METIS keeps global random state; see CholmodCholesky.cpp).
 // Parts per body in proportion to its element count (largest remainder, at least one each).
 std::vector<int> shareParts(const Mesh& mesh, int numParts) {
   const int nb = mesh.numBlocks();

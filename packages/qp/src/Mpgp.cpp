@@ -1,1 +1,93 @@
-// placeholder until implemented
+#include "tribos/qp/Mpgp.hpp"
+
+#include <Tpetra_Vector.hpp>
+
+#include <cmath>
+
+namespace tribos::qp {
+
+MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const SeparableSet& omega, double normA,
+                         Vector& x, Vector& g, const std::function<bool(double, const Vector&)>& stop) const {
+  MpgpCounters counters;
+  const auto map = x.getMap();
+  Vector phi(map), beta(map), p(map), Ap(map), reduced(map), gradientProjected(map);
+  const double alphaBar = settings_.stepScale / normA;
+
+  // g = A x - b after any change of x that is not a CG-type update.
+  auto gradient = [&]() {
+    A.apply(x, g);
+    ++counters.operatorApplications;
+    g.update(-1.0, b, 1.0);
+  };
+  auto projectedGradientNorm = [&]() {
+    gradientProjected.update(1.0, phi, 1.0, beta, 0.0);
+    return gradientProjected.norm2();
+  };
+
+  omega.project(x);
+  gradient();
+  omega.splitGradient(x, g, phi, beta);
+  p.assign(phi);
+  for (;;) {
+    counters.projectedGradientNorm = projectedGradientNorm();
+    if (stop(counters.projectedGradientNorm, x)) {
+      counters.converged = true;
+      break;
+    }
+    if (counters.iterations >= settings_.maxIterations) break;
+    ++counters.iterations;
+
+    // Proportional iterate: the chopped gradient is small against the reduced free one.
+    omega.reducedFreeGradient(x, phi, alphaBar, reduced);
+    const double betaNorm2 = beta.dot(beta);
+    const double proportion = settings_.gamma * settings_.gamma * reduced.dot(phi);
+    if (betaNorm2 <= proportion) {
+      A.apply(p, Ap);
+      ++counters.operatorApplications;
+      const double pAp = p.dot(Ap);
+      if (!(pAp > 0.0)) {  // p = 0 or A not positive on p: fall back to a gradient projection
+        x.update(-alphaBar, g, 1.0);
+        omega.project(x);
+        gradient();
+        omega.splitGradient(x, g, phi, beta);
+        p.assign(phi);
+        ++counters.proportioningSteps;
+        continue;
+      }
+      const double alphaCg = g.dot(p) / pAp;
+      const double alphaFeasible = omega.maxFeasibleStep(x, p);
+      if (alphaCg <= alphaFeasible) {
+        // Conjugate gradient step on the current face.
+        x.update(-alphaCg, p, 1.0);
+        g.update(-alphaCg, Ap, 1.0);
+        omega.splitGradient(x, g, phi, beta);
+        const double gammaCg = phi.dot(Ap) / pAp;
+        p.update(1.0, phi, -gammaCg);
+        ++counters.cgSteps;
+      } else {
+        // Expansion: to the boundary, then a projected step with the free gradient.
+        x.update(-alphaFeasible, p, 1.0);
+        g.update(-alphaFeasible, Ap, 1.0);
+        omega.project(x);  // absorb round-off of the step onto the boundary
+        omega.splitGradient(x, g, phi, beta);
+        x.update(-alphaBar, phi, 1.0);
+        omega.project(x);
+        gradient();
+        omega.splitGradient(x, g, phi, beta);
+        p.assign(phi);
+        ++counters.expansionSteps;
+      }
+    } else {
+      // Proportioning: release the constraints with a gradient projection step.
+      x.update(-alphaBar, g, 1.0);
+      omega.project(x);
+      gradient();
+      omega.splitGradient(x, g, phi, beta);
+      p.assign(phi);
+      ++counters.proportioningSteps;
+    }
+  }
+  return counters;
+}
+
+}  // namespace tribos::qp

@@ -1,1 +1,232 @@
-// placeholder until implemented
+#include "tribos/qp/SeparableSet.hpp"
+
+#include <Teuchos_CommHelpers.hpp>
+#include <Tpetra_Vector.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace tribos::qp {
+
+namespace {
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+/// Relative tolerance for "on the boundary" (active). Iterates land on the boundary through
+/// projections and feasible steps, so only round-off needs absorbing.
+constexpr double kActiveTolerance = 1e-12;
+
+bool boundActive(double x, double lower) {
+  return x - lower <= kActiveTolerance * (std::abs(lower) + std::abs(x) + std::numeric_limits<double>::min());
+}
+
+/// ||diag(1/a) y||, with a_j > 0.
+double ellipseNorm(const std::array<double, 2>& y, const std::array<double, 2>& a) {
+  return std::hypot(y[0] / a[0], y[1] / a[1]);
+}
+
+/// Projection of -g onto the tangent cone of a 1D interval [lo, hi] at y; returns g^P.
+double intervalProjectedGradient(double y, double lo, double hi, double g) {
+  const bool atLower = y <= lo + kActiveTolerance * (std::abs(lo) + std::abs(y));
+  const bool atUpper = y >= hi - kActiveTolerance * (std::abs(hi) + std::abs(y));
+  if (atLower && atUpper) return 0.0;  // a point
+  if (atLower) return std::min(g, 0.0);
+  if (atUpper) return std::max(g, 0.0);
+  return g;
+}
+}  // namespace
+
+std::array<double, 2> projectOntoEllipse(std::array<double, 2> w, std::array<double, 2> a) {
+  // Degenerate sets: the centre point, or a segment along one axis.
+  if (!(a[0] > 0.0) && !(a[1] > 0.0)) return {0.0, 0.0};
+  if (!(a[0] > 0.0)) return {0.0, std::clamp(w[1], -a[1], a[1])};
+  if (!(a[1] > 0.0)) return {std::clamp(w[0], -a[0], a[0]), 0.0};
+  if (ellipseNorm(w, a) <= 1.0) return w;
+  // y_i = a_i^2 w_i / (a_i^2 + h), h > 0 the root of phi(h) = sum (a_i w_i / (a_i^2 + h))^2 - 1.
+  // phi is convex and decreasing, phi(0) > 0: Newton from h = 0 increases monotonically to
+  // the root (ALGORITHMS.md 5); the bracket [lo, hi] guards it against round-off.
+  const double aw[2] = {a[0] * w[0], a[1] * w[1]};
+  double lo = 0.0, hi = std::hypot(aw[0], aw[1]);  // phi(hi) <= 0
+  double h = 0.0;
+  for (int it = 0; it < 200; ++it) {
+    double phi = -1.0, dphi = 0.0;
+    for (int i = 0; i < 2; ++i) {
+      const double d = a[i] * a[i] + h, t = aw[i] / d;
+      phi += t * t;
+      dphi -= 2.0 * t * t / d;
+    }
+    if (phi > 0.0) lo = h;
+    else hi = h;
+    double next = dphi < 0.0 ? h - phi / dphi : 0.5 * (lo + hi);
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    if (std::abs(next - h) <= 1e-15 * std::max(next, 1e-300)) {
+      h = next;
+      break;
+    }
+    h = next;
+  }
+  std::array<double, 2> y{a[0] * a[0] * w[0] / (a[0] * a[0] + h), a[1] * a[1] * w[1] / (a[1] * a[1] + h)};
+  // Land exactly on the boundary (round-off in h may leave y slightly off it).
+  const double norm = ellipseNorm(y, a);
+  if (norm > 0.0) {
+    y[0] /= norm;
+    y[1] /= norm;
+  }
+  return y;
+}
+
+std::array<double, 2> SeparableSet::effectiveAxes(size_t k) const {
+  // Semi-axes below what doubles can resolve around the centre (~1e-16 |c|) would leave
+  // projected points off the boundary and stall MPGP; below 1e-10 |c| they count as zero
+  // (a node whose slip bound is round-off is out of contact).
+  const double floor = 1e-10 * std::max(std::abs(center_[k][0]), std::abs(center_[k][1]));
+  std::array<double, 2> a = semiAxes_[k];
+  for (double& ai : a)
+    if (ai <= floor) ai = 0.0;
+  return a;
+}
+
+void SeparableSet::addBound(int localIndex, double lower) {
+  boundIndex_.push_back(localIndex);
+  lower_.push_back(lower);
+}
+
+void SeparableSet::addEllipse(std::array<int, 2> localIndex, std::array<double, 2> center,
+                              std::array<double, 2> semiAxes) {
+  ellipseIndex_.push_back(localIndex);
+  center_.push_back(center);
+  semiAxes_.push_back(semiAxes);
+}
+
+void SeparableSet::setSemiAxes(int k, std::array<double, 2> semiAxes) { semiAxes_.at(k) = semiAxes; }
+int SeparableSet::numBounds() const { return static_cast<int>(boundIndex_.size()); }
+int SeparableSet::numEllipses() const { return static_cast<int>(ellipseIndex_.size()); }
+
+void SeparableSet::project(Vector& x) const {
+  auto v = x.getLocalViewHost(Tpetra::Access::ReadWrite);
+  for (size_t k = 0; k < boundIndex_.size(); ++k) v(boundIndex_[k], 0) = std::max(v(boundIndex_[k], 0), lower_[k]);
+  for (size_t k = 0; k < ellipseIndex_.size(); ++k) {
+    const auto [i, j] = ellipseIndex_[k];
+    const auto y = projectOntoEllipse({v(i, 0) - center_[k][0], v(j, 0) - center_[k][1]}, effectiveAxes(k));
+    v(i, 0) = center_[k][0] + y[0];
+    v(j, 0) = center_[k][1] + y[1];
+  }
+}
+
+bool SeparableSet::contains(const Vector& x, double tolerance) const {
+  auto v = x.getLocalViewHost(Tpetra::Access::ReadOnly);
+  int ok = 1;
+  for (size_t k = 0; k < boundIndex_.size() && ok; ++k)
+    if (v(boundIndex_[k], 0) < lower_[k] - tolerance * std::max(1.0, std::abs(lower_[k]))) ok = 0;
+  for (size_t k = 0; k < ellipseIndex_.size() && ok; ++k) {
+    const auto [i, j] = ellipseIndex_[k];
+    const std::array<double, 2> y{v(i, 0) - center_[k][0], v(j, 0) - center_[k][1]};
+    const auto p = projectOntoEllipse(y, effectiveAxes(k));
+    const double scale = std::max({1.0, semiAxes_[k][0], semiAxes_[k][1]});
+    if (std::hypot(y[0] - p[0], y[1] - p[1]) > tolerance * scale) ok = 0;
+  }
+  int all = 0;
+  Teuchos::reduceAll(*x.getMap()->getComm(), Teuchos::REDUCE_MIN, 1, &ok, &all);
+  return all == 1;
+}
+
+double SeparableSet::maxFeasibleStep(const Vector& x, const Vector& p) const {
+  auto xv = x.getLocalViewHost(Tpetra::Access::ReadOnly);
+  auto pv = p.getLocalViewHost(Tpetra::Access::ReadOnly);
+  double step = kInfinity;
+  for (size_t k = 0; k < boundIndex_.size(); ++k) {
+    const double pk = pv(boundIndex_[k], 0);
+    if (pk > 0.0) step = std::min(step, std::max(0.0, (xv(boundIndex_[k], 0) - lower_[k]) / pk));
+  }
+  for (size_t k = 0; k < ellipseIndex_.size(); ++k) {
+    const auto [i, j] = ellipseIndex_[k];
+    const auto a = effectiveAxes(k);
+    const double y[2] = {xv(i, 0) - center_[k][0], xv(j, 0) - center_[k][1]};
+    const double d[2] = {pv(i, 0), pv(j, 0)};
+    if (!(a[0] > 0.0) || !(a[1] > 0.0)) {
+      // Degenerate: no motion across a zero axis; along the other axis an interval.
+      for (int ax = 0; ax < 2; ++ax) {
+        if (!(a[ax] > 0.0)) {
+          if (d[ax] != 0.0) step = 0.0;
+        } else if (d[ax] > 0.0) {
+          step = std::min(step, std::max(0.0, (y[ax] + a[ax]) / d[ax]));
+        } else if (d[ax] < 0.0) {
+          step = std::min(step, std::max(0.0, (y[ax] - a[ax]) / d[ax]));
+        }
+      }
+      continue;
+    }
+    // ||E (y - alpha d)||^2 = 1 with E = diag(1/a): the positive root.
+    const double Ey[2] = {y[0] / a[0], y[1] / a[1]}, Ed[2] = {d[0] / a[0], d[1] / a[1]};
+    const double qa = Ed[0] * Ed[0] + Ed[1] * Ed[1];
+    if (!(qa > 0.0)) continue;
+    const double qb = Ey[0] * Ed[0] + Ey[1] * Ed[1];
+    const double qc = std::min(Ey[0] * Ey[0] + Ey[1] * Ey[1] - 1.0, 0.0);
+    const double disc = std::sqrt(std::max(qb * qb - qa * qc, 0.0));
+    // alpha = (qb + disc) / qa, computed without cancellation when qb < 0.
+    const double alpha = qb >= 0.0 ? (qb + disc) / qa : (qc == 0.0 ? 0.0 : -qc / (disc - qb));
+    step = std::min(step, std::max(alpha, 0.0));
+  }
+  double global = kInfinity;
+  Teuchos::reduceAll(*x.getMap()->getComm(), Teuchos::REDUCE_MIN, 1, &step, &global);
+  return global;
+}
+
+void SeparableSet::splitGradient(const Vector& x, const Vector& g, Vector& phi, Vector& beta) const {
+  // g^P = -P_T(-g) with T the tangent cone of Omega at x; phi = g on blocks where x is
+  // interior (0 on active blocks), beta = g^P - phi (ALGORITHMS.md 5).
+  phi.assign(g);
+  beta.putScalar(0.0);
+  auto xv = x.getLocalViewHost(Tpetra::Access::ReadOnly);
+  auto gv = g.getLocalViewHost(Tpetra::Access::ReadOnly);
+  auto fv = phi.getLocalViewHost(Tpetra::Access::ReadWrite);
+  auto bv = beta.getLocalViewHost(Tpetra::Access::ReadWrite);
+  for (size_t k = 0; k < boundIndex_.size(); ++k) {
+    const int i = boundIndex_[k];
+    if (boundActive(xv(i, 0), lower_[k])) {
+      fv(i, 0) = 0.0;
+      bv(i, 0) = std::min(gv(i, 0), 0.0);
+    }
+  }
+  for (size_t k = 0; k < ellipseIndex_.size(); ++k) {
+    const auto [i, j] = ellipseIndex_[k];
+    const auto a = effectiveAxes(k);
+    const std::array<double, 2> y{xv(i, 0) - center_[k][0], xv(j, 0) - center_[k][1]};
+    const double gi = gv(i, 0), gj = gv(j, 0);
+    if (!(a[0] > 0.0) || !(a[1] > 0.0)) {
+      // Degenerate ellipse: fixed along zero axes; an interval along a positive one.
+      const int idx[2] = {i, j};
+      const double gg[2] = {gi, gj};
+      for (int ax = 0; ax < 2; ++ax) {
+        if (!(a[ax] > 0.0)) {
+          fv(idx[ax], 0) = 0.0;
+          bv(idx[ax], 0) = 0.0;
+          continue;
+        }
+        const double gp = intervalProjectedGradient(y[ax], -a[ax], a[ax], gg[ax]);
+        const bool interior = std::abs(y[ax]) < a[ax] * (1.0 - kActiveTolerance);
+        fv(idx[ax], 0) = interior ? gg[ax] : 0.0;
+        bv(idx[ax], 0) = interior ? 0.0 : gp;
+      }
+      continue;
+    }
+    if (ellipseNorm(y, a) < 1.0 - kActiveTolerance) continue;  // interior: free
+    // Active: outer unit normal n ~ (y_1/a_1^2, y_2/a_2^2); beta = g - min(n^T g, 0) n.
+    std::array<double, 2> n{y[0] / (a[0] * a[0]), y[1] / (a[1] * a[1])};
+    const double nn = std::hypot(n[0], n[1]);
+    n = {n[0] / nn, n[1] / nn};
+    const double ng = std::min(n[0] * gi + n[1] * gj, 0.0);
+    fv(i, 0) = 0.0;
+    fv(j, 0) = 0.0;
+    bv(i, 0) = gi - ng * n[0];
+    bv(j, 0) = gj - ng * n[1];
+  }
+}
+
+void SeparableSet::reducedFreeGradient(const Vector& x, const Vector& phi, double alpha, Vector& out) const {
+  // phi~ = (x - P(x - alpha phi)) / alpha.
+  out.update(1.0, x, -alpha, phi, 0.0);
+  project(out);
+  out.update(1.0 / alpha, x, -1.0 / alpha);
+}
+
+}  // namespace tribos::qp

@@ -3,6 +3,7 @@
 #include <Teuchos_DefaultMpiComm.hpp>
 #include <Teuchos_ParameterList.hpp>
 
+#include <cstdio>
 #include <sstream>
 
 #include "tribos/core/Timer.hpp"
@@ -69,8 +70,17 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
   feti::TotalFetiSettings settings;
   settings.factorization = fetiList.get<std::string>("Factorization");
   settings.explicitF = fetiList.get<std::string>("Dual Operator") == "Explicit";
-  const auto friction = frictionSettings(tribos);
+  auto friction = frictionSettings(tribos);
   const auto smalse = smalseSettings(tribos);
+  if (tribos.sublist("Solver").get<bool>("Verbose") && rank == 0) {
+    core::Stopwatch clock;
+    friction.progress = [clock](const qp::SmalseProgress& p, double fixedPointChange) {
+      std::printf("  outer %3d  inner %6d  |gP|/|Ph| %.3e  |Gmu|/|Ph| %.3e  M %.2e  dg %.3e  F %7lld  %.2f s\n",
+                  p.outerIteration, p.innerIterations, p.projectedGradient, p.equalityResidual, p.M, fixedPointChange,
+                  p.operatorApplications, clock.seconds());
+      std::fflush(stdout);
+    };
+  }
   out.chain = describeContactChain(tribos);
 
   const feti::TotalFeti feti(scene.mesh, scene.decomposition, std::move(owned), B,

@@ -115,6 +115,7 @@ void solverParameters(ParameterList& pl) {
          "Coulomb's slip bound moved by <= epsilon); linear solves: ||P r|| <= epsilon ||P h||",
          atLeast<double>(0.0));
   pl.set("Max Outer Iterations", 100, "cap on SMALSE-M outer iterations", atLeast<int>(1));
+  pl.set("Verbose", true, "print the solver chain and one progress line per outer iteration (rank 0)");
   ParameterList& smalse = pl.sublist("SMALSE-M", false, "augmented Lagrangian (paper Section 5)");
   smalse.set("eta", 1.0, "eta > 0, relative to ||P h||: cap of the inner stopping bound min(M ||G mu||, eta)",
              atLeast<double>(0.0));

@@ -13,6 +13,7 @@
 ///  - recovery of alpha over the rows where the dual constraints are inactive, of u, of the
 ///    contact status (no contact / stick / slip) and the KKT residuals of the discrete problem.
 #include <array>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,9 @@ struct FrictionSettings {
   /// Divergence: the fixed-point change grew in this many consecutive updates (after the
   /// first few) -> stop and report "fixed point diverges".
   int divergenceWindow = 8;
+  /// Called on every rank after each outer iteration with the progress and the last
+  /// fixed-point change (Coulomb; 0 otherwise); may be empty.
+  std::function<void(const qp::SmalseProgress&, double)> progress;
 };
 
 enum class ContactStatus : int { NoContact = 0, Stick = 1, Slip = 2 };

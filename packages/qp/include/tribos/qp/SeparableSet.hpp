@@ -40,6 +40,8 @@ class SeparableSet {
   void reducedFreeGradient(const Vector& x, const Vector& phi, double alpha, Vector& out) const;
 
  private:
+  std::array<double, 2> effectiveAxes(size_t k) const;
+
   std::vector<int> boundIndex_;
   std::vector<double> lower_;
   std::vector<std::array<int, 2>> ellipseIndex_;

@@ -15,6 +15,16 @@
 
 namespace tribos::qp {
 
+/// What SMALSE-M reports after each outer iteration (for progress lines and studies).
+struct SmalseProgress {
+  int outerIteration = 0;
+  int innerIterations = 0;          ///< MPGP iterations of this outer iteration
+  double projectedGradient = 0.0;   ///< ||g^P|| / ||c||
+  double equalityResidual = 0.0;    ///< ||G mu|| / ||c||
+  double M = 0.0;                   ///< M_k relative to ||A||
+  long long operatorApplications = 0;  ///< products with A so far
+};
+
 struct SmalseSettings {
   double tolerance = 1e-5;     ///< epsilon: stop when ||g^P|| <= eps ||c|| and ||G mu|| <= eps ||c||
   double eta = 1.0;            ///< eta, relative to ||c|| (the paper: eta = ||P h||)
@@ -26,6 +36,9 @@ struct SmalseSettings {
   std::string equalityTest = "Conventional";
   MpgpSettings mpgp;
   int powerIterations = 50;    ///< for ||A||
+  double innerFloor = 0.1;     ///< inner solves stop at ||g^P|| <= innerFloor eps ||c|| at the latest
+  /// Called on every rank after each outer iteration (before the hook); may be empty.
+  std::function<void(const SmalseProgress&)> monitor;
 };
 
 struct SmalseCounters {
