@@ -119,8 +119,11 @@ void solverParameters(ParameterList& pl) {
   ParameterList& smalse = pl.sublist("SMALSE-M", false, "augmented Lagrangian (paper Section 5)");
   smalse.set("eta", 1.0, "eta > 0, relative to ||P h||: cap of the inner stopping bound min(M ||G mu||, eta)",
              atLeast<double>(0.0));
-  smalse.set("rho", 1.0, "rho > 0, relative to ||PFP||: penalty of A_rho = PFP + rho Q", atLeast<double>(0.0));
-  smalse.set("initial M", 1e-6, "M_0 > 0, relative to ||PFP||: inner precision control", atLeast<double>(0.0));
+  smalse.set("rho", 3.0,
+             "rho > 0, relative to ||PFP||: penalty of A_rho = PFP + rho Q (the paper: 1; 3 needs fewer F "
+             "applications here, doc/smalse_parameters.md)", atLeast<double>(0.0));
+  smalse.set("initial M", 1.0,
+             "M_0 > 0, relative to ||PFP||: inner precision control (the paper: 1e-6; doc/smalse_parameters.md)", atLeast<double>(0.0));
   smalse.set("beta", 0.1, "0 < beta_M < 1: M is multiplied by it when the Lagrangian does not grow enough",
              atLeast<double>(0.0));
   Teuchos::setStringToIntegralParameter<int>(
