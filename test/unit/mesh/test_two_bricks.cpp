@@ -1,0 +1,138 @@
+// The paper's two bricks: counts by formula for every Table 1 cell, conformity, sets,
+// decomposition independence of the global mesh.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "tribos/core/Errors.hpp"
+#include "tribos/mesh/Decomposition.hpp"
+#include "tribos/mesh/TwoBricks.hpp"
+
+using namespace tribos;
+using namespace tribos::mesh;
+
+namespace {
+struct Cell {
+  int subdomains, hOverH;
+  long long n;  // the paper's n (Table 1)
+};
+// This test's own copy of Table 1's n column (../shared/paper/table1.csv).
+const Cell kTable1[] = {{4, 2, 324},       {4, 3, 768},       {4, 4, 1500},      {4, 5, 2592},    {32, 2, 2592},
+                        {32, 3, 6144},     {32, 4, 12000},    {32, 5, 20736},    {108, 2, 8748},  {108, 3, 20736},
+                        {108, 4, 40500},   {108, 5, 69984},   {256, 2, 20736},   {256, 3, 49152}, {256, 4, 96000},
+                        {256, 5, 165888},  {500, 2, 40500},   {500, 3, 96000},   {500, 4, 187500}, {500, 5, 324000}};
+
+TwoBricksSpec specFor(int subdomains, int hOverH) {
+  const int s = subdomains / 2;
+  int ny = 1;
+  while (2 * ny * ny * ny != s) ++ny;
+  return {{2 * ny, ny, ny}, hOverH};
+}
+
+using Face = std::array<LO, 3>;
+Face faceOf(const Mesh& m, LO e, int side) {
+  Face f;
+  for (int v = 0; v < 3; ++v) f[v] = m.tets[e][kTetFaceVertices[side][v]];
+  std::sort(f.begin(), f.end());
+  return f;
+}
+}  // namespace
+
+TEST(TwoBricks, countsMatchFormulaForEveryTable1Cell) {
+  for (const Cell& cell : kTable1) {
+    SCOPED_TRACE(std::to_string(cell.subdomains) + " / " + std::to_string(cell.hOverH));
+    const auto spec = specFor(cell.subdomains, cell.hOverH);
+    const Mesh mesh = generateTwoBricks(spec);
+    const int m = cell.hOverH, ex = spec.subdomainsPerBrick.nx * m, ey = spec.subdomainsPerBrick.ny * m,
+              ez = spec.subdomainsPerBrick.nz * m;
+    EXPECT_EQ(mesh.numNodes(), 2 * (ex + 1) * (ey + 1) * (ez + 1));
+    EXPECT_EQ(mesh.numElements(), 2 * 5 * ex * ey * ez);
+    EXPECT_EQ(mesh.nodeSet("dirichlet_aluminium").nodes.size(), static_cast<size_t>((ey + 1) * (ez + 1)));
+    EXPECT_EQ(mesh.nodeSet("contact_aluminium").nodes.size(), static_cast<size_t>((ex + 1) * (ey + 1)));
+    EXPECT_EQ(mesh.sideSet("contact_aluminium").elements.size(), static_cast<size_t>(2 * ex * ey));
+    EXPECT_EQ(mesh.sideSet("contact_steel").elements.size(), static_cast<size_t>(2 * ex * ey));
+    EXPECT_EQ(mesh.sideSet("load_end").elements.size(), static_cast<size_t>(2 * ey * ez));
+    EXPECT_EQ(mesh.sideSet("load_top").elements.size(), static_cast<size_t>(2 * ex * ey));
+    const auto d = buildDecomposition(mesh, structuredPartition(mesh, spec));
+    EXPECT_EQ(d.numSubdomains(), cell.subdomains);
+    EXPECT_EQ(d.numPrimalDofs(), cell.n);
+    for (const auto& s : d.subdomains) EXPECT_EQ(s.numNodes(), (m + 1) * (m + 1) * (m + 1));
+  }
+}
+
+TEST(TwoBricks, meshIsConformingAndPositivelyOriented) {
+  for (int m : {1, 2, 3}) {
+    const Mesh mesh = generateTwoBricks({{2, 1, 1}, m});
+    std::map<Face, int> count;
+    for (LO e = 0; e < mesh.numElements(); ++e) {
+      EXPECT_GT(mesh.elementVolume(e), 0.0);
+      for (int side = 0; side < 4; ++side) count[faceOf(mesh, e, side)]++;
+    }
+    // Interior faces are shared by exactly two tets; boundary faces lie on a brick's boundary planes.
+    for (const auto& [face, c] : count) {
+      ASSERT_LE(c, 2);
+      if (c == 2) continue;
+      bool onPlane = false;
+      for (int axis = 0; axis < 3; ++axis) {
+        const double v = mesh.coords[face[0]][axis];
+        bool same = true;
+        for (LO n : face) same = same && mesh.coords[n][axis] == v;
+        const double extent = axis == 0 ? 20.0 : (axis == 1 ? 10.0 : -1.0);
+        if (same && (v == 0.0 || v == extent || (axis == 2 && (v == 10.0 || v == 20.0)))) onPlane = true;
+      }
+      EXPECT_TRUE(onPlane);
+    }
+    for (int b = 0; b < 2; ++b) {
+      double volume = 0.0;
+      for (LO e = mesh.blocks[b].first; e < mesh.blocks[b].first + mesh.blocks[b].count; ++e)
+        volume += mesh.elementVolume(e);
+      EXPECT_NEAR(volume, 2000.0, 1e-9);
+    }
+  }
+}
+
+TEST(TwoBricks, sideSetsLieOnTheirPlanesWithOutwardNormals) {
+  const Mesh mesh = generateTwoBricks({{4, 2, 2}, 2});
+  struct Expect {
+    const char* name;
+    int axis;
+    double value, normalSign;
+  };
+  for (const Expect& x : {Expect{"dirichlet_aluminium", 0, 0.0, -1}, Expect{"dirichlet_steel", 0, 0.0, -1},
+                          Expect{"contact_aluminium", 2, 10.0, 1}, Expect{"contact_steel", 2, 10.0, -1},
+                          Expect{"load_end", 0, 20.0, 1}, Expect{"load_top", 2, 20.0, 1}}) {
+    SCOPED_TRACE(x.name);
+    const auto& set = mesh.sideSet(x.name);
+    ASSERT_FALSE(set.elements.empty());
+    for (size_t f = 0; f < set.elements.size(); ++f) {
+      const auto& t = mesh.tets[set.elements[f]];
+      const auto& face = kTetFaceVertices[set.sides[f]];
+      const auto &a = mesh.coords[t[face[0]]], &b = mesh.coords[t[face[1]]], &c = mesh.coords[t[face[2]]];
+      for (const auto* p : {&a, &b, &c}) EXPECT_DOUBLE_EQ((*p)[x.axis], x.value);
+      const double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+      const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+      EXPECT_GT(n[x.axis] * x.normalSign, 0.0);
+    }
+  }
+}
+
+TEST(TwoBricks, globalMeshDoesNotDependOnTheDecomposition) {
+  const Mesh a = generateTwoBricks({{2, 1, 1}, 4});
+  const Mesh b = generateTwoBricks({{4, 2, 2}, 2});
+  EXPECT_EQ(a.coords, b.coords);
+  EXPECT_EQ(a.tets, b.tets);
+}
+
+TEST(TwoBricks, badGridsAreInputErrorsNamingTheParameter) {
+  for (const char* bad : {"2x1", "2x1x1x1", "axbxc", "0x1x1", "2x1x-1", ""}) {
+    try {
+      BrickGrid::parse(bad, "Mesh/Subdomains Per Brick");
+      ADD_FAILURE() << bad;
+    } catch (const core::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("Mesh/Subdomains Per Brick"), std::string::npos);
+    }
+  }
+  EXPECT_THROW(generateTwoBricks({{3, 1, 1}, 2}), core::InputError);
+}
