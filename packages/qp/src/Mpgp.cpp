@@ -10,7 +10,7 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
                          Vector& x, Vector& g, const std::function<bool(double, const Vector&)>& stop) const {
   MpgpCounters counters;
   const auto map = x.getMap();
-  Vector phi(map), beta(map), p(map), Ap(map), reduced(map), gradientProjected(map);
+  Vector phi(map), beta(map), p(map), Ap(map), reduced(map), gradientProjected(map), trial(map), trialGradient(map);
   const double alphaBar = settings_.stepScale / normA;
 
   // g = A x - b after any change of x that is not a CG-type update.
@@ -70,6 +70,32 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
         g.update(-alphaFeasible, Ap, 1.0);
         omega.project(x);  // absorb round-off of the step onto the boundary
         omega.splitGradient(x, g, phi, beta);
+        if (settings_.optimalExpansion) {
+          // Projected step with the exact minimiser along -phi (one more product with A),
+          // kept only if it decreases f (monotonicity safeguard); else the fixed alpha_bar.
+          A.apply(phi, Ap);
+          ++counters.operatorApplications;
+          const double phiAphi = phi.dot(Ap);
+          const double alphaOpt = phiAphi > 0.0 ? phi.dot(phi) / phiAphi : 0.0;
+          if (alphaOpt > alphaBar) {
+            reduced.update(1.0, g, -1.0, b, 0.0);
+            const double fHalf = 0.5 * x.dot(reduced);
+            trial.update(1.0, x, -alphaOpt, phi, 0.0);
+            omega.project(trial);
+            A.apply(trial, trialGradient);
+            ++counters.operatorApplications;
+            trialGradient.update(-1.0, b, 1.0);
+            reduced.update(1.0, trialGradient, -1.0, b, 0.0);
+            if (0.5 * trial.dot(reduced) <= fHalf) {
+              x.assign(trial);
+              g.assign(trialGradient);
+              omega.splitGradient(x, g, phi, beta);
+              p.assign(phi);
+              ++counters.expansionSteps;
+              continue;
+            }
+          }
+        }
         x.update(-alphaBar, phi, 1.0);
         omega.project(x);
         gradient();

@@ -39,6 +39,7 @@ qp::SmalseSettings smalseSettings(const Teuchos::ParameterList& tribos) {
   s.mpgp.stepScale = mp.get<double>("step scale");
   s.mpgp.gamma = mp.get<double>("Gamma");
   s.mpgp.maxIterations = mp.get<int>("max iterations");
+  s.mpgp.optimalExpansion = mp.get<bool>("optimal expansion");
   return s;
 }
 

@@ -119,12 +119,14 @@ void solverParameters(ParameterList& pl) {
   ParameterList& smalse = pl.sublist("SMALSE-M", false, "augmented Lagrangian (paper Section 5)");
   smalse.set("eta", 1.0, "eta > 0, relative to ||P h||: cap of the inner stopping bound min(M ||G mu||, eta)",
              atLeast<double>(0.0));
-  smalse.set("rho", 3.0,
-             "rho > 0, relative to ||PFP||: penalty of A_rho = PFP + rho Q (the paper: 1; 3 needs fewer F "
-             "applications here, doc/smalse_parameters.md)", atLeast<double>(0.0));
+  smalse.set("rho", 10.0,
+             "rho > 0, relative to ||PFP||: penalty of A_rho = PFP + rho Q (the paper: 1; 10 needs far fewer "
+             "outer iterations here, doc/smalse_parameters.md)", atLeast<double>(0.0));
   smalse.set("initial M", 1.0,
              "M_0 > 0, relative to ||PFP||: inner precision control (the paper: 1e-6; doc/smalse_parameters.md)", atLeast<double>(0.0));
-  smalse.set("beta", 0.1, "0 < beta_M < 1: M is multiplied by it when the Lagrangian does not grow enough",
+  smalse.set("beta", 0.5,
+             "0 < beta_M < 1: M is multiplied by it when the Lagrangian does not grow enough (the paper: 0.1; "
+             "PERMON: 0.5)",
              atLeast<double>(0.0));
   Teuchos::setStringToIntegralParameter<int>(
       "equality test", "Conventional",
@@ -135,6 +137,9 @@ void solverParameters(ParameterList& pl) {
   mpgp.set("step scale", 1.9, "alpha_bar = step scale / ||A_rho||, in (0, 2)", atLeast<double>(0.0));
   mpgp.set("Gamma", 1.0, "Gamma > 0: proportioning parameter", atLeast<double>(0.0));
   mpgp.set("max iterations", 100000, "cap on MPGP iterations per inner solve", atLeast<int>(1));
+  mpgp.set("optimal expansion", false,
+           "expansion steps try the exact minimiser along the free gradient (projected, monotone safeguard) "
+           "before the fixed alpha_bar step");
 }
 
 void parallelParameters(ParameterList& pl) {
