@@ -26,8 +26,10 @@ function(tribos_add_test)
   endif()
   set(procs 1)
   if(T_NP)
+    # OMP_WAIT_POLICY=PASSIVE: idle OpenMP threads sleep instead of spinning, which matters
+    # when ranks x threads exceed the cores (CI has 2): spinning threads starve the ranks.
     set(cmd ${MPIEXEC_EXECUTABLE} --allow-run-as-root --oversubscribe --bind-to none
-            -x OMP_NUM_THREADS=${T_THREADS} ${MPIEXEC_NUMPROC_FLAG} ${T_NP} ${cmd})
+            -x OMP_NUM_THREADS=${T_THREADS} -x OMP_WAIT_POLICY=PASSIVE ${MPIEXEC_NUMPROC_FLAG} ${T_NP} ${cmd})
     math(EXPR procs "${T_NP} * ${T_THREADS}")
   endif()
   add_test(NAME ${T_NAME} COMMAND ${cmd})
@@ -36,5 +38,5 @@ function(tribos_add_test)
   endif()
   set_tests_properties(${T_NAME} PROPERTIES
     LABELS "${T_LABELS}" TIMEOUT ${T_TIMEOUT} PROCESSORS ${procs}
-    ENVIRONMENT "OMP_NUM_THREADS=${T_THREADS};OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1;TRIBOS_SOURCE_DIR=${PROJECT_SOURCE_DIR}")
+    ENVIRONMENT "OMP_NUM_THREADS=${T_THREADS};OMP_WAIT_POLICY=PASSIVE;OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1;TRIBOS_SOURCE_DIR=${PROJECT_SOURCE_DIR}")
 endfunction()

@@ -1,0 +1,42 @@
+// Perf regression guard (label perf): the solver's counts on Table 1 cells stay within the
+// band of perf/baselines/table1_counts.json. Counts, not times: they are what does not
+// depend on the machine (STYLE.md 7). Times are recorded by perf/tools/table1.sh.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "RunCommand.hpp"
+#include "TestPaths.hpp"
+
+TEST(table1Counts, stayWithinTheBaselineBand) {
+  const auto root = tribos::test::sourceDir();
+  std::ifstream in(root + "/perf/baselines/table1_counts.json");
+  ASSERT_TRUE(in) << "missing perf/baselines/table1_counts.json";
+  const auto baseline = nlohmann::json::parse(in);
+  const int outerBand = baseline["band"]["outer"];
+  const double pfpBand = baseline["band"]["pfp_relative"];
+  const auto dir = std::filesystem::temp_directory_path() / ("tribos_perf_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  for (const auto& cell : baseline["cells"]) {
+    const std::string grid = cell["grid"];
+    const int h = cell["h"];
+    SCOPED_TRACE(grid + " H/h=" + std::to_string(h));
+    const auto summary = (dir / "summary.json").string();
+    const auto run = tribos::test::runCommand(std::string(TRIBOS_DRIVER) + " --input " + tribos::test::quote(root + "/input/two_bricks.xml") +
+                                              " --set 'Mesh/Subdomains Per Brick=" + grid + "' --set 'Mesh/H Over h=" +
+                                              std::to_string(h) + "' --set Solver/Verbose=false --summary " + summary);
+    ASSERT_EQ(run.status, 0) << run.output;
+    std::ifstream s(summary);
+    const auto j = nlohmann::json::parse(s);
+    EXPECT_TRUE(j["converged"].get<bool>());
+    const int outer = j["outer_iterations"], pfp = j["pfp_applications"];
+    EXPECT_LE(outer, cell["outer"].get<int>() + outerBand);
+    EXPECT_LE(pfp, cell["pfp"].get<int>() * (1.0 + pfpBand));
+    RecordProperty("outer_" + grid + "_" + std::to_string(h), outer);
+    RecordProperty("pfp_" + grid + "_" + std::to_string(h), pfp);
+  }
+  std::filesystem::remove_all(dir);
+}
