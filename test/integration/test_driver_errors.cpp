@@ -2,6 +2,7 @@
 // --list-parameters and --output work; a METIS-decomposed Exodus mesh can be read back in.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -123,5 +124,24 @@ TEST(tribosDriver, outputCarriesTheSubdomainsAndReadsBackThroughMetis) {
             "<Parameter name=\"Lame Mu\" type=\"double\" value=\"83010\"/></ParameterList></ParameterList>"
             "</ParameterList>");
   expectBadInput("--input " + quote((dir / "no_material.xml").string()) + " --dry-run", "aluminium");
+  std::filesystem::remove_all(dir);
+}
+
+TEST(tribosDriver, everySceneInInputRunsAndConvergesWithResults) {
+  const auto dir = scratch();
+  for (const auto& entry : std::filesystem::directory_iterator(tribos::test::sourceDir() + "/input")) {
+    if (entry.path().extension() != ".xml") continue;
+    SCOPED_TRACE(entry.path().string());
+    const auto exo = dir / "result.exo";
+    const auto run = runCommand(kDriver + " --input " + quote(entry.path().string()) + " --set Solver/Verbose=false" +
+                                " --output " + quote(exo.string()));
+    EXPECT_EQ(run.status, 0) << run.output;
+    const auto data = tribos::mesh::readExodus(exo.string());
+    ASSERT_EQ(data.steps.size(), 1u);
+    std::vector<std::string> names;
+    for (const auto& f : data.steps[0].nodal) names.push_back(f.name);
+    for (const char* required : {"displ_x", "displ_y", "displ_z"})
+      EXPECT_NE(std::find(names.begin(), names.end(), required), names.end()) << required;
+  }
   std::filesystem::remove_all(dir);
 }
