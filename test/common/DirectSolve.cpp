@@ -13,26 +13,28 @@ namespace tribos::test {
 
 std::vector<std::array<double, 3>> directSolve(const mesh::Mesh& mesh, const std::vector<fem::Material>& materials,
                                                const fem::Loads& loads, const std::vector<LO>& fixedNodes,
-                                               const std::vector<std::pair<LO, LO>>& tied) {
+                                               const std::vector<std::pair<LO, LO>>& tied,
+                                               const std::vector<std::pair<LO, LO>>& tiedZ) {
   const auto global = fem::assembleGlobal(mesh, materials, loads);
   const LO numNodes = mesh.numNodes();
-  // Representative of every node (tied pairs merged), then unknown numbering.
-  std::vector<LO> rep(numNodes);
+  // Representative of every dof (tied pairs merged), then unknown numbering.
+  const LO numDofs = 3 * numNodes;
+  std::vector<LO> rep(numDofs);
   std::iota(rep.begin(), rep.end(), 0);
-  for (const auto& [a, b] : tied) rep[b] = rep[a];
-  std::vector<char> fixed(numNodes, 0);
-  for (LO n : fixedNodes) fixed[n] = 1;
-  for (LO n = 0; n < numNodes; ++n)
-    if (fixed[n]) fixed[rep[n]] = 1;
-  std::vector<LO> unknown(numNodes, -1);
+  for (const auto& [a, b] : tied)
+    for (int c = 0; c < 3; ++c) rep[3 * b + c] = rep[3 * a + c];
+  for (const auto& [a, b] : tiedZ) rep[3 * b + 2] = rep[3 * a + 2];
+  std::vector<char> fixed(numDofs, 0);
+  for (LO node : fixedNodes)
+    for (int c = 0; c < 3; ++c) fixed[3 * node + c] = 1;
+  for (LO d = 0; d < numDofs; ++d)
+    if (fixed[d]) fixed[rep[d]] = 1;
+  std::vector<LO> unknown(numDofs, -1);
   LO count = 0;
-  for (LO n = 0; n < numNodes; ++n)
-    if (rep[n] == n && !fixed[n]) unknown[n] = count++;
-  auto dofOf = [&](LO dof) -> LO {
-    const LO u = unknown[rep[dof / 3]];
-    return u < 0 ? -1 : 3 * u + dof % 3;
-  };
-  const LO n = 3 * count;
+  for (LO d = 0; d < numDofs; ++d)
+    if (rep[d] == d && !fixed[d]) unknown[d] = count++;
+  auto dofOf = [&](LO dof) -> LO { return unknown[rep[dof]]; };
+  const LO n = count;
   std::vector<std::map<LO, double>> rows(n);
   std::vector<double> rhs(n, 0.0);
   for (LO i = 0; i < global.K.n; ++i) {
@@ -76,6 +78,40 @@ std::vector<std::array<double, 3>> directSolve(const mesh::Mesh& mesh, const std
       u[node][c] = d < 0 ? 0.0 : x(d, 0);
     }
   return u;
+}
+
+std::vector<std::array<double, 3>> directFrictionlessContact(const mesh::Mesh& mesh,
+                                                             const std::vector<fem::Material>& materials,
+                                                             const fem::Loads& loads, const std::vector<LO>& fixedNodes,
+                                                             const std::vector<std::pair<LO, LO>>& pairs,
+                                                             int* iterations) {
+  const auto global = fem::assembleGlobal(mesh, materials, loads);
+  std::vector<char> active(pairs.size(), 1);
+  std::vector<std::array<double, 3>> u;
+  for (int it = 1; it <= 50; ++it) {
+    std::vector<std::pair<LO, LO>> tiedZ;
+    for (size_t i = 0; i < pairs.size(); ++i)
+      if (active[i]) tiedZ.push_back(pairs[i]);
+    u = directSolve(mesh, materials, loads, fixedNodes, {}, tiedZ);
+    // Contact force on the slave: (K u - f) at its z dof; compression pushes it down (< 0).
+    std::vector<double> flat(3 * u.size()), Ku(flat.size());
+    for (size_t k = 0; k < u.size(); ++k)
+      for (int c = 0; c < 3; ++c) flat[3 * k + c] = u[k][c];
+    global.K.apply(flat.data(), Ku.data());
+    std::vector<char> next(pairs.size(), 0);
+    for (size_t i = 0; i < pairs.size(); ++i) {
+      const auto [s, m] = pairs[i];
+      const double pressure = -(Ku[3 * s + 2] - global.f[3 * s + 2]);
+      const double penetration = u[s][2] - u[m][2];
+      next[i] = active[i] ? pressure > 0.0 : penetration > 0.0;
+    }
+    if (next == active) {
+      if (iterations) *iterations = it;
+      return u;
+    }
+    active = next;
+  }
+  throw std::runtime_error("directFrictionlessContact: the active set did not settle in 50 iterations");
 }
 
 }  // namespace tribos::test
