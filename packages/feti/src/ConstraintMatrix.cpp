@@ -60,12 +60,8 @@ std::unordered_map<LO, Vec3> outerNormals(const mesh::Mesh& mesh, const mesh::Si
   std::unordered_map<LO, Vec3> normal;
   for (size_t f = 0; f < set.elements.size(); ++f) {
     const auto& tet = mesh.tets[set.elements[f]];
-    const auto& face = mesh::kTetFaceVertices[set.sides[f]];
-    const auto& a = mesh.coords[tet[face[0]]];
-    const auto& b = mesh.coords[tet[face[1]]];
-    const auto& c = mesh.coords[tet[face[2]]];
-    const Vec3 n = cross({b[0] - a[0], b[1] - a[1], b[2] - a[2]}, {c[0] - a[0], c[1] - a[1], c[2] - a[2]});
-    for (int v : face) {
+    const Vec3 n = mesh.faceNormal(set.elements[f], set.sides[f]);
+    for (int v : mesh::kTetFaceVertices[set.sides[f]]) {
       auto& acc = normal[tet[v]];
       for (int d = 0; d < 3; ++d) acc[d] += n[d];
     }

@@ -51,6 +51,14 @@ double Mesh::elementVolume(LO element) const {
   return det / 6.0;
 }
 
+std::array<double, 3> Mesh::faceNormal(LO element, int side) const {
+  const auto& t = tets[element];
+  const auto& face = kTetFaceVertices[side];
+  const auto &a = coords[t[face[0]]], &b = coords[t[face[1]]], &c = coords[t[face[2]]];
+  const double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  return {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+}
+
 void Mesh::validate(const std::string& source) const {
   auto fail = [&](const std::string& what) { throw core::InputError(source + ": " + what); };
   LO next = 0;

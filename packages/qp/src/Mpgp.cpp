@@ -19,6 +19,16 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
     ++counters.operatorApplications;
     g.update(-1.0, b, 1.0);
   };
+  // Gradient projection step x = P(x - alpha_bar g) (proportioning, and the fallback when A
+  // is not positive along p).
+  auto gradientProjectionStep = [&]() {
+    x.update(-alphaBar, g, 1.0);
+    omega.project(x);
+    gradient();
+    omega.splitGradient(x, g, phi, beta);
+    p.assign(phi);
+    ++counters.proportioningSteps;
+  };
   auto projectedGradientNorm = [&]() {
     gradientProjected.update(1.0, phi, 1.0, beta, 0.0);
     return gradientProjected.norm2();
@@ -46,12 +56,7 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
       ++counters.operatorApplications;
       const double pAp = p.dot(Ap);
       if (!(pAp > 0.0)) {  // p = 0 or A not positive on p: fall back to a gradient projection
-        x.update(-alphaBar, g, 1.0);
-        omega.project(x);
-        gradient();
-        omega.splitGradient(x, g, phi, beta);
-        p.assign(phi);
-        ++counters.proportioningSteps;
+        gradientProjectionStep();
         continue;
       }
       const double alphaCg = g.dot(p) / pAp;
@@ -105,12 +110,7 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
       }
     } else {
       // Proportioning: release the constraints with a gradient projection step.
-      x.update(-alphaBar, g, 1.0);
-      omega.project(x);
-      gradient();
-      omega.splitGradient(x, g, phi, beta);
-      p.assign(phi);
-      ++counters.proportioningSteps;
+      gradientProjectionStep();
     }
   }
   return counters;

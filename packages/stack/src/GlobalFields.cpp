@@ -52,14 +52,9 @@ std::vector<double> tributaryArea(const mesh::Mesh& mesh, const std::string& sid
   const auto& set = mesh.sideSet(sideSet);
   for (size_t f = 0; f < set.elements.size(); ++f) {
     const auto& tet = mesh.tets[set.elements[f]];
-    const auto& face = mesh::kTetFaceVertices[set.sides[f]];
-    const auto& a = mesh.coords[tet[face[0]]];
-    const auto& b = mesh.coords[tet[face[1]]];
-    const auto& c = mesh.coords[tet[face[2]]];
-    const double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-    const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
-    const double third = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) / 6.0;
-    for (int v = 0; v < 3; ++v) area[tet[face[v]]] += third;
+    const auto n = mesh.faceNormal(set.elements[f], set.sides[f]);
+    const double third = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) / 6.0;  // |n| = 2 area
+    for (int v : mesh::kTetFaceVertices[set.sides[f]]) area[tet[v]] += third;
   }
   return area;
 }

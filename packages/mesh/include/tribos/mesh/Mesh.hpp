@@ -57,6 +57,9 @@ struct Mesh {
   const SideSet& sideSet(const std::string& name) const;
   /// Signed volume of an element (positive for a valid element).
   double elementVolume(LO element) const;
+  /// Outward normal of face `side` of `element`, of length twice the face's area (the cross
+  /// product of its edges in kTetFaceVertices order).
+  std::array<double, 3> faceNormal(LO element, int side) const;
   /// Checks the invariants above (ids in range, blocks contiguous, sets sorted,
   /// positive volumes); throws core::InputError naming `source` and the bad entity.
   void validate(const std::string& source) const;
