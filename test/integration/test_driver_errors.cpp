@@ -145,3 +145,18 @@ TEST(tribosDriver, everySceneInInputRunsAndConvergesWithResults) {
   }
   std::filesystem::remove_all(dir);
 }
+
+TEST(tribosDriver, aSolveThatDidNotConvergeSaysSoWithExitStatus3) {
+  const auto dir = scratch();
+  const auto summary = dir / "summary.json";
+  const auto run = runCommand(kDriver + " --input " + quote(scene()) + " --set 'Solver/Max Outer Iterations=2'" +
+                              " --set Solver/Verbose=false --summary " + quote(summary.string()) + " --output " +
+                              quote((dir / "r.exo").string()));
+  EXPECT_EQ(run.status, 3) << run.output;
+  EXPECT_NE(run.output.find("NOT CONVERGED"), std::string::npos) << run.output;
+  std::ifstream in(summary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("\"converged\": false"), std::string::npos) << text;
+  EXPECT_TRUE(std::filesystem::exists(dir / "r.exo"));  // results are still written
+  std::filesystem::remove_all(dir);
+}
