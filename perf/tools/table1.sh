@@ -6,6 +6,7 @@ set -euo pipefail
 cd "$(dirname "$0")/../.."
 max=${1:-108}
 shift || true
+extra=("$@")
 driver=build/bin/tribos
 out=$(mktemp -d)
 echo "subdomains_total,h_ratio,n,n_d,l,outer,n_pfp,rel_eff,converged,solve_s,total_s"
@@ -16,7 +17,7 @@ for cell in "4 2x1x1" "32 4x2x2" "108 6x3x3" "256 8x4x4" "500 10x5x5"; do
   for h in 2 3 4 5; do
     json=$out/cell_${s}_${h}.json
     "$driver" --input input/two_bricks.xml --set "Mesh/Subdomains Per Brick=$grid" --set "Mesh/H Over h=$h" \
-      --set "Solver/Verbose=false" --summary "$json" "${@:3}" > /dev/null || true
+      --set "Solver/Verbose=false" --summary "$json" "${extra[@]}" > /dev/null || true
     /usr/bin/python3 - "$json" <<'PY'
 import json, sys
 j = json.load(open(sys.argv[1]))
