@@ -14,6 +14,7 @@
 #include <Teuchos_ParameterList.hpp>
 #include <Teuchos_XMLParameterListHelpers.hpp>
 
+#include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -250,6 +251,15 @@ int run(int argc, char** argv, int rank) {
                 << " s, solve " << linear.solveSeconds << " s\n";
   }
   summary["times"]["total_s"] = total.seconds();
+  if (rank == 0 && !cl.dryRun) {
+    // The timing table of the run (slowest rank where the phase is parallel).
+    std::printf("  %-16s %10s\n", "phase", "seconds");
+    for (const char* phase : {"mesh_s", "decomposition_s", "assembly_s", "constraints_s", "factorization_s", "solve_s",
+                              "total_s"})
+      if (summary["times"].contains(phase))
+        std::printf("  %-16s %10.4f\n", std::string(phase).substr(0, std::string(phase).size() - 2).c_str(),
+                    summary["times"][phase].get<double>());
+  }
 
   // (5) Results.
   if (rank == 0) {

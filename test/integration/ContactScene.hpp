@@ -25,18 +25,18 @@ struct SolvedContactScene {
   stack::ContactSolveResult result;
 };
 
-inline SolvedContactScene solveContactScene(const std::vector<std::string>& overrides) {
+inline SolvedContactScene solveContactScene(const std::vector<std::string>& overrides, MPI_Comm comm = MPI_COMM_WORLD) {
   int size = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  MPI_Comm_size(comm, &size);
   SolvedContactScene s;
   const auto valid = stack::sceneValidParameters();
   for (const auto& o : overrides) core::applyOverride(s.params, *valid, o);
   core::validateAndSetDefaults(s.params, *valid, "test");
   s.scene = stack::buildScene(s.params, "test");
   std::vector<fem::SubdomainSystem> systems;
-  stack::assembleOwnedSubdomains(s.scene, MPI_COMM_WORLD, systems);
+  stack::assembleOwnedSubdomains(s.scene, comm, systems);
   s.B = feti::buildConstraintMatrix(s.scene.mesh, s.scene.decomposition, stack::constraintSpec(s.scene), size);
-  s.result = stack::solveContactScene(s.scene, std::move(systems), s.B, s.params, MPI_COMM_WORLD);
+  s.result = stack::solveContactScene(s.scene, std::move(systems), s.B, s.params, comm);
   return s;
 }
 

@@ -153,3 +153,15 @@ TEST(contactProblem, allThreeZonesAppearWithLargerFriction) {
   EXPECT_GT(r.statusCounts[2], 0);
   EXPECT_LE(r.kkt.stickRule, 1e-6);
 }
+
+TEST(contactProblem, allRanksAgreeWithOneRank) {
+  // The same scene on every rank of this run (1, 2 or 4) and on rank 0 alone.
+  const std::vector<std::string> scene = {"Mesh/Subdomains Per Brick=4x2x2", "Mesh/H Over h=2", "Solver/Tolerance=1e-9",
+                                          "Contact/Friction Model=Coulomb"};
+  const auto distributed = solveContactScene(scene, MPI_COMM_WORLD);
+  if (worldRank() != 0) return;
+  const auto alone = solveContactScene(scene, MPI_COMM_SELF);
+  EXPECT_TRUE(alone.result.contact.converged);
+  EXPECT_LE(relativeMaxDifference(alone.result.displacement.value, distributed.result.displacement.value), 1e-6);
+  EXPECT_EQ(alone.result.contact.statusCounts, distributed.result.contact.statusCounts);
+}
