@@ -7,7 +7,6 @@
 
 namespace tribos::feti {
 std::unique_ptr<SparseCholesky> makeCholmodCholesky();
-std::unique_ptr<SparseCholesky> makeTachoCholesky();
 /// Fill-reducing ordering (METIS_NodeND): perm[k] = the row eliminated k-th.
 std::vector<LO> nestedDissection(const fem::CsrMatrix& A);
 }  // namespace tribos::feti

@@ -17,7 +17,7 @@ namespace tribos::feti {
 class SubdomainSolver {
  public:
   /// Picks the fixing nodes from `coords` (local node coordinates), builds K_reg and
-  /// factorises it with `factorization` ("CHOLMOD" | "Tacho"). `system.R` must be the
+  /// factorises it with `factorization` (see makeSparseCholesky). `system.R` must be the
   /// orthonormal kernel basis of system.K. The solver keeps references to nothing: it
   /// copies R. Safe to call concurrently for different objects.
   void compute(const fem::SubdomainSystem& system, const std::vector<std::array<double, 3>>& coords,
