@@ -165,3 +165,35 @@ TEST(contactProblem, allRanksAgreeWithOneRank) {
   EXPECT_LE(relativeMaxDifference(alone.result.displacement.value, distributed.result.displacement.value), 1e-6);
   EXPECT_EQ(alone.result.contact.statusCounts, distributed.result.contact.statusCounts);
 }
+
+TEST(contactProblem, initialGapsAreRespected) {
+  // A gap wider than the deformation: no contact, so the solution is that of the two bodies
+  // without contact (linear T-FETI, an independent code path).
+  const std::vector<std::string> cell = {"Mesh/Subdomains Per Brick=2x1x1", "Mesh/H Over h=3", "Solver/Tolerance=1e-9",
+                                         "Contact/Search Distance=0.02"};
+  const auto open = solveContactScene(with(cell, {"Mesh/Initial Gap=0.01"}));
+  expectKkt(open.result.contact);
+  // A narrow gap: contact closes over part of the surface and non-penetration holds with d > 0.
+  const auto narrow = solveContactScene(with(cell, {"Mesh/Initial Gap=0.001"}));
+  expectKkt(narrow.result.contact);
+  if (worldRank() != 0) return;
+  EXPECT_EQ(open.result.contact.statusCounts[0], static_cast<int>(open.B.contact.size()));
+  EXPECT_EQ(open.result.totalNormalForce, 0.0);
+  for (const auto& c : open.B.contact) EXPECT_NEAR(c.gap, 0.01, 1e-12);
+  EXPECT_GT(narrow.result.contact.statusCounts[2], 0);
+  EXPECT_GT(narrow.result.totalNormalForce, 0.0);
+
+  // Reference for the open gap: the same mesh, no contact pair, linear T-FETI.
+  Teuchos::ParameterList params("Tribos");
+  const auto valid = stack::sceneValidParameters();
+  for (const auto& o : with(cell, {"Mesh/Initial Gap=0.01", "Contact/Friction Model=None", "Contact/Slave Side Set=",
+                                   "Contact/Master Side Set="}))
+    core::applyOverride(params, *valid, o);
+  core::validateAndSetDefaults(params, *valid, "test");
+  const auto scene = stack::buildScene(params, "test");
+  std::vector<fem::SubdomainSystem> systems;
+  stack::assembleOwnedSubdomains(scene, MPI_COMM_SELF, systems);
+  const auto B = feti::buildConstraintMatrix(scene.mesh, scene.decomposition, stack::constraintSpec(scene), 1);
+  const auto linear = stack::solveLinearFeti(scene, std::move(systems), B, params.sublist("FETI"), 1e-11, MPI_COMM_SELF);
+  EXPECT_LE(relativeMaxDifference(linear.displacement, open.result.displacement.value), 1e-6);
+}

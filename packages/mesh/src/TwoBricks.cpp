@@ -61,10 +61,11 @@ Mesh generateTwoBricks(const TwoBricksSpec& spec) {
                      "NX = 2 NY = 2 NZ (e.g. 2x1x1, 4x2x2), got " +
                          std::to_string(g.nx) + "x" + std::to_string(g.ny) + "x" + std::to_string(g.nz));
   const double h = 20.0 / (g.nx * m);
+  core::requireInput(spec.gap >= 0.0, "Mesh/Initial Gap: must be >= 0, got " + std::to_string(spec.gap));
   Mesh mesh;
   Brick bricks[2];
   for (int b = 0; b < 2; ++b) {
-    bricks[b] = {g.nx * m, g.ny * m, g.nz * m, 10.0 * b, b == 0 ? 0 : bricks[0].numNodes()};
+    bricks[b] = {g.nx * m, g.ny * m, g.nz * m, b == 0 ? 0.0 : 10.0 + spec.gap, b == 0 ? 0 : bricks[0].numNodes()};
     const Brick& br = bricks[b];
     for (int k = 0; k <= br.ez; ++k)
       for (int j = 0; j <= br.ey; ++j)

@@ -63,6 +63,7 @@ void readMesh(const ParameterList& meshList, const std::string& source, Scene& s
     spec.subdomainsPerBrick =
         mesh::BrickGrid::parse(meshList.get<std::string>("Subdomains Per Brick"), "Mesh/Subdomains Per Brick");
     spec.hOverH = meshList.get<int>("H Over h");
+    spec.gap = meshList.get<double>("Initial Gap");
     scene.mesh = mesh::generateTwoBricks(spec);
     scene.meshSeconds = watch.seconds();
     watch.restart();

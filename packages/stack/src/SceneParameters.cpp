@@ -25,6 +25,10 @@ void meshParameters(ParameterList& pl) {
          "Two Bricks: subdomain grid NXxNYxNZ of each brick, cubic subdomains (NX = 2 NY = 2 NZ); "
          "the paper's s = NX*NY*NZ (Table 1: 2x1x1, 4x2x2, 6x3x3, 8x4x4, 10x5x5)");
   pl.set("H Over h", 2, "Two Bricks: elements per subdomain edge, H/h >= 1", atLeast<int>(1));
+  pl.set("Initial Gap", 0.0,
+         "Two Bricks: initial gap d >= 0 [length] between the bricks (the steel brick is lifted by it); "
+         "set Contact/Search Distance above it so that the contact nodes pair",
+         atLeast<double>(0.0));
   pl.set("File", std::string(""), "Exodus: path of the Exodus II mesh (linear tetrahedra)");
   pl.set("Subdomains", 4,
          "Exodus, or Decomposition = METIS: number of subdomains (METIS parts, split among bodies "

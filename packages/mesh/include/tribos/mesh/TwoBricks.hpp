@@ -32,6 +32,7 @@ struct BrickGrid {
 struct TwoBricksSpec {
   BrickGrid subdomainsPerBrick;  ///< the paper's s = nx*ny*nz subdomains per brick
   int hOverH = 2;                ///< elements per subdomain edge (H/h)
+  double gap = 0.0;              ///< initial gap d >= 0: brick 2 occupies (10 + gap, 20 + gap) in z
 };
 
 /// Builds the global mesh. Requires the subdomains to be cubes: 20/nx == 10/ny == 10/nz
