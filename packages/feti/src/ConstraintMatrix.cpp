@@ -171,6 +171,11 @@ ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decom
                                spec.slaveSideSet + "\" has no node of \"" + spec.masterSideSet + "\" within " +
                                "Contact/Search Distance = " + std::to_string(radius) + " (nearest: " +
                                std::to_string(grid.nearestAnywhere(xs)) + ")");
+      if (master == slave)
+        throw core::InputError("contact: node " + std::to_string(slave + 1) + " belongs to both \"" + spec.slaveSideSet +
+                               "\" and \"" + spec.masterSideSet +
+                               "\": the bodies share their interface nodes; give each body its own nodes "
+                               "(gmsh meshes: tribos-msh2exo --split-bodies)");
       ContactNode node;
       node.slaveNode = slave;
       node.masterNode = master;

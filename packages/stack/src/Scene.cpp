@@ -4,6 +4,7 @@
 #include <Teuchos_ParameterList.hpp>
 
 #include <cmath>
+#include <filesystem>
 
 #include "tribos/core/Errors.hpp"
 #include "tribos/core/Timer.hpp"
@@ -70,8 +71,12 @@ void readMesh(const ParameterList& meshList, const std::string& source, Scene& s
     parts = decomposition == "Structured" ? mesh::structuredPartition(scene.mesh, spec)
                                           : mesh::metisPartition(scene.mesh, meshList.get<int>("Subdomains"));
   } else {
-    const auto file = meshList.get<std::string>("File");
+    auto file = meshList.get<std::string>("File");
     core::requireInput(!file.empty(), source + ": Mesh/Generator is \"Exodus\" but Mesh/File is empty");
+    // A relative path is relative to the scene file, so scenes can travel with their meshes.
+    const std::filesystem::path scenePath(source);
+    if (std::filesystem::path(file).is_relative() && scenePath.has_parent_path())
+      file = (scenePath.parent_path() / file).string();
     scene.mesh = mesh::readExodus(file).mesh;
     scene.meshSeconds = watch.seconds();
     watch.restart();

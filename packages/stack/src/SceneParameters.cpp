@@ -29,7 +29,9 @@ void meshParameters(ParameterList& pl) {
          "Two Bricks: initial gap d >= 0 [length] between the bricks (the steel brick is lifted by it); "
          "set Contact/Search Distance above it so that the contact nodes pair",
          atLeast<double>(0.0));
-  pl.set("File", std::string(""), "Exodus: path of the Exodus II mesh (linear tetrahedra)");
+  pl.set("File", std::string(""),
+         "Exodus: path of the Exodus II mesh (linear tetrahedra); relative paths are relative to the scene file "
+         "(gmsh meshes: convert with tribos-msh2exo)");
   pl.set("Subdomains", 4,
          "Exodus, or Decomposition = METIS: number of subdomains (METIS parts, split among bodies "
          "in proportion to their element counts; at least one per body)",
