@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <climits>
+#include <filesystem>
 #include <fstream>
 #include <stdexcept>
 
@@ -14,29 +16,44 @@
 namespace tribos::mesh {
 
 namespace {
+/// Names of at least this length survive a round trip; the library's default (32) would cut
+/// descriptive set names such as "contact_upper_brick_bottom_face".
 constexpr int kNameLength = 64;
+/// netCDF stores names in a dimension of NC_MAX_NAME (256) characters including the NUL.
+constexpr int kMaxNameLength = 255;
 
-/// Closes the file on every path out of a reader/writer.
+/// Closes the file on every path out of a reader/writer. The writer closes explicitly via
+/// close() so that a failed final flush is reported instead of lost in a destructor.
 class ExodusFile {
  public:
   explicit ExodusFile(int id) : id_(id) {}
+  ExodusFile(const ExodusFile&) = delete;
+  ExodusFile& operator=(const ExodusFile&) = delete;
   ~ExodusFile() {
     if (id_ >= 0) ex_close(id_);
   }
   int id() const { return id_; }
+  int close() {
+    const int status = ex_close(id_);
+    id_ = -1;
+    return status;
+  }
 
  private:
   int id_;
 };
 
-/// Owns a char*[] for the name APIs (which take non-const char**).
+/// Owns a char*[] for the name APIs (which take non-const char**), each entry `length` + 1
+/// characters, zero-filled so unset names read back as empty strings.
 class NameArray {
  public:
-  explicit NameArray(size_t count) : storage_(count, std::string(kNameLength + 1, '\0')), pointers_(count) {
+  NameArray(size_t count, int length)
+      : storage_(count, std::string(static_cast<size_t>(length) + 1, '\0')), pointers_(count), length_(length) {
     for (size_t i = 0; i < count; ++i) pointers_[i] = storage_[i].data();
   }
-  explicit NameArray(const std::vector<std::string>& names) : NameArray(names.size()) {
-    for (size_t i = 0; i < names.size(); ++i) names[i].copy(pointers_[i], std::min<size_t>(names[i].size(), kNameLength));
+  NameArray(const std::vector<std::string>& names, int length) : NameArray(names.size(), length) {
+    for (size_t i = 0; i < names.size(); ++i)
+      names[i].copy(pointers_[i], std::min<size_t>(names[i].size(), static_cast<size_t>(length_)));
   }
   char** data() { return pointers_.data(); }
   std::string operator[](size_t i) const { return std::string(pointers_[i]); }
@@ -44,6 +61,7 @@ class NameArray {
  private:
   std::vector<std::string> storage_;
   std::vector<char*> pointers_;
+  int length_;
 };
 
 void check(int status, const std::string& path, const std::string& what) {
@@ -55,29 +73,96 @@ std::vector<std::string> fieldNames(const std::vector<Field>& fields) {
   for (const auto& f : fields) names.push_back(f.name);
   return names;
 }
+
+/// Every step must carry the same fields in the same order, because Exodus declares the
+/// variable names once for the whole file. Names the first field that differs.
+void checkSameFields(const std::vector<Field>& first, const std::vector<Field>& other, size_t step, const char* kind) {
+  const size_t common = std::min(first.size(), other.size());
+  for (size_t v = 0; v < common; ++v)
+    if (first[v].name != other[v].name)
+      throw std::invalid_argument("tribos::mesh::writeExodus: time step " + std::to_string(step + 1) + " has " + kind +
+                                  " field \"" + other[v].name + "\" where time step 1 has \"" + first[v].name +
+                                  "\" (every step must carry the same fields)");
+  if (other.size() > common)
+    throw std::invalid_argument("tribos::mesh::writeExodus: time step " + std::to_string(step + 1) + " has " + kind +
+                                " field \"" + other[common].name + "\" that time step 1 lacks");
+  if (first.size() > common)
+    throw std::invalid_argument("tribos::mesh::writeExodus: time step " + std::to_string(step + 1) + " lacks " + kind +
+                                " field \"" + first[common].name + "\" of time step 1");
+}
+
+void checkFieldSizes(const std::vector<Field>& fields, LO expected, const char* kind, const char* entity) {
+  for (size_t v = 0; v < fields.size(); ++v) {
+    const auto& f = fields[v];
+    if (static_cast<LO>(f.values.size()) != expected)
+      throw std::invalid_argument("tribos::mesh::writeExodus: " + std::string(kind) + " field \"" + f.name + "\" has " +
+                                  std::to_string(f.values.size()) + " values for " + std::to_string(expected) + " " +
+                                  entity);
+    // Exodus finds variables by name (ParaView shows one of two equal names), so duplicates
+    // would silently hide data.
+    for (size_t w = 0; w < v; ++w)
+      if (fields[w].name == f.name)
+        throw std::invalid_argument("tribos::mesh::writeExodus: " + std::string(kind) + " field \"" + f.name +
+                                    "\" appears twice");
+  }
+}
+
+/// The writer reads mesh.tets[b.first .. b.first + b.count) per block and parallel side-set
+/// arrays; check those ranges first so a malformed Mesh is an error, not a wild read.
+void checkWritableMesh(const Mesh& mesh) {
+  LO next = 0;
+  for (const auto& b : mesh.blocks) {
+    if (b.first != next || b.count < 0 || b.count > mesh.numElements() - b.first)
+      throw std::invalid_argument("tribos::mesh::writeExodus: element block \"" + b.name +
+                                  "\" does not continue the previous block within the elements");
+    next += b.count;
+  }
+  if (next != mesh.numElements())
+    throw std::invalid_argument("tribos::mesh::writeExodus: the element blocks do not cover all elements");
+  for (const auto& s : mesh.sideSets)
+    if (s.elements.size() != s.sides.size())
+      throw std::invalid_argument("tribos::mesh::writeExodus: side set \"" + s.name +
+                                  "\" has different numbers of elements and sides");
+}
+
+int longestName(const Mesh& mesh, const std::vector<TimeStep>& steps) {
+  size_t longest = 0;
+  for (const auto& b : mesh.blocks) longest = std::max(longest, b.name.size());
+  for (const auto& s : mesh.nodeSets) longest = std::max(longest, s.name.size());
+  for (const auto& s : mesh.sideSets) longest = std::max(longest, s.name.size());
+  if (!steps.empty()) {
+    for (const auto& f : steps.front().nodal) longest = std::max(longest, f.name.size());
+    for (const auto& f : steps.front().element) longest = std::max(longest, f.name.size());
+  }
+  return static_cast<int>(std::min<size_t>(longest, kMaxNameLength));
+}
+
+/// A 0-based id from the file as LO. Out-of-range ids stay out of range (clamped to
+/// [-1, INT_MAX]) so that Mesh::validate reports them; numNodes/numElements <= INT_MAX.
+LO toLO(int64_t zeroBased) { return static_cast<LO>(std::clamp<int64_t>(zeroBased, -1, INT_MAX)); }
+
+std::string upper(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
+  return s;
+}
 }  // namespace
 
 void writeExodus(const std::string& path, const Mesh& mesh, const std::vector<TimeStep>& steps) {
-  for (const auto& step : steps) {
-    if (fieldNames(step.nodal) != fieldNames(steps.front().nodal) ||
-        fieldNames(step.element) != fieldNames(steps.front().element))
-      throw std::invalid_argument("tribos::mesh::writeExodus: every time step must carry the same fields");
-    for (const auto& f : step.nodal)
-      if (static_cast<LO>(f.values.size()) != mesh.numNodes())
-        throw std::invalid_argument("tribos::mesh::writeExodus: nodal field \"" + f.name + "\" has " +
-                                    std::to_string(f.values.size()) + " values for " + std::to_string(mesh.numNodes()) + " nodes");
-    for (const auto& f : step.element)
-      if (static_cast<LO>(f.values.size()) != mesh.numElements())
-        throw std::invalid_argument("tribos::mesh::writeExodus: element field \"" + f.name + "\" has " +
-                                    std::to_string(f.values.size()) + " values for " + std::to_string(mesh.numElements()) +
-                                    " elements");
+  // Validate everything before touching the file, so a bad call does not clobber a good one.
+  checkWritableMesh(mesh);
+  for (size_t s = 0; s < steps.size(); ++s) {
+    checkSameFields(steps.front().nodal, steps[s].nodal, s, "nodal");
+    checkSameFields(steps.front().element, steps[s].element, s, "element");
+    checkFieldSizes(steps[s].nodal, mesh.numNodes(), "nodal", "nodes");
+    checkFieldSizes(steps[s].element, mesh.numElements(), "element", "elements");
   }
-  ex_opts(0);  // report errors through return codes, never abort the process
-  int cpuWordSize = 8, ioWordSize = 8;
-  const ExodusFile file(ex_create(path.c_str(), EX_CLOBBER, &cpuWordSize, &ioWordSize));
+  ex_opts(0);  // report errors through return codes (quiet, no abort); 0 is also 6.02's default
+  int cpuWordSize = 8, ioWordSize = 8;  // doubles in memory and on disk: coordinates round-trip bitwise
+  ExodusFile file(ex_create(path.c_str(), EX_CLOBBER, &cpuWordSize, &ioWordSize));
   if (file.id() < 0) throw core::InputError(path + ": cannot create the Exodus file");
   const int id = file.id();
-  ex_set_max_name_length(id, kNameLength);
+  const int nameLength = std::max(kNameLength, longestName(mesh, steps));
+  check(ex_set_max_name_length(id, nameLength), path, "setting the name length");
   check(ex_put_init(id, "Tribos", 3, mesh.numNodes(), mesh.numElements(), mesh.numBlocks(),
                     static_cast<int64_t>(mesh.nodeSets.size()), static_cast<int64_t>(mesh.sideSets.size())),
         path, "writing the header");
@@ -88,20 +173,22 @@ void writeExodus(const std::string& path, const Mesh& mesh, const std::vector<Ti
     z[n] = mesh.coords[n][2];
   }
   check(ex_put_coord(id, x.data(), y.data(), z.data()), path, "writing coordinates");
-  NameArray coordNames(std::vector<std::string>{"x", "y", "z"});
+  NameArray coordNames(std::vector<std::string>{"x", "y", "z"}, nameLength);
   check(ex_put_coord_names(id, coordNames.data()), path, "writing coordinate names");
 
+  // The file uses 32-bit ids (the default), which LO = int always fits.
   std::vector<std::string> names;
   for (const auto& b : mesh.blocks) {
     check(ex_put_block(id, EX_ELEM_BLOCK, b.id, "TETRA4", b.count, 4, 0, 0, 0), path, "writing block " + b.name);
     std::vector<int> conn(4 * static_cast<size_t>(b.count));
     for (LO e = 0; e < b.count; ++e)
-      for (int v = 0; v < 4; ++v) conn[4 * e + v] = mesh.tets[b.first + e][v] + 1;
-    check(ex_put_conn(id, EX_ELEM_BLOCK, b.id, conn.data(), nullptr, nullptr), path, "writing block " + b.name);
+      for (int v = 0; v < 4; ++v) conn[4 * static_cast<size_t>(e) + v] = mesh.tets[b.first + e][v] + 1;
+    if (b.count > 0)
+      check(ex_put_conn(id, EX_ELEM_BLOCK, b.id, conn.data(), nullptr, nullptr), path, "writing block " + b.name);
     names.push_back(b.name);
   }
   if (!names.empty()) {
-    NameArray blockNames(names);
+    NameArray blockNames(names, nameLength);
     check(ex_put_names(id, EX_ELEM_BLOCK, blockNames.data()), path, "writing block names");
   }
   names.clear();
@@ -109,11 +196,11 @@ void writeExodus(const std::string& path, const Mesh& mesh, const std::vector<Ti
     check(ex_put_set_param(id, EX_NODE_SET, s.id, static_cast<int64_t>(s.nodes.size()), 0), path, "writing node set " + s.name);
     std::vector<int> list(s.nodes.begin(), s.nodes.end());
     for (int& n : list) ++n;
-    check(ex_put_set(id, EX_NODE_SET, s.id, list.data(), nullptr), path, "writing node set " + s.name);
+    if (!list.empty()) check(ex_put_set(id, EX_NODE_SET, s.id, list.data(), nullptr), path, "writing node set " + s.name);
     names.push_back(s.name);
   }
   if (!names.empty()) {
-    NameArray setNames(names);
+    NameArray setNames(names, nameLength);
     check(ex_put_names(id, EX_NODE_SET, setNames.data()), path, "writing node set names");
   }
   names.clear();
@@ -125,100 +212,124 @@ void writeExodus(const std::string& path, const Mesh& mesh, const std::vector<Ti
       elements[i] = s.elements[i] + 1;
       sides[i] = s.sides[i] + 1;
     }
-    check(ex_put_set(id, EX_SIDE_SET, s.id, elements.data(), sides.data()), path, "writing side set " + s.name);
+    if (!elements.empty())
+      check(ex_put_set(id, EX_SIDE_SET, s.id, elements.data(), sides.data()), path, "writing side set " + s.name);
     names.push_back(s.name);
   }
   if (!names.empty()) {
-    NameArray setNames(names);
+    NameArray setNames(names, nameLength);
     check(ex_put_names(id, EX_SIDE_SET, setNames.data()), path, "writing side set names");
   }
 
-  if (steps.empty()) return;
-  const auto nodalNames = fieldNames(steps.front().nodal), elementNames = fieldNames(steps.front().element);
-  if (!nodalNames.empty()) {
-    check(ex_put_variable_param(id, EX_NODAL, static_cast<int>(nodalNames.size())), path, "defining nodal variables");
-    NameArray n(nodalNames);
-    check(ex_put_variable_names(id, EX_NODAL, static_cast<int>(nodalNames.size()), n.data()), path, "naming nodal variables");
+  if (!steps.empty()) {
+    const auto nodalNames = fieldNames(steps.front().nodal), elementNames = fieldNames(steps.front().element);
+    const int numNodal = static_cast<int>(nodalNames.size()), numElemVars = static_cast<int>(elementNames.size());
+    if (numNodal > 0) {
+      check(ex_put_variable_param(id, EX_NODAL, numNodal), path, "defining nodal variables");
+      NameArray n(nodalNames, nameLength);
+      check(ex_put_variable_names(id, EX_NODAL, numNodal, n.data()), path, "naming nodal variables");
+    }
+    if (numElemVars > 0 && mesh.numBlocks() > 0) {
+      check(ex_put_variable_param(id, EX_ELEM_BLOCK, numElemVars), path, "defining element variables");
+      NameArray n(elementNames, nameLength);
+      check(ex_put_variable_names(id, EX_ELEM_BLOCK, numElemVars, n.data()), path, "naming element variables");
+      // Every variable exists on every block. Declaring that up front defines all of them in
+      // one go instead of one netCDF redefinition per (variable, block) at the first ex_put_var.
+      std::vector<int> truth(static_cast<size_t>(mesh.numBlocks()) * numElemVars, 1);
+      check(ex_put_truth_table(id, EX_ELEM_BLOCK, mesh.numBlocks(), numElemVars, truth.data()), path,
+            "writing the element variable truth table");
+    }
+    for (size_t s = 0; s < steps.size(); ++s) {
+      const int step = static_cast<int>(s) + 1;
+      const double time = steps[s].time;
+      check(ex_put_time(id, step, &time), path, "writing time");
+      for (size_t v = 0; v < steps[s].nodal.size(); ++v)
+        check(ex_put_var(id, step, EX_NODAL, static_cast<int>(v) + 1, 1, mesh.numNodes(), steps[s].nodal[v].values.data()),
+              path, "writing nodal variable " + steps[s].nodal[v].name);
+      for (size_t v = 0; v < steps[s].element.size(); ++v)
+        for (const auto& b : mesh.blocks)
+          if (b.count > 0)
+            check(ex_put_var(id, step, EX_ELEM_BLOCK, static_cast<int>(v) + 1, b.id, b.count,
+                             steps[s].element[v].values.data() + b.first),
+                  path, "writing element variable " + steps[s].element[v].name);
+    }
   }
-  if (!elementNames.empty()) {
-    check(ex_put_variable_param(id, EX_ELEM_BLOCK, static_cast<int>(elementNames.size())), path,
-          "defining element variables");
-    NameArray n(elementNames);
-    check(ex_put_variable_names(id, EX_ELEM_BLOCK, static_cast<int>(elementNames.size()), n.data()), path,
-          "naming element variables");
-  }
-  for (size_t s = 0; s < steps.size(); ++s) {
-    const int step = static_cast<int>(s) + 1;
-    const double time = steps[s].time;
-    check(ex_put_time(id, step, &time), path, "writing time");
-    for (size_t v = 0; v < steps[s].nodal.size(); ++v)
-      check(ex_put_var(id, step, EX_NODAL, static_cast<int>(v) + 1, 1, mesh.numNodes(), steps[s].nodal[v].values.data()),
-            path, "writing nodal variable " + steps[s].nodal[v].name);
-    for (size_t v = 0; v < steps[s].element.size(); ++v)
-      for (const auto& b : mesh.blocks)
-        check(ex_put_var(id, step, EX_ELEM_BLOCK, static_cast<int>(v) + 1, b.id, b.count,
-                         steps[s].element[v].values.data() + b.first),
-              path, "writing element variable " + steps[s].element[v].name);
-  }
+  check(file.close(), path, "closing the file");
 }
 
 ExodusData readExodus(const std::string& path) {
-  if (!std::ifstream(path)) throw core::InputError(path + ": cannot open the mesh file (missing or unreadable)");
-  ex_opts(0);
+  // Checked first because ex_open's answer for a missing file is the same as for a file
+  // that is not Exodus.
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw core::InputError(path + ": the mesh file does not exist");
+  if (std::filesystem::is_directory(path, ec)) throw core::InputError(path + ": is a directory, not an Exodus file");
+  if (!std::ifstream(path)) throw core::InputError(path + ": cannot open the mesh file (unreadable)");
+  ex_opts(0);  // quiet, no abort: errors come back as negative statuses and become InputErrors
   int cpuWordSize = 8, ioWordSize = 0;
   float version = 0.0f;
-  const ExodusFile file(ex_open(path.c_str(), EX_READ, &cpuWordSize, &ioWordSize, &version));
-  if (file.id() < 0) throw core::InputError(path + ": not an Exodus II file");
+  ExodusFile file(ex_open(path.c_str(), EX_READ, &cpuWordSize, &ioWordSize, &version));
+  if (file.id() < 0) throw core::InputError(path + ": not an Exodus II file (netCDF could not open it)");
   const int id = file.id();
-  ex_set_int64_status(id, EX_ALL_INT64_API);
-  ex_set_max_name_length(id, kNameLength);
+  // With the 64-bit API, one code path reads files written with 32- or 64-bit ids.
+  check(ex_set_int64_status(id, EX_ALL_INT64_API) < 0 ? -1 : 0, path, "selecting the 64-bit API");
+  const int64_t usedNameLength = ex_inquire_int(id, EX_INQ_DB_MAX_USED_NAME_LENGTH);
+  const int nameLength =
+      static_cast<int>(std::clamp<int64_t>(usedNameLength, kNameLength, kMaxNameLength));
+  check(ex_set_max_name_length(id, nameLength), path, "setting the name length");
   char title[MAX_LINE_LENGTH + 1] = {0};
   int64_t dim = 0, numNodes = 0, numElements = 0, numBlocks = 0, numNodeSets = 0, numSideSets = 0;
   check(ex_get_init(id, title, &dim, &numNodes, &numElements, &numBlocks, &numNodeSets, &numSideSets), path,
         "reading the header");
   if (dim != 3) throw core::InputError(path + ": the mesh is " + std::to_string(dim) + "D; Tribos needs a 3D mesh");
   if (numElements <= 0 || numBlocks <= 0) throw core::InputError(path + ": the mesh has no elements");
+  if (numNodes > INT_MAX || numElements > INT_MAX)
+    throw core::InputError(path + ": the mesh has more nodes or elements than Tribos can index");
 
   ExodusData data;
   Mesh& mesh = data.mesh;
   std::vector<double> x(numNodes), y(numNodes), z(numNodes);
-  check(ex_get_coord(id, x.data(), y.data(), z.data()), path, "reading coordinates");
+  if (numNodes > 0) check(ex_get_coord(id, x.data(), y.data(), z.data()), path, "reading coordinates");
   mesh.coords.resize(numNodes);
   for (int64_t n = 0; n < numNodes; ++n) mesh.coords[n] = {x[n], y[n], z[n]};
 
-  auto readNames = [&](ex_entity_type type, int64_t count, const char* fallback, const std::vector<int64_t>& ids) {
-    NameArray names(static_cast<size_t>(count));
-    std::vector<std::string> out(count);
-    if (count > 0) check(ex_get_names(id, type, names.data()), path, "reading names");
-    for (int64_t i = 0; i < count; ++i) {
+  auto readIds = [&](ex_entity_type type, int64_t count, const char* kind) {
+    std::vector<int64_t> ids(count);
+    if (count > 0) check(ex_get_ids(id, type, ids.data()), path, std::string("reading ") + kind + " ids");
+    for (int64_t i : ids)
+      if (i <= 0 || i > INT_MAX)
+        throw core::InputError(path + ": " + kind + " id " + std::to_string(i) + " is not in 1.." + std::to_string(INT_MAX));
+    return ids;
+  };
+  // Files from other tools often carry no names; fall back to "<kind>_<id>" so that every
+  // entity can still be referred to by name in a scene file.
+  auto readNames = [&](ex_entity_type type, const std::vector<int64_t>& ids, const char* fallback) {
+    NameArray names(ids.size(), nameLength);
+    if (!ids.empty()) check(ex_get_names(id, type, names.data()), path, std::string("reading ") + fallback + " names");
+    std::vector<std::string> out(ids.size());
+    for (size_t i = 0; i < ids.size(); ++i) {
       out[i] = names[i];
       if (out[i].empty()) out[i] = std::string(fallback) + "_" + std::to_string(ids[i]);
     }
     return out;
   };
-  auto readIds = [&](ex_entity_type type, int64_t count) {
-    std::vector<int64_t> ids(count);
-    if (count > 0) check(ex_get_ids(id, type, ids.data()), path, "reading ids");
-    return ids;
-  };
 
-  const auto blockIds = readIds(EX_ELEM_BLOCK, numBlocks);
-  const auto blockNames = readNames(EX_ELEM_BLOCK, numBlocks, "block", blockIds);
+  const auto blockIds = readIds(EX_ELEM_BLOCK, numBlocks, "element block");
+  const auto blockNames = readNames(EX_ELEM_BLOCK, blockIds, "block");
   for (int64_t b = 0; b < numBlocks; ++b) {
     ex_block block{};
     block.id = blockIds[b];
     block.type = EX_ELEM_BLOCK;
     check(ex_get_block_param(id, &block), path, "reading element block " + blockNames[b]);
-    std::string topology = block.topology;
-    std::transform(topology.begin(), topology.end(), topology.begin(), [](unsigned char c) { return std::toupper(c); });
+    const std::string topology = upper(block.topology);
     if (!(topology == "TETRA" || topology == "TETRA4" || topology == "TET4" || topology == "TET") ||
         block.num_nodes_per_entry != 4)
       throw core::InputError(path + ": element block \"" + blockNames[b] + "\" (id " + std::to_string(blockIds[b]) +
                              ") has topology " + block.topology + " with " + std::to_string(block.num_nodes_per_entry) +
-                             " nodes; Tribos needs linear tetrahedra (TETRA4)");
+                             " nodes per element; Tribos needs linear tetrahedra (TETRA4)");
     std::vector<int64_t> conn(4 * static_cast<size_t>(block.num_entry));
-    if (block.num_entry > 0) check(ex_get_conn(id, EX_ELEM_BLOCK, blockIds[b], conn.data(), nullptr, nullptr), path,
-                                   "reading element block " + blockNames[b]);
+    if (block.num_entry > 0)
+      check(ex_get_conn(id, EX_ELEM_BLOCK, blockIds[b], conn.data(), nullptr, nullptr), path,
+            "reading element block " + blockNames[b]);
     ElementBlock eb{blockNames[b], static_cast<int>(blockIds[b]), static_cast<LO>(mesh.tets.size()),
                     static_cast<LO>(block.num_entry)};
     for (int64_t e = 0; e < block.num_entry; ++e) {
@@ -235,31 +346,39 @@ ExodusData readExodus(const std::string& path) {
     }
     mesh.blocks.push_back(eb);
   }
+  if (static_cast<int64_t>(mesh.tets.size()) != numElements)
+    throw core::InputError(path + ": the element blocks hold " + std::to_string(mesh.tets.size()) +
+                           " elements but the header says " + std::to_string(numElements));
 
-  const auto nodeSetIds = readIds(EX_NODE_SET, numNodeSets);
-  const auto nodeSetNames = readNames(EX_NODE_SET, numNodeSets, "nodeset", nodeSetIds);
+  // Ids from the file are range-checked by mesh.validate below, which names the bad id.
+  const auto nodeSetIds = readIds(EX_NODE_SET, numNodeSets, "node set");
+  const auto nodeSetNames = readNames(EX_NODE_SET, nodeSetIds, "nodeset");
   for (int64_t s = 0; s < numNodeSets; ++s) {
     int64_t count = 0, factors = 0;
     check(ex_get_set_param(id, EX_NODE_SET, nodeSetIds[s], &count, &factors), path, "reading node set " + nodeSetNames[s]);
     std::vector<int64_t> list(count);
-    if (count > 0) check(ex_get_set(id, EX_NODE_SET, nodeSetIds[s], list.data(), nullptr), path, "reading node set");
+    if (count > 0)
+      check(ex_get_set(id, EX_NODE_SET, nodeSetIds[s], list.data(), nullptr), path, "reading node set " + nodeSetNames[s]);
     NodeSet ns{nodeSetNames[s], static_cast<int>(nodeSetIds[s]), {}};
-    for (int64_t n : list) ns.nodes.push_back(static_cast<LO>(n - 1));
+    for (int64_t n : list) ns.nodes.push_back(toLO(n - 1));
+    // Other tools write node sets in face order with repeats; Mesh wants them sorted, unique.
     std::sort(ns.nodes.begin(), ns.nodes.end());
     ns.nodes.erase(std::unique(ns.nodes.begin(), ns.nodes.end()), ns.nodes.end());
     mesh.nodeSets.push_back(std::move(ns));
   }
-  const auto sideSetIds = readIds(EX_SIDE_SET, numSideSets);
-  const auto sideSetNames = readNames(EX_SIDE_SET, numSideSets, "sideset", sideSetIds);
+  const auto sideSetIds = readIds(EX_SIDE_SET, numSideSets, "side set");
+  const auto sideSetNames = readNames(EX_SIDE_SET, sideSetIds, "sideset");
   for (int64_t s = 0; s < numSideSets; ++s) {
     int64_t count = 0, factors = 0;
     check(ex_get_set_param(id, EX_SIDE_SET, sideSetIds[s], &count, &factors), path, "reading side set " + sideSetNames[s]);
     std::vector<int64_t> elements(count), sides(count);
-    if (count > 0) check(ex_get_set(id, EX_SIDE_SET, sideSetIds[s], elements.data(), sides.data()), path, "reading side set");
+    if (count > 0)
+      check(ex_get_set(id, EX_SIDE_SET, sideSetIds[s], elements.data(), sides.data()), path,
+            "reading side set " + sideSetNames[s]);
     SideSet ss{sideSetNames[s], static_cast<int>(sideSetIds[s]), {}, {}};
     for (int64_t i = 0; i < count; ++i) {
-      ss.elements.push_back(static_cast<LO>(elements[i] - 1));
-      ss.sides.push_back(static_cast<int>(sides[i] - 1));
+      ss.elements.push_back(toLO(elements[i] - 1));
+      ss.sides.push_back(toLO(sides[i] - 1));
     }
     mesh.sideSets.push_back(std::move(ss));
   }
@@ -267,29 +386,44 @@ ExodusData readExodus(const std::string& path) {
 
   // Variables over time steps.
   const int64_t numSteps = ex_inquire_int(id, EX_INQ_TIME);
+  if (numSteps < 0) check(-1, path, "counting time steps");
   int numNodal = 0, numElemVars = 0;
-  ex_get_variable_param(id, EX_NODAL, &numNodal);
-  ex_get_variable_param(id, EX_ELEM_BLOCK, &numElemVars);
-  NameArray nodalNames(numNodal), elemNames(numElemVars);
-  if (numNodal > 0) check(ex_get_variable_names(id, EX_NODAL, numNodal, nodalNames.data()), path, "reading variable names");
+  check(ex_get_variable_param(id, EX_NODAL, &numNodal), path, "counting nodal variables");
+  check(ex_get_variable_param(id, EX_ELEM_BLOCK, &numElemVars), path, "counting element variables");
+  NameArray nodalNames(numNodal, nameLength), elemNames(numElemVars, nameLength);
+  if (numNodal > 0)
+    check(ex_get_variable_names(id, EX_NODAL, numNodal, nodalNames.data()), path, "reading nodal variable names");
   if (numElemVars > 0)
-    check(ex_get_variable_names(id, EX_ELEM_BLOCK, numElemVars, elemNames.data()), path, "reading variable names");
+    check(ex_get_variable_names(id, EX_ELEM_BLOCK, numElemVars, elemNames.data()), path,
+          "reading element variable names");
+  // truth[b * numElemVars + v] != 0 when variable v is stored on block b; other writers may
+  // leave a variable off some blocks, which then read as zeros.
+  std::vector<int> truth(static_cast<size_t>(numBlocks) * numElemVars, 1);
+  if (numElemVars > 0)
+    check(ex_get_truth_table(id, EX_ELEM_BLOCK, static_cast<int>(numBlocks), numElemVars, truth.data()), path,
+          "reading the element variable truth table");
   std::vector<double> times(numSteps);
   if (numSteps > 0) check(ex_get_all_times(id, times.data()), path, "reading times");
   for (int64_t s = 0; s < numSteps; ++s) {
     TimeStep step;
     step.time = times[s];
+    const int stepIndex = static_cast<int>(s + 1);
     for (int v = 0; v < numNodal; ++v) {
       Field f{nodalNames[v], std::vector<double>(numNodes)};
-      check(ex_get_var(id, static_cast<int>(s + 1), EX_NODAL, v + 1, 1, numNodes, f.values.data()), path,
-            "reading nodal variable " + f.name);
+      if (numNodes > 0)
+        check(ex_get_var(id, stepIndex, EX_NODAL, v + 1, 1, numNodes, f.values.data()), path,
+              "reading nodal variable " + f.name + " at time step " + std::to_string(stepIndex));
       step.nodal.push_back(std::move(f));
     }
     for (int v = 0; v < numElemVars; ++v) {
       Field f{elemNames[v], std::vector<double>(numElements, 0.0)};
-      for (const auto& b : mesh.blocks)
-        if (b.count > 0)  // a block without the variable keeps zeros
-          ex_get_var(id, static_cast<int>(s + 1), EX_ELEM_BLOCK, v + 1, b.id, b.count, f.values.data() + b.first);
+      for (int64_t b = 0; b < numBlocks; ++b) {
+        const auto& eb = mesh.blocks[b];
+        if (eb.count > 0 && truth[b * numElemVars + v])
+          check(ex_get_var(id, stepIndex, EX_ELEM_BLOCK, v + 1, eb.id, eb.count, f.values.data() + eb.first), path,
+                "reading element variable " + f.name + " on block " + eb.name + " at time step " +
+                    std::to_string(stepIndex));
+      }
       step.element.push_back(std::move(f));
     }
     data.steps.push_back(std::move(step));

@@ -13,6 +13,7 @@ class PenalisedOperator : public SymmetricOperator {
  public:
   PenalisedOperator(const SymmetricOperator& A, const EqualityProjector& Q, double rho, const Teuchos::RCP<const Map>& map)
       : A_(A), Q_(Q), rho_(rho), tmp_(map) {}
+  void setRho(double rho) { rho_ = rho; }
   void apply(const Vector& x, Vector& y) const override {
     A_.apply(x, y);
     Q_.applyQ(x, tmp_);
@@ -41,17 +42,17 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
     counters.converged = true;
     return counters;
   }
-  const double rho = s.rho * counters.normA;
+  double rho = s.rho * counters.normA;
   // ||A_rho|| = max(||PFP||, rho): PFP and rho Q act on the orthogonal spaces Ker G and Im G^T.
   // The power method's estimate is a lower bound: keep the MPGP step safely below 2/||A_rho||.
-  const double normArho = 1.02 * std::max(counters.normA, rho);
+  double normArho = 1.02 * std::max(counters.normA, rho);
   double M = s.M0 * counters.normA;
   const double eta = s.eta * normC, eps = s.tolerance * normC;
-  const PenalisedOperator Arho(A, Q, rho, map);
+  PenalisedOperator Arho(A, Q, rho, map);
   const Mpgp mpgp(s.mpgp);
   Vector betaT(map), b(map), g(map), Qmu(map);  // betaT = G^T beta (the multiplier as a dual vector)
   betaT.putScalar(0.0);
-  double previousL = 0.0;
+  double previousL = 0.0, previousGmu = 0.0;
   auto equalityNorm = [&](const Vector& x) {
     Q.applyQ(x, Qmu);
     return Qmu.norm2();
@@ -98,6 +99,13 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
     // Step 4: M_{k+1} = betaM M_k when the Lagrangian did not grow enough.
     if (k > 0 && L < previousL + 0.5 * rho * gmu * gmu) M *= s.betaM;
     previousL = L;
+    // Optional penalty growth when ||G mu|| decreased by less than the target ratio.
+    if (s.rhoGrowth > 1.0 && k > 0 && gmu > s.rhoTargetRatio * previousGmu) {
+      rho *= s.rhoGrowth;
+      normArho = 1.02 * std::max(counters.normA, rho);
+      Arho.setRho(rho);
+    }
+    previousGmu = gmu;
     if (s.monitor)
       s.monitor({k + 1, inner.iterations, gp / normC, normA * gmu / normC, M / normA, counters.operatorApplications});
     // Coulomb: the slip bound update (inexact successive approximations) may veto the stop.

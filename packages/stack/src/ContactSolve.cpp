@@ -36,6 +36,7 @@ qp::SmalseSettings smalseSettings(const Teuchos::ParameterList& tribos) {
   s.betaM = sm.get<double>("beta");
   s.equalityTest = sm.get<std::string>("equality test");
   s.powerIterations = sm.get<int>("power iterations");
+  s.rhoGrowth = sm.get<double>("rho growth");
   s.mpgp.stepScale = mp.get<double>("step scale");
   s.mpgp.gamma = mp.get<double>("Gamma");
   s.mpgp.maxIterations = mp.get<int>("max iterations");

@@ -138,6 +138,10 @@ void solverParameters(ParameterList& pl) {
       "equality test", "Conventional",
       "outer test on ||G mu||: \"Conventional\" (<= epsilon ||P h||) or \"Paper\" (<= epsilon M_0 ||mu||)",
       Teuchos::tuple<std::string>("Conventional", "Paper"), &smalse);
+  smalse.set("rho growth", 1.0,
+             ">= 1: rho is multiplied by it after an outer iteration that reduced ||G mu|| by less than half "
+             "(1: fixed rho, the paper's algorithm)",
+             atLeast<double>(1.0));
   smalse.set("power iterations", 50, "products with PFP in the power method for ||PFP||", atLeast<int>(1));
   ParameterList& mpgp = pl.sublist("MPGP", false, "inner solver for the bound and elliptic-cone constraints");
   mpgp.set("step scale", 1.9, "alpha_bar = step scale / ||A_rho||, in (0, 2)", atLeast<double>(0.0));

@@ -36,6 +36,8 @@ struct SmalseSettings {
   std::string equalityTest = "Conventional";
   MpgpSettings mpgp;
   int powerIterations = 50;    ///< for ||A||
+  double rhoGrowth = 1.0;      ///< > 1: rho *= rhoGrowth when ||G mu|| fell by less than rhoTargetRatio
+  double rhoTargetRatio = 0.5;
   double innerFloor = 0.1;     ///< inner solves stop at ||g^P|| <= innerFloor eps ||c|| at the latest
   /// Called on every rank after each outer iteration (before the hook); may be empty.
   std::function<void(const SmalseProgress&)> monitor;
