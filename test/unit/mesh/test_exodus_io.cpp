@@ -1,12 +1,16 @@
-// Exodus II: write -> read round trip is identical; bad files are input errors naming the file.
+// Exodus II: write -> read round trip is identical (bitwise); files written by other tools
+// (no names, 64-bit ids, unsorted node sets, element variables on some blocks) read as
+// documented; bad files are input errors naming the file; bad writer calls are rejected.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <exodusII.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 
 #include "tribos/core/Errors.hpp"
 #include "tribos/mesh/ExodusIO.hpp"
@@ -16,98 +20,353 @@ using namespace tribos;
 using namespace tribos::mesh;
 
 namespace {
-std::string scratch(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / ("tribos_exo_" + std::to_string(::getpid()) + "_" + name)).string();
+
+/// A fresh directory per test under the system temp dir, removed with everything in it.
+class ScratchDir {
+ public:
+  explicit ScratchDir(const std::string& tag)
+      : dir_(std::filesystem::temp_directory_path() / ("tribos_exo_" + std::to_string(::getpid()) + "_" + tag)) {
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+  }
+  ~ScratchDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(dir_, ec);
+  }
+  std::string file(const std::string& name) const { return (dir_ / name).string(); }
+
+ private:
+  std::filesystem::path dir_;
+};
+
+/// Unit cube cut into 6 tetrahedra around the diagonal 0-6 (Kuhn triangulation); the first
+/// three tets form block "lower" (id 10), the last three "upper" (id 20). Node set "bottom"
+/// (id 3): nodes on z = 0; side set "top" (id 7): faces on z = 1.
+Mesh cubeMesh() {
+  Mesh m;
+  // Corners in the usual HEX8 order: bottom face counter-clockwise, then the top face.
+  m.coords = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  m.tets = {{0, 1, 2, 6}, {0, 2, 3, 6}, {0, 3, 7, 6}, {0, 7, 4, 6}, {0, 4, 5, 6}, {0, 5, 1, 6}};
+  for (LO e = 0; e < m.numElements(); ++e)
+    if (m.elementVolume(e) < 0) std::swap(m.tets[e][1], m.tets[e][2]);  // orient positively
+  m.blocks = {{"lower", 10, 0, 3}, {"upper", 20, 3, 3}};
+  NodeSet bottom{"bottom", 3, {}};
+  for (LO n = 0; n < m.numNodes(); ++n)
+    if (m.coords[n][2] == 0.0) bottom.nodes.push_back(n);
+  m.nodeSets = {bottom};
+  SideSet top{"top", 7, {}, {}};
+  for (LO e = 0; e < m.numElements(); ++e)
+    for (int s = 0; s < 4; ++s) {
+      bool onTop = true;
+      for (int v : kTetFaceVertices[s]) onTop = onTop && m.coords[m.tets[e][v]][2] == 1.0;
+      if (onTop) {
+        top.elements.push_back(e);
+        top.sides.push_back(s);
+      }
+    }
+  m.sideSets = {top};
+  return m;
 }
 
-void expectInputErrorNaming(const std::string& path) {
+bool bitwiseEqual(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
+}
+
+/// Two steps, two nodal fields and one element field with values that do not survive a
+/// float or text round trip (so a lossy writer would be caught).
+std::vector<TimeStep> someSteps(const Mesh& mesh) {
+  std::vector<TimeStep> steps(2);
+  for (int s = 0; s < 2; ++s) {
+    steps[s].time = 0.1 * (s + 1) + 1.0 / 3.0;
+    for (const char* name : {"displacement_x", "contact_pressure"}) {
+      Field f{name, std::vector<double>(mesh.numNodes())};
+      for (LO n = 0; n < mesh.numNodes(); ++n) f.values[n] = std::sin(n + 0.1 * s) * (name[0] == 'd' ? 1e-3 : 2e7);
+      steps[s].nodal.push_back(f);
+    }
+    Field sub{"subdomain", std::vector<double>(mesh.numElements())};
+    for (LO e = 0; e < mesh.numElements(); ++e) sub.values[e] = e % 7 + s + 1.0 / 7.0;
+    steps[s].element.push_back(sub);
+  }
+  return steps;
+}
+
+void expectSameMesh(const Mesh& back, const Mesh& mesh) {
+  ASSERT_EQ(back.coords.size(), mesh.coords.size());
+  EXPECT_EQ(std::memcmp(back.coords.data(), mesh.coords.data(), mesh.coords.size() * sizeof(mesh.coords[0])), 0)
+      << "coordinates differ bitwise";
+  EXPECT_EQ(back.tets, mesh.tets);
+  ASSERT_EQ(back.blocks.size(), mesh.blocks.size());
+  for (size_t b = 0; b < mesh.blocks.size(); ++b) {
+    EXPECT_EQ(back.blocks[b].name, mesh.blocks[b].name);
+    EXPECT_EQ(back.blocks[b].id, mesh.blocks[b].id);
+    EXPECT_EQ(back.blocks[b].first, mesh.blocks[b].first);
+    EXPECT_EQ(back.blocks[b].count, mesh.blocks[b].count);
+  }
+  ASSERT_EQ(back.nodeSets.size(), mesh.nodeSets.size());
+  for (size_t s = 0; s < mesh.nodeSets.size(); ++s) {
+    EXPECT_EQ(back.nodeSets[s].name, mesh.nodeSets[s].name);
+    EXPECT_EQ(back.nodeSets[s].id, mesh.nodeSets[s].id);
+    EXPECT_EQ(back.nodeSets[s].nodes, mesh.nodeSets[s].nodes);
+  }
+  ASSERT_EQ(back.sideSets.size(), mesh.sideSets.size());
+  for (size_t s = 0; s < mesh.sideSets.size(); ++s) {
+    EXPECT_EQ(back.sideSets[s].name, mesh.sideSets[s].name);
+    EXPECT_EQ(back.sideSets[s].id, mesh.sideSets[s].id);
+    EXPECT_EQ(back.sideSets[s].elements, mesh.sideSets[s].elements);
+    EXPECT_EQ(back.sideSets[s].sides, mesh.sideSets[s].sides);
+  }
+}
+
+void expectSameSteps(const std::vector<TimeStep>& back, const std::vector<TimeStep>& steps) {
+  ASSERT_EQ(back.size(), steps.size());
+  for (size_t s = 0; s < steps.size(); ++s) {
+    EXPECT_TRUE(bitwiseEqual({back[s].time}, {steps[s].time})) << "time of step " << s + 1;
+    ASSERT_EQ(back[s].nodal.size(), steps[s].nodal.size());
+    for (size_t v = 0; v < steps[s].nodal.size(); ++v) {
+      EXPECT_EQ(back[s].nodal[v].name, steps[s].nodal[v].name);
+      EXPECT_TRUE(bitwiseEqual(back[s].nodal[v].values, steps[s].nodal[v].values)) << steps[s].nodal[v].name;
+    }
+    ASSERT_EQ(back[s].element.size(), steps[s].element.size());
+    for (size_t v = 0; v < steps[s].element.size(); ++v) {
+      EXPECT_EQ(back[s].element[v].name, steps[s].element[v].name);
+      EXPECT_TRUE(bitwiseEqual(back[s].element[v].values, steps[s].element[v].values)) << steps[s].element[v].name;
+    }
+  }
+}
+
+/// readExodus(path) must throw core::InputError whose message starts with the path and
+/// contains `what`.
+void expectInputError(const std::string& path, const std::string& what) {
   try {
     readExodus(path);
     ADD_FAILURE() << "no error for " << path;
   } catch (const core::InputError& e) {
-    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+    const std::string msg = e.what();
+    EXPECT_EQ(msg.rfind(path, 0), 0u) << msg;
+    EXPECT_NE(msg.find(what), std::string::npos) << "expected \"" << what << "\" in: " << msg;
   }
+}
+
+template <class F>
+void expectInvalidArgument(F&& call, const std::string& what) {
+  try {
+    call();
+    ADD_FAILURE() << "no std::invalid_argument";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << "expected \"" << what << "\" in: " << e.what();
+  }
+}
+
+/// One block of `nodesPerElement`-node elements of `topology` with the raw API, the way
+/// another tool would write it (no names), in `dim` dimensions.
+void writeRawSingleBlock(const std::string& path, const char* topology, int nodesPerElement, int dim = 3) {
+  int cpu = 8, io = 8;
+  const int id = ex_create(path.c_str(), EX_CLOBBER, &cpu, &io);
+  ASSERT_GE(id, 0) << path;
+  ASSERT_EQ(ex_put_init(id, "other tool", dim, nodesPerElement, 1, 1, 0, 0), 0);
+  std::vector<double> x(nodesPerElement), y(nodesPerElement), z(nodesPerElement);
+  for (int n = 0; n < nodesPerElement; ++n) {
+    x[n] = n % 2;
+    y[n] = (n / 2) % 2;
+    z[n] = n / 4;
+  }
+  ASSERT_EQ(ex_put_coord(id, x.data(), y.data(), dim == 3 ? z.data() : nullptr), 0);
+  ASSERT_EQ(ex_put_block(id, EX_ELEM_BLOCK, 42, topology, 1, nodesPerElement, 0, 0, 0), 0);
+  std::vector<int> conn(nodesPerElement);
+  for (int n = 0; n < nodesPerElement; ++n) conn[n] = n + 1;
+  ASSERT_EQ(ex_put_conn(id, EX_ELEM_BLOCK, 42, conn.data(), nullptr, nullptr), 0);
+  ASSERT_EQ(ex_close(id), 0);
 }
 }  // namespace
 
 TEST(ExodusIO, roundTripIsIdentical) {
-  const Mesh mesh = generateTwoBricks({{2, 1, 1}, 2});
-  std::vector<TimeStep> steps(2);
-  for (int s = 0; s < 2; ++s) {
-    steps[s].time = 0.5 * (s + 1);
-    for (const char* name : {"displ_x", "contact_status"}) {
-      Field f{name, std::vector<double>(mesh.numNodes())};
-      for (LO n = 0; n < mesh.numNodes(); ++n) f.values[n] = std::sin(n + 0.1 * s) * (name[0] == 'd' ? 1e-3 : 2.0);
-      steps[s].nodal.push_back(f);
-    }
-    Field sub{"subdomain", std::vector<double>(mesh.numElements())};
-    for (LO e = 0; e < mesh.numElements(); ++e) sub.values[e] = e % 7 + s;
-    steps[s].element.push_back(sub);
-  }
-  const std::string path = scratch("roundtrip.exo");
+  const ScratchDir dir("roundtrip");
+  const Mesh mesh = cubeMesh();
+  ASSERT_NO_THROW(mesh.validate("cubeMesh"));
+  ASSERT_EQ(mesh.nodeSets[0].nodes.size(), 4u);
+  ASSERT_EQ(mesh.sideSets[0].elements.size(), 2u);
+  const auto steps = someSteps(mesh);
+  const std::string path = dir.file("cube.exo");
   writeExodus(path, mesh, steps);
   const ExodusData back = readExodus(path);
-  EXPECT_EQ(back.mesh.coords, mesh.coords);
-  EXPECT_EQ(back.mesh.tets, mesh.tets);
-  ASSERT_EQ(back.mesh.blocks.size(), mesh.blocks.size());
-  for (size_t b = 0; b < mesh.blocks.size(); ++b) {
-    EXPECT_EQ(back.mesh.blocks[b].name, mesh.blocks[b].name);
-    EXPECT_EQ(back.mesh.blocks[b].id, mesh.blocks[b].id);
-    EXPECT_EQ(back.mesh.blocks[b].count, mesh.blocks[b].count);
-  }
-  ASSERT_EQ(back.mesh.nodeSets.size(), mesh.nodeSets.size());
-  for (size_t s = 0; s < mesh.nodeSets.size(); ++s) {
-    EXPECT_EQ(back.mesh.nodeSets[s].name, mesh.nodeSets[s].name);
-    EXPECT_EQ(back.mesh.nodeSets[s].nodes, mesh.nodeSets[s].nodes);
-  }
-  ASSERT_EQ(back.mesh.sideSets.size(), mesh.sideSets.size());
-  for (size_t s = 0; s < mesh.sideSets.size(); ++s) {
-    EXPECT_EQ(back.mesh.sideSets[s].name, mesh.sideSets[s].name);
-    EXPECT_EQ(back.mesh.sideSets[s].elements, mesh.sideSets[s].elements);
-    EXPECT_EQ(back.mesh.sideSets[s].sides, mesh.sideSets[s].sides);
-  }
-  ASSERT_EQ(back.steps.size(), 2u);
-  for (int s = 0; s < 2; ++s) {
-    EXPECT_EQ(back.steps[s].time, steps[s].time);
-    ASSERT_EQ(back.steps[s].nodal.size(), 2u);
-    for (int v = 0; v < 2; ++v) {
-      EXPECT_EQ(back.steps[s].nodal[v].name, steps[s].nodal[v].name);
-      EXPECT_EQ(back.steps[s].nodal[v].values, steps[s].nodal[v].values);
+  expectSameMesh(back.mesh, mesh);
+  expectSameSteps(back.steps, steps);
+}
+
+TEST(ExodusIO, meshWithoutStepsAndLongNamesRoundTrips) {
+  const ScratchDir dir("nosteps");
+  Mesh mesh = cubeMesh();
+  // Longer than the library's default of 32 characters and than our default of 64.
+  mesh.sideSets[0].name = "a_side_set_name_that_is_quite_a_bit_longer_than_sixty_four_characters_in_total";
+  const std::string path = dir.file("cube.exo");
+  writeExodus(path, mesh);
+  const ExodusData back = readExodus(path);
+  expectSameMesh(back.mesh, mesh);
+  EXPECT_TRUE(back.steps.empty());
+}
+
+TEST(ExodusIO, twoBricksRoundTripIsIdentical) {
+  const ScratchDir dir("twobricks");
+  const Mesh mesh = generateTwoBricks({{2, 1, 1}, 2});
+  const auto steps = someSteps(mesh);
+  const std::string path = dir.file("two_bricks.exo");
+  writeExodus(path, mesh, steps);
+  const ExodusData back = readExodus(path);
+  expectSameMesh(back.mesh, mesh);
+  expectSameSteps(back.steps, steps);
+}
+
+TEST(ExodusIO, writerClobbersAnExistingFile) {
+  const ScratchDir dir("clobber");
+  const std::string path = dir.file("cube.exo");
+  writeExodus(path, generateTwoBricks({{2, 1, 1}, 2}), {});
+  const Mesh mesh = cubeMesh();
+  writeExodus(path, mesh, someSteps(mesh));
+  expectSameMesh(readExodus(path).mesh, mesh);
+}
+
+// A file as another tool writes it: 64-bit ids (netCDF-4), no names, lower-case topology,
+// a node set in face order with repeats, an element variable stored on one block only.
+TEST(ExodusIO, readsForeignFileWithDefaults) {
+  const ScratchDir dir("foreign");
+  const std::string path = dir.file("foreign.exo");
+  const Mesh cube = cubeMesh();
+  {
+    int cpu = 8, io = 8;
+    const int id = ex_create(path.c_str(), EX_CLOBBER | EX_NETCDF4 | EX_ALL_INT64_DB, &cpu, &io);
+    ASSERT_GE(id, 0);
+    ex_set_int64_status(id, EX_ALL_INT64_API);
+    ASSERT_EQ(ex_put_init(id, "foreign", 3, 8, 6, 2, 1, 1), 0);
+    std::vector<double> x, y, z;
+    for (const auto& c : cube.coords) {
+      x.push_back(c[0]);
+      y.push_back(c[1]);
+      z.push_back(c[2]);
     }
-    EXPECT_EQ(back.steps[s].element[0].values, steps[s].element[0].values);
+    ASSERT_EQ(ex_put_coord(id, x.data(), y.data(), z.data()), 0);
+    for (const auto& b : cube.blocks) {
+      ASSERT_EQ(ex_put_block(id, EX_ELEM_BLOCK, b.id, b.id == 10 ? "tetra" : "TET4", b.count, 4, 0, 0, 0), 0);
+      std::vector<int64_t> conn;
+      for (LO e = b.first; e < b.first + b.count; ++e)
+        for (LO n : cube.tets[e]) conn.push_back(n + 1);
+      ASSERT_EQ(ex_put_conn(id, EX_ELEM_BLOCK, b.id, conn.data(), nullptr, nullptr), 0);
+    }
+    const std::vector<int64_t> nodes = {4, 1, 3, 1, 2, 4};  // 1-based, unsorted, repeated
+    ASSERT_EQ(ex_put_set_param(id, EX_NODE_SET, 3, static_cast<int64_t>(nodes.size()), 0), 0);
+    ASSERT_EQ(ex_put_set(id, EX_NODE_SET, 3, nodes.data(), nullptr), 0);
+    const auto& top = cube.sideSets[0];
+    std::vector<int64_t> elements, sides;
+    for (size_t i = 0; i < top.elements.size(); ++i) {
+      elements.push_back(top.elements[i] + 1);
+      sides.push_back(top.sides[i] + 1);
+    }
+    ASSERT_EQ(ex_put_set_param(id, EX_SIDE_SET, 7, static_cast<int64_t>(elements.size()), 0), 0);
+    ASSERT_EQ(ex_put_set(id, EX_SIDE_SET, 7, elements.data(), sides.data()), 0);
+    ASSERT_EQ(ex_put_variable_param(id, EX_ELEM_BLOCK, 1), 0);
+    char name[] = "stress";
+    char* names[] = {name};
+    ASSERT_EQ(ex_put_variable_names(id, EX_ELEM_BLOCK, 1, names), 0);
+    int truth[2] = {0, 1};  // only on block 20
+    ASSERT_EQ(ex_put_truth_table(id, EX_ELEM_BLOCK, 2, 1, truth), 0);
+    const double time = 2.5, stress[3] = {1.5, 2.5, 3.5};
+    ASSERT_EQ(ex_put_time(id, 1, &time), 0);
+    ASSERT_EQ(ex_put_var(id, 1, EX_ELEM_BLOCK, 1, 20, 3, stress), 0);
+    ASSERT_EQ(ex_close(id), 0);
   }
-  std::filesystem::remove(path);
+  const ExodusData data = readExodus(path);
+  ASSERT_EQ(data.mesh.blocks.size(), 2u);
+  EXPECT_EQ(data.mesh.blocks[0].name, "block_10");
+  EXPECT_EQ(data.mesh.blocks[1].name, "block_20");
+  EXPECT_EQ(data.mesh.tets, cube.tets);
+  ASSERT_EQ(data.mesh.nodeSets.size(), 1u);
+  EXPECT_EQ(data.mesh.nodeSets[0].name, "nodeset_3");
+  EXPECT_EQ(data.mesh.nodeSets[0].nodes, (std::vector<LO>{0, 1, 2, 3}));
+  ASSERT_EQ(data.mesh.sideSets.size(), 1u);
+  EXPECT_EQ(data.mesh.sideSets[0].name, "sideset_7");
+  EXPECT_EQ(data.mesh.sideSets[0].elements, cube.sideSets[0].elements);
+  EXPECT_EQ(data.mesh.sideSets[0].sides, cube.sideSets[0].sides);
+  ASSERT_EQ(data.steps.size(), 1u);
+  EXPECT_EQ(data.steps[0].time, 2.5);
+  EXPECT_TRUE(data.steps[0].nodal.empty());
+  ASSERT_EQ(data.steps[0].element.size(), 1u);
+  EXPECT_EQ(data.steps[0].element[0].name, "stress");
+  EXPECT_EQ(data.steps[0].element[0].values, (std::vector<double>{0, 0, 0, 1.5, 2.5, 3.5}));
 }
 
 TEST(ExodusIO, badFilesAreInputErrorsNamingTheFile) {
-  expectInputErrorNaming("/nonexistent/mesh.exo");
-  const std::string text = scratch("text.exo");
+  const ScratchDir dir("errors");
+  expectInputError(dir.file("missing.exo"), "does not exist");
+
+  const std::string text = dir.file("text.exo");
   std::ofstream(text) << "this is not an Exodus file\n";
-  expectInputErrorNaming(text);
+  expectInputError(text, "not an Exodus");
 
-  // A hexahedral block.
-  const std::string hex = scratch("hex.exo");
-  {
-    int cpu = 8, io = 8;
-    const int id = ex_create(hex.c_str(), EX_CLOBBER, &cpu, &io);
-    ASSERT_GE(id, 0);
-    ex_put_init(id, "hex", 3, 8, 1, 1, 0, 0);
-    const double x[8] = {0, 1, 1, 0, 0, 1, 1, 0}, y[8] = {0, 0, 1, 1, 0, 0, 1, 1}, z[8] = {0, 0, 0, 0, 1, 1, 1, 1};
-    ex_put_coord(id, x, y, z);
-    ex_put_block(id, EX_ELEM_BLOCK, 1, "HEX8", 1, 8, 0, 0, 0);
-    const int conn[8] = {1, 2, 3, 4, 5, 6, 7, 8};
-    ex_put_conn(id, EX_ELEM_BLOCK, 1, conn, nullptr, nullptr);
-    ex_close(id);
+  const std::string hex = dir.file("hex.exo");
+  writeRawSingleBlock(hex, "HEX8", 8);
+  expectInputError(hex, "HEX8");
+  expectInputError(hex, "block_42");
+
+  const std::string quadratic = dir.file("tetra10.exo");
+  writeRawSingleBlock(quadratic, "TETRA10", 10);
+  expectInputError(quadratic, "TETRA10");
+
+  const std::string flat = dir.file("flat.exo");
+  writeRawSingleBlock(flat, "TRI3", 3, 2);
+  expectInputError(flat, "2D");
+
+  Mesh inverted = cubeMesh();
+  std::swap(inverted.tets[4][1], inverted.tets[4][2]);
+  const std::string invertedPath = dir.file("inverted.exo");
+  writeExodus(invertedPath, inverted);
+  expectInputError(invertedPath, "element 5 of block \"upper\" is inverted");
+
+  // Ids out of range: the writer copies them as they are, the reader must reject them.
+  Mesh badNode = cubeMesh();
+  badNode.nodeSets[0].nodes.push_back(99);
+  const std::string badNodePath = dir.file("bad_node_set.exo");
+  writeExodus(badNodePath, badNode);
+  expectInputError(badNodePath, "node set \"bottom\" references node 100");
+
+  Mesh badSide = cubeMesh();
+  badSide.sideSets[0].sides[0] = 4;
+  const std::string badSidePath = dir.file("bad_side.exo");
+  writeExodus(badSidePath, badSide);
+  expectInputError(badSidePath, "side 5 out of range");
+
+  Mesh badConn = cubeMesh();
+  badConn.tets[0][3] = 8;
+  const std::string badConnPath = dir.file("bad_conn.exo");
+  writeExodus(badConnPath, badConn);
+  expectInputError(badConnPath, "references node 9 out of range");
+}
+
+TEST(ExodusIO, writerRejectsBadCalls) {
+  const ScratchDir dir("writer");
+  const Mesh mesh = cubeMesh();
+
+  EXPECT_THROW(writeExodus(dir.file("no_such_dir/cube.exo"), mesh), core::InputError);
+  try {
+    writeExodus(dir.file("no_such_dir/cube.exo"), mesh);
+  } catch (const core::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(dir.file("no_such_dir/cube.exo")), std::string::npos) << e.what();
   }
-  expectInputErrorNaming(hex);
 
-  // An inverted tetrahedron.
-  Mesh bad;
-  bad.coords = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-  bad.tets = {{0, 2, 1, 3}};
-  bad.blocks = {{"body", 1, 0, 1}};
-  const std::string inverted = scratch("inverted.exo");
-  writeExodus(inverted, bad);
-  expectInputErrorNaming(inverted);
-  for (const auto& p : {text, hex, inverted}) std::filesystem::remove(p);
+  auto steps = someSteps(mesh);
+  steps[1].nodal[1].name = "contact_status";
+  expectInvalidArgument([&] { writeExodus(dir.file("a.exo"), mesh, steps); }, "contact_status");
+
+  steps = someSteps(mesh);
+  steps[1].element.clear();
+  expectInvalidArgument([&] { writeExodus(dir.file("b.exo"), mesh, steps); }, "subdomain");
+
+  steps = someSteps(mesh);
+  steps[0].nodal[0].values.pop_back();
+  expectInvalidArgument([&] { writeExodus(dir.file("c.exo"), mesh, steps); }, "displacement_x");
+
+  steps = someSteps(mesh);
+  steps[1].element[0].values.push_back(0.0);
+  expectInvalidArgument([&] { writeExodus(dir.file("d.exo"), mesh, steps); }, "subdomain");
+
+  // Validation happens before the file is created, so a bad call leaves no file behind.
+  EXPECT_FALSE(std::filesystem::exists(dir.file("a.exo")));
 }
