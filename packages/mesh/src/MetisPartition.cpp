@@ -11,22 +11,38 @@ namespace tribos::mesh {
 
 namespace {
 // Called on the main thread only (METIS keeps global random state; see CholmodCholesky.cpp).
-// Parts per body in proportion to its element count (largest remainder, at least one each).
+// Parts per body in proportion to its element count: Hamilton's largest-remainder rounding
+// of the quotas q_b = numParts * count_b / total, then every body that rounded to 0 takes
+// one part from the body that exceeds its quota the most (numParts >= number of bodies, so
+// there always is a donor with 2 or more). The shares sum to numParts exactly.
 std::vector<int> shareParts(const Mesh& mesh, int numParts) {
+  // Exact integer arithmetic (q_b = P c_b / N as share + remainder / N), so that round-off
+  // can never make the floors sum past numParts.
   const int nb = mesh.numBlocks();
-  std::vector<int> share(nb, 1);
-  const double total = mesh.numElements();
-  std::vector<std::pair<double, int>> remainder;
-  int given = nb;
+  const long long total = mesh.numElements();
+  std::vector<long long> scaled(nb);  // P * c_b = N * q_b
+  std::vector<int> share(nb);
+  int given = 0;
   for (int b = 0; b < nb; ++b) {
-    const double exact = numParts * mesh.blocks[b].count / total;
-    const int extra = std::max(0, static_cast<int>(exact) - 1);
-    share[b] += extra;
-    given += extra;
-    remainder.push_back({exact - share[b], b});
+    scaled[b] = static_cast<long long>(numParts) * mesh.blocks[b].count;
+    share[b] = static_cast<int>(scaled[b] / total);
+    given += share[b];
   }
-  std::sort(remainder.begin(), remainder.end(), [](auto a, auto b) { return a.first > b.first; });
-  for (size_t i = 0; given < numParts; i = (i + 1) % remainder.size(), ++given) share[remainder[i].second]++;
+  // N * (share - q): how far a body's share exceeds its quota.
+  auto excess = [&](int b) { return share[b] * total - scaled[b]; };
+  std::vector<int> order(nb);
+  std::iota(order.begin(), order.end(), 0);
+  // Largest remainder first; ties go to the lower body index (stable), so it is deterministic.
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return excess(a) < excess(b); });
+  for (int i = 0; given < numParts; ++i, ++given) share[order[i]]++;  // fewer than nb to give
+  for (int b = 0; b < nb; ++b) {
+    if (share[b] > 0) continue;
+    int donor = -1;
+    for (int d = 0; d < nb; ++d)
+      if (share[d] > 1 && (donor < 0 || excess(d) > excess(donor))) donor = d;
+    share[donor]--;
+    share[b] = 1;
+  }
   return share;
 }
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <limits>
 
 #include "tribos/core/Errors.hpp"
 
@@ -14,9 +15,12 @@ BrickGrid BrickGrid::parse(const std::string& text, const std::string& parameter
   for (int d = 0; d < 3; ++d) {
     const size_t end = d < 2 ? text.find('x', pos) : text.size();
     const std::string item = end == std::string::npos ? "" : text.substr(pos, end - pos);
-    char* stop = nullptr;
-    const long v = item.empty() ? 0 : std::strtol(item.c_str(), &stop, 10);
-    if (item.empty() || *stop != '\0' || v < 1 || v > 100000)
+    // Digits only: strtol alone would also accept " 2", "+2" or "2 ", which the strict
+    // "<int>x<int>x<int>" syntax rejects. The cap keeps nx*H/h etc. far from int overflow.
+    const bool digits = !item.empty() && item.size() <= 6 &&
+                        std::all_of(item.begin(), item.end(), [](char c) { return c >= '0' && c <= '9'; });
+    const long v = digits ? std::strtol(item.c_str(), nullptr, 10) : 0;
+    if (!digits || v < 1 || v > 100000)
       throw core::InputError(parameter + ": \"" + text + "\" is not a subdomain grid \"NXxNYxNZ\" of positive integers");
     *parts[d] = static_cast<int>(v);
     pos = end + 1;
@@ -56,10 +60,18 @@ Mesh generateTwoBricks(const TwoBricksSpec& spec) {
   const int m = spec.hOverH;
   core::requireInput(m >= 1, "Mesh/H Over h: must be >= 1, got " + std::to_string(m));
   // Cubic subdomains: 20/nx == 10/ny == 10/nz.
-  core::requireInput(g.nx == 2 * g.ny && g.ny == g.nz,
+  core::requireInput(g.ny >= 1 && g.nx == 2 * g.ny && g.ny == g.nz,
                      "Mesh/Subdomains Per Brick: the subdomains of the (20 x 10 x 10) bricks must be cubes, i.e. "
                      "NX = 2 NY = 2 NZ (e.g. 2x1x1, 4x2x2), got " +
                          std::to_string(g.nx) + "x" + std::to_string(g.ny) + "x" + std::to_string(g.nz));
+  // Element and node ids are LO (int): refuse grids whose 2 * 5 (nx m)(ny m)(nz m) tets
+  // would overflow it (memory would run out long before, but fail with a clear message).
+  // (In double: the factors may be as large as 1e5 each.)
+  const double cubes = static_cast<double>(g.nx) * m * g.ny * m * g.nz * m;
+  core::requireInput(10.0 * cubes <= std::numeric_limits<LO>::max(),
+                     "Mesh/Subdomains Per Brick and Mesh/H Over h: " + std::to_string(g.nx) + "x" +
+                         std::to_string(g.ny) + "x" + std::to_string(g.nz) + " subdomains with H/h = " +
+                         std::to_string(m) + " give more tetrahedra than a 32-bit index can count");
   const double h = 20.0 / (g.nx * m);
   core::requireInput(spec.gap >= 0.0, "Mesh/Initial Gap: must be >= 0, got " + std::to_string(spec.gap));
   Mesh mesh;

@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "tribos/core/Errors.hpp"
 #include "tribos/mesh/Decomposition.hpp"
@@ -49,22 +52,54 @@ TEST(TwoBricks, countsMatchFormulaForEveryTable1Cell) {
               ez = spec.subdomainsPerBrick.nz * m;
     EXPECT_EQ(mesh.numNodes(), 2 * (ex + 1) * (ey + 1) * (ez + 1));
     EXPECT_EQ(mesh.numElements(), 2 * 5 * ex * ey * ez);
-    EXPECT_EQ(mesh.nodeSet("dirichlet_aluminium").nodes.size(), static_cast<size_t>((ey + 1) * (ez + 1)));
-    EXPECT_EQ(mesh.nodeSet("contact_aluminium").nodes.size(), static_cast<size_t>((ex + 1) * (ey + 1)));
-    EXPECT_EQ(mesh.sideSet("contact_aluminium").elements.size(), static_cast<size_t>(2 * ex * ey));
-    EXPECT_EQ(mesh.sideSet("contact_steel").elements.size(), static_cast<size_t>(2 * ex * ey));
-    EXPECT_EQ(mesh.sideSet("load_end").elements.size(), static_cast<size_t>(2 * ey * ez));
-    EXPECT_EQ(mesh.sideSet("load_top").elements.size(), static_cast<size_t>(2 * ex * ey));
+    ASSERT_EQ(mesh.numBlocks(), 2);
+    for (int b = 0; b < 2; ++b) {
+      EXPECT_EQ(mesh.blocks[b].first, b * 5 * ex * ey * ez);
+      EXPECT_EQ(mesh.blocks[b].count, 5 * ex * ey * ez);
+    }
+    // (name, id, cube faces on it, grid nodes on it): x planes hold ey*ez cube faces, z planes ex*ey;
+    // each cube face is cut into 2 triangles.
+    struct SetCount {
+      const char* name;
+      int id, faces, nodes;
+    };
+    const SetCount sets[] = {{"dirichlet_aluminium", 1, ey * ez, (ey + 1) * (ez + 1)},
+                             {"dirichlet_steel", 2, ey * ez, (ey + 1) * (ez + 1)},
+                             {"contact_aluminium", 3, ex * ey, (ex + 1) * (ey + 1)},
+                             {"contact_steel", 4, ex * ey, (ex + 1) * (ey + 1)},
+                             {"load_end", 5, ey * ez, (ey + 1) * (ez + 1)},
+                             {"load_top", 6, ex * ey, (ex + 1) * (ey + 1)}};
+    for (const SetCount& set : sets) {
+      SCOPED_TRACE(set.name);
+      EXPECT_EQ(mesh.nodeSet(set.name).id, set.id);
+      EXPECT_EQ(mesh.sideSet(set.name).id, set.id);
+      EXPECT_EQ(mesh.nodeSet(set.name).nodes.size(), static_cast<size_t>(set.nodes));
+      EXPECT_EQ(mesh.sideSet(set.name).elements.size(), static_cast<size_t>(2 * set.faces));
+      EXPECT_EQ(mesh.sideSet(set.name).sides.size(), static_cast<size_t>(2 * set.faces));
+    }
     const auto d = buildDecomposition(mesh, structuredPartition(mesh, spec));
     EXPECT_EQ(d.numSubdomains(), cell.subdomains);
+    // n = 2s * 3 (H/h + 1)^3: every subdomain is an (H/h)^3 cube grid with its own nodes.
+    EXPECT_EQ(d.numPrimalDofs(), 3LL * cell.subdomains * (m + 1) * (m + 1) * (m + 1));
     EXPECT_EQ(d.numPrimalDofs(), cell.n);
-    for (const auto& s : d.subdomains) EXPECT_EQ(s.numNodes(), (m + 1) * (m + 1) * (m + 1));
+    for (const auto& s : d.subdomains) {
+      EXPECT_EQ(s.numNodes(), (m + 1) * (m + 1) * (m + 1));
+      EXPECT_EQ(s.elements.size(), static_cast<size_t>(5 * m * m * m));
+    }
   }
 }
 
 TEST(TwoBricks, meshIsConformingAndPositivelyOriented) {
-  for (int m : {1, 2, 3}) {
-    const Mesh mesh = generateTwoBricks({{2, 1, 1}, m});
+  for (const TwoBricksSpec& spec : {TwoBricksSpec{{2, 1, 1}, 1}, TwoBricksSpec{{2, 1, 1}, 2},
+                                    TwoBricksSpec{{2, 1, 1}, 3}, TwoBricksSpec{{4, 2, 2}, 3}}) {
+    const int ex = spec.subdomainsPerBrick.nx * spec.hOverH, ey = spec.subdomainsPerBrick.ny * spec.hOverH,
+              ez = spec.subdomainsPerBrick.nz * spec.hOverH;
+    SCOPED_TRACE(std::to_string(ex) + "x" + std::to_string(ey) + "x" + std::to_string(ez));
+    const Mesh mesh = generateTwoBricks(spec);
+    // The bricks have separate nodes (brick 1's first): no tet of one uses a node of the other.
+    const LO nodesPerBrick = (ex + 1) * (ey + 1) * (ez + 1);
+    for (LO e = 0; e < mesh.numElements(); ++e)
+      for (LO n : mesh.tets[e]) EXPECT_EQ(n / nodesPerBrick, mesh.blockOf(e));
     std::map<Face, int> count;
     for (LO e = 0; e < mesh.numElements(); ++e) {
       EXPECT_GT(mesh.elementVolume(e), 0.0);
@@ -84,6 +119,10 @@ TEST(TwoBricks, meshIsConformingAndPositivelyOriented) {
       }
       EXPECT_TRUE(onPlane);
     }
+    // Boundary triangles: 2 per cube face on the 6 faces of each of the 2 bricks, no more.
+    size_t boundary = 0;
+    for (const auto& [face, c] : count) boundary += c == 1;
+    EXPECT_EQ(boundary, static_cast<size_t>(2 * 2 * 2 * (ex * ey + ey * ez + ex * ez)));
     for (int b = 0; b < 2; ++b) {
       double volume = 0.0;
       for (LO e = mesh.blocks[b].first; e < mesh.blocks[b].first + mesh.blocks[b].count; ++e)
@@ -115,24 +154,65 @@ TEST(TwoBricks, sideSetsLieOnTheirPlanesWithOutwardNormals) {
       const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
       EXPECT_GT(n[x.axis] * x.normalSign, 0.0);
     }
+    // Sides of the brick the set names, and the node set of the same name holds exactly
+    // the vertices of its side set.
+    const int brick = std::string(x.name).find("aluminium") != std::string::npos ? 0 : 1;
+    std::vector<LO> nodes;
+    for (size_t f = 0; f < set.elements.size(); ++f) {
+      EXPECT_EQ(mesh.blockOf(set.elements[f]), brick);
+      for (int v : kTetFaceVertices[set.sides[f]]) nodes.push_back(mesh.tets[set.elements[f]][v]);
+    }
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    EXPECT_EQ(nodes, mesh.nodeSet(x.name).nodes);
   }
 }
 
 TEST(TwoBricks, globalMeshDoesNotDependOnTheDecomposition) {
-  const Mesh a = generateTwoBricks({{2, 1, 1}, 4});
-  const Mesh b = generateTwoBricks({{4, 2, 2}, 2});
-  EXPECT_EQ(a.coords, b.coords);
-  EXPECT_EQ(a.tets, b.tets);
+  // Same h, different subdomain grids: h = 5, h = 20/6 (odd H/h on one side) and h = 20/12.
+  const std::pair<TwoBricksSpec, TwoBricksSpec> pairs[] = {{{{2, 1, 1}, 4}, {{4, 2, 2}, 2}},
+                                                           {{{2, 1, 1}, 6}, {{6, 3, 3}, 2}},
+                                                           {{{4, 2, 2}, 3}, {{6, 3, 3}, 2}}};
+  for (const auto& [specA, specB] : pairs) {
+    const Mesh a = generateTwoBricks(specA);
+    const Mesh b = generateTwoBricks(specB);
+    EXPECT_EQ(a.coords, b.coords);
+    EXPECT_EQ(a.tets, b.tets);
+    ASSERT_EQ(a.sideSets.size(), b.sideSets.size());
+    for (size_t i = 0; i < a.sideSets.size(); ++i) {
+      EXPECT_EQ(a.sideSets[i].elements, b.sideSets[i].elements);
+      EXPECT_EQ(a.sideSets[i].sides, b.sideSets[i].sides);
+      EXPECT_EQ(a.nodeSets[i].nodes, b.nodeSets[i].nodes);
+    }
+  }
 }
 
 TEST(TwoBricks, badGridsAreInputErrorsNamingTheParameter) {
-  for (const char* bad : {"2x1", "2x1x1x1", "axbxc", "0x1x1", "2x1x-1", ""}) {
+  const BrickGrid g = BrickGrid::parse("10x5x5", "Mesh/Subdomains Per Brick");
+  EXPECT_EQ(g.nx, 10);
+  EXPECT_EQ(g.ny, 5);
+  EXPECT_EQ(g.nz, 5);
+  EXPECT_EQ(g.count(), 250);
+  for (const char* bad : {"2x1", "2x1x1x1", "axbxc", "0x1x1", "2x1x-1", "", " 2x1x1", "+2x1x1", "2x1x1 ", "2xx1",
+                          "2x1x", "2X1X1", "2.0x1x1", "99999999999x1x1"}) {
     try {
       BrickGrid::parse(bad, "Mesh/Subdomains Per Brick");
-      ADD_FAILURE() << bad;
+      ADD_FAILURE() << "accepted \"" << bad << "\"";
     } catch (const core::InputError& e) {
-      EXPECT_NE(std::string(e.what()).find("Mesh/Subdomains Per Brick"), std::string::npos);
+      const std::string what = e.what();
+      EXPECT_NE(what.find("Mesh/Subdomains Per Brick"), std::string::npos) << what;
+      EXPECT_NE(what.find("\"" + std::string(bad) + "\""), std::string::npos) << what;
     }
   }
-  EXPECT_THROW(generateTwoBricks({{3, 1, 1}, 2}), core::InputError);
+  // Non-cubic subdomains (20/nx != 10/ny or ny != nz) are named by the parameter.
+  for (const BrickGrid& grid : {BrickGrid{3, 1, 1}, BrickGrid{2, 1, 2}, BrickGrid{4, 2, 1}, BrickGrid{0, 0, 0}}) {
+    try {
+      generateTwoBricks({grid, 2});
+      ADD_FAILURE() << grid.nx << "x" << grid.ny << "x" << grid.nz;
+    } catch (const core::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("Mesh/Subdomains Per Brick"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_THROW(generateTwoBricks({{2, 1, 1}, 0}), core::InputError);
+  EXPECT_THROW(generateTwoBricks({{2000, 1000, 1000}, 5}), core::InputError);  // too many tets for int ids
 }
