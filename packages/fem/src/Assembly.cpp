@@ -8,6 +8,9 @@
 #include <Kokkos_Core.hpp>
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <utility>
 
 #include "tribos/core/Errors.hpp"
 #include "tribos/fem/ElementKernels.hpp"
@@ -73,6 +76,40 @@ struct GatherRowsKernel {
   }
 };
 
+/// Consistent load of a constant traction on each face (paper Section 2, the Neumann part):
+/// fe(9 f + 3 v + c) = area_f / 3 * p_c for the face's vertex v.
+struct TractionLoadKernel {
+  Unmanaged<const double> coords;     // 3 per local node
+  Unmanaged<const LO> faceNodes;      // 3 per face, local node ids, face orientation kept
+  double p[3];                        // traction, constant over the side set
+  Unmanaged<double> fe;               // 9 per face
+
+  KOKKOS_INLINE_FUNCTION void operator()(const LO f) const {
+    double x[3][3], load[9];
+    for (int v = 0; v < 3; ++v)
+      for (int c = 0; c < 3; ++c) x[v][c] = coords(3 * faceNodes(3 * f + v) + c);
+    triangleTraction(x, p, load);
+    for (int k = 0; k < 9; ++k) fe(9 * f + k) = load[k];
+  }
+};
+
+/// Consistent load of the volume force density b of each element's block: V/4 * b per vertex.
+struct VolumeForceKernel {
+  Unmanaged<const double> coords;  // 3 per local node
+  Unmanaged<const LO> tets;        // 4 per element
+  Unmanaged<const double> force;   // 3 per element: b of its block
+  Unmanaged<double> fe;            // 12 per element
+
+  KOKKOS_INLINE_FUNCTION void operator()(const LO e) const {
+    double x[4][3], load[12];
+    for (int v = 0; v < 4; ++v)
+      for (int c = 0; c < 3; ++c) x[v][c] = coords(3 * tets(4 * e + v) + c);
+    const double b[3] = {force(3 * e), force(3 * e + 1), force(3 * e + 2)};
+    tetVolumeForce(x, b, load);
+    for (int k = 0; k < 12; ++k) fe(12 * e + k) = load[k];
+  }
+};
+
 template <class T>
 Unmanaged<T> view(std::vector<T>& v) {
   return Unmanaged<T>(v.data(), v.size());
@@ -85,6 +122,18 @@ Unmanaged<const T> view(const std::vector<T>& v) {
 
 SubdomainSystem assembleSubdomain(const mesh::Mesh& mesh, const mesh::Subdomain& subdomain,
                                   const std::vector<Material>& materials, const Loads& loads) {
+  // Programming errors of the caller (the driver sizes these from the mesh's blocks).
+  if (materials.size() < static_cast<size_t>(mesh.numBlocks()))
+    throw std::invalid_argument("tribos::fem::assembleSubdomain: " + std::to_string(materials.size()) +
+                                " materials for " + std::to_string(mesh.numBlocks()) + " element blocks");
+  if (!loads.volumeForce.empty() && loads.volumeForce.size() < static_cast<size_t>(mesh.numBlocks()))
+    throw std::invalid_argument("tribos::fem::assembleSubdomain: Loads::volumeForce has " +
+                                std::to_string(loads.volumeForce.size()) + " entries for " +
+                                std::to_string(mesh.numBlocks()) + " element blocks (give one per block or none)");
+  if (subdomain.tets.size() != subdomain.elements.size())
+    throw std::invalid_argument("tribos::fem::assembleSubdomain: subdomain has " +
+                                std::to_string(subdomain.elements.size()) + " elements but " +
+                                std::to_string(subdomain.tets.size()) + " local connectivities");
   const LO numNodes = subdomain.numNodes(), numElements = static_cast<LO>(subdomain.elements.size());
   std::vector<double> coords(3 * static_cast<size_t>(numNodes));
   for (LO k = 0; k < numNodes; ++k)
@@ -98,7 +147,10 @@ SubdomainSystem assembleSubdomain(const mesh::Mesh& mesh, const mesh::Subdomain&
     mu[e] = materials.at(block).mu;
   }
 
-  // (1) Element matrices in parallel over elements.
+  // (1) Element matrices K_e = V B^T D B (paper Section 2, Hooke's law with Lame lambda, mu),
+  // independent per element, into a buffer of 144 values per element. An inverted element
+  // would give a negative-definite K_e and a meaningless K_s: the kernel skips it and the
+  // host reports it below, naming it as the user's mesh does (1-based id, block name).
   std::vector<double> Ke(144 * static_cast<size_t>(numElements)), volume(numElements);
   Kokkos::parallel_for("tribos::fem::elementStiffness", Kokkos::RangePolicy<ExecSpace>(0, numElements),
                        ElementStiffnessKernel{view(coords), view(tets), view(lambda), view(mu), view(Ke), view(volume)});
@@ -110,7 +162,10 @@ SubdomainSystem assembleSubdomain(const mesh::Mesh& mesh, const mesh::Subdomain&
                              std::to_string(volume[e]) + ")");
     }
 
-  // (2) Graph on the host: node -> adjacent (element, vertex); node -> neighbour nodes.
+  // (2) Graph on the host: node -> adjacent (element, local vertex), by counting sort so the
+  // elements around a node are in ascending order (fixes the summation order of step 3),
+  // and node -> sorted neighbour nodes (itself included). Every node pair that shares an
+  // element gets a dense 3x3 block, so row 3a+i lists 3*neighbour+j in ascending order.
   std::vector<LO> adjacencyPtr(numNodes + 1, 0), adjacentElement(4 * static_cast<size_t>(numElements)),
       adjacentVertex(4 * static_cast<size_t>(numElements));
   for (LO t : tets) adjacencyPtr[t + 1]++;
@@ -153,17 +208,21 @@ SubdomainSystem assembleSubdomain(const mesh::Mesh& mesh, const mesh::Subdomain&
     }
   K.values.assign(K.colInd.size(), 0.0);
 
-  // (3) Race-free gather into CSR rows, in parallel over nodes.
+  // (3) Race-free gather: iteration a owns the 3 rows of node a and sums the blocks (a, b)
+  // of the elements around a. No two iterations write the same entry, so no atomics are
+  // needed and the result is the same (bitwise) on any back end and any thread count.
   Kokkos::parallel_for("tribos::fem::gatherStiffnessRows", Kokkos::RangePolicy<ExecSpace>(0, numNodes),
                        GatherRowsKernel{view(adjacencyPtr), view(adjacentElement), view(adjacentVertex), view(tets),
                                         view(Ke), view(nodeRowPtr), view(neighbour), view(K.rowPtr),
                                         view(K.values)});
 
-  // (4) Loads: face / element contributions computed in a kernel, summed sequentially (in
-  // a fixed order, so f_s does not depend on the thread count).
+  // (4) Loads f_s: element/face contributions in kernels, then summed on the host in a
+  // fixed order (load by load, face by face), so f_s does not depend on the thread count.
+  // Only faces whose element lies in this subdomain count: each face is loaded once over
+  // all subdomains, so the subdomain loads sum to the global one.
   system.f.assign(K.n, 0.0);
   for (const auto& traction : loads.tractions) {
-    const auto& set = mesh.sideSet(traction.sideSet);
+    const auto& set = mesh.sideSet(traction.sideSet);  // InputError naming a missing set
     std::vector<LO> faceNodes;
     for (size_t f = 0; f < set.elements.size(); ++f) {
       if (!std::binary_search(subdomain.elements.begin(), subdomain.elements.end(), set.elements[f])) continue;
@@ -174,34 +233,23 @@ SubdomainSystem assembleSubdomain(const mesh::Mesh& mesh, const mesh::Subdomain&
     }
     const LO numFaces = static_cast<LO>(faceNodes.size() / 3);
     std::vector<double> fe(9 * static_cast<size_t>(numFaces));
-    const auto faceView = view(static_cast<const std::vector<LO>&>(faceNodes));
-    const auto coordView = view(static_cast<const std::vector<double>&>(coords));
-    const auto feView = view(fe);
-    const double p[3] = {traction.p[0], traction.p[1], traction.p[2]};
-    Kokkos::parallel_for(
-        "tribos::fem::tractionLoads", Kokkos::RangePolicy<ExecSpace>(0, numFaces), KOKKOS_LAMBDA(const LO f) {
-          double x[3][3], load[9];
-          for (int v = 0; v < 3; ++v)
-            for (int c = 0; c < 3; ++c) x[v][c] = coordView(3 * faceView(3 * f + v) + c);
-          const double pc[3] = {p[0], p[1], p[2]};
-          triangleTraction(x, pc, load);
-          for (int k = 0; k < 9; ++k) feView(9 * f + k) = load[k];
-        });
+    TractionLoadKernel kernel{view(std::as_const(coords)), view(std::as_const(faceNodes)), {}, view(fe)};
+    for (int c = 0; c < 3; ++c) kernel.p[c] = traction.p[c];
+    Kokkos::parallel_for("tribos::fem::tractionLoads", Kokkos::RangePolicy<ExecSpace>(0, numFaces), kernel);
     for (LO f = 0; f < numFaces; ++f)
       for (int v = 0; v < 3; ++v)
         for (int c = 0; c < 3; ++c) system.f[3 * faceNodes[3 * f + v] + c] += fe[9 * f + 3 * v + c];
   }
   if (!loads.volumeForce.empty()) {
-    for (LO e = 0; e < numElements; ++e) {
-      const auto& b = loads.volumeForce.at(mesh.blockOf(subdomain.elements[e]));
-      double x[4][3], fe[12];
+    std::vector<double> force(3 * static_cast<size_t>(numElements)), fe(12 * static_cast<size_t>(numElements));
+    for (LO e = 0; e < numElements; ++e)
+      for (int c = 0; c < 3; ++c) force[3 * e + c] = loads.volumeForce[mesh.blockOf(subdomain.elements[e])][c];
+    Kokkos::parallel_for("tribos::fem::volumeForceLoads", Kokkos::RangePolicy<ExecSpace>(0, numElements),
+                         VolumeForceKernel{view(std::as_const(coords)), view(std::as_const(tets)),
+                                           view(std::as_const(force)), view(fe)});
+    for (LO e = 0; e < numElements; ++e)
       for (int v = 0; v < 4; ++v)
-        for (int c = 0; c < 3; ++c) x[v][c] = coords[3 * tets[4 * e + v] + c];
-      const double bc[3] = {b[0], b[1], b[2]};
-      tetVolumeForce(x, bc, fe);
-      for (int v = 0; v < 4; ++v)
-        for (int c = 0; c < 3; ++c) system.f[3 * tets[4 * e + v] + c] += fe[3 * v + c];
-    }
+        for (int c = 0; c < 3; ++c) system.f[3 * tets[4 * e + v] + c] += fe[12 * e + 3 * v + c];
   }
 
   // (5) Rigid body modes of the floating subdomain.

@@ -1,4 +1,6 @@
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "tribos/fem/SubdomainSystem.hpp"
 
@@ -22,10 +24,14 @@ std::vector<double> rigidBodyModes(const std::vector<std::array<double, 3>>& coo
     R[5 * n + 3 * k + 0] = -y;  // about z: (-y, x, 0)
     R[5 * n + 3 * k + 1] = x;
   }
-  // Modified Gram-Schmidt, twice ("twice is enough") so that R^T R = I to round-off.
+  // Modified Gram-Schmidt, twice ("twice is enough"): one pass leaves R^T R - I of the
+  // order of eps * cond(R), a second one brings it to round-off, which T-FETI relies on
+  // (G = R^T B^T and the Moore-Penrose action I - R R^T, ALGORITHMS.md 1).
   for (int pass = 0; pass < 2; ++pass)
     for (int j = 0; j < 6; ++j) {
       double* rj = &R[j * n];
+      double before = 0.0;
+      for (size_t k = 0; k < n; ++k) before += rj[k] * rj[k];
       for (int i = 0; i < j; ++i) {
         const double* ri = &R[i * n];
         double dot = 0.0;
@@ -34,6 +40,10 @@ std::vector<double> rigidBodyModes(const std::vector<std::array<double, 3>>& coo
       }
       double norm = 0.0;
       for (size_t k = 0; k < n; ++k) norm += rj[k] * rj[k];
+      // Collinear (or fewer than 3) nodes: a rotation is a combination of the others.
+      if (!(norm > 1e-20 * before))
+        throw std::invalid_argument("tribos::fem::rigidBodyModes: the " + std::to_string(nodes) +
+                                    " nodes are collinear; the 6 rigid body modes are dependent");
       norm = std::sqrt(norm);
       for (size_t k = 0; k < n; ++k) rj[k] /= norm;
     }

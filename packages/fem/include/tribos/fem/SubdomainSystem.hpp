@@ -46,9 +46,14 @@ struct SubdomainSystem {
 
 /// Assembles K_s and f_s of one subdomain with Kokkos kernels (element matrices in
 /// parallel over elements, then a race-free gather into CSR rows over nodes) and builds R_s.
-/// `materials[b]` is the material of element block b. Throws core::InputError if a traction
-/// names a side set the mesh lacks, or an element is inverted (naming the element).
-/// Safe to call concurrently for different subdomains (no managed Views inside).
+/// `materials[b]` is the material of element block b (at least mesh.numBlocks() entries;
+/// loads.volumeForce empty or one per block, else std::invalid_argument). A traction loads
+/// only the faces whose element is in the subdomain, so subdomain loads sum to the global
+/// load. No Dirichlet condition is applied (T-FETI: K_s is floating, Ker K_s = span R_s).
+/// Throws core::InputError if a traction names a side set the mesh lacks, or an element is
+/// inverted (naming its 1-based global id and its block).
+/// Safe to call concurrently for different subdomains (no managed Views inside); the result
+/// does not depend on the thread count, bit for bit.
 SubdomainSystem assembleSubdomain(const mesh::Mesh& mesh, const mesh::Subdomain& subdomain,
                                   const std::vector<Material>& materials, const Loads& loads);
 
@@ -58,7 +63,9 @@ SubdomainSystem assembleGlobal(const mesh::Mesh& mesh, const std::vector<Materia
                                const Loads& loads);
 
 /// Orthonormal rigid body modes (3 translations, 3 rotations about the centroid, then
-/// modified Gram-Schmidt) of a set of nodes: n = 3*coords.size() rows, 6 columns, col-major.
+/// modified Gram-Schmidt applied twice, so R^T R = I to round-off) of a set of nodes:
+/// n = 3*coords.size() rows, 6 columns, col-major; dof 3*node + component as in K_s.
+/// Throws std::invalid_argument if the nodes are collinear (the modes are dependent).
 std::vector<double> rigidBodyModes(const std::vector<std::array<double, 3>>& coords);
 
 }  // namespace tribos::fem
