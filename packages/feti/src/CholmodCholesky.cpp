@@ -1,8 +1,9 @@
 // SparseCholesky by CHOLMOD (SuiteSparse): supernodal LL^T with a METIS nested-dissection
 // ordering computed here (METIS_NodeND) and passed as CHOLMOD_GIVEN.
 //
-// A factor is used by the thread team it was made in (the thread count of a run is fixed),
-// so supernodal factors are never solved concurrently.
+// Inside a team of threads the factor is simplicial (no BLAS, so truly concurrent); alone it
+// is supernodal and BLAS calls hold blasMutex() (see SparseCholeskyImpl.hpp). Supernodal or
+// not, every object works from any thread, one thread at a time.
 //
 // Debian's CHOLMOD runs OpenMP loops with 4 threads inside supernodal factorisation; on
 // small subdomain matrices that is many times slower than one thread. We never want that
@@ -13,6 +14,8 @@
 #include <metis.h>
 #include <omp.h>
 
+#include <algorithm>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -72,12 +75,20 @@ class CholmodCholesky final : public SparseCholesky {
     // team of threads (core::forEachSubdomain with > 1 thread) the factor is simplicial,
     // which needs no BLAS and is as fast up to ~1000 dofs (Table 1's subdomains have at
     // most 648); alone, it is supernodal (4x faster factorisation at 10^4 dofs).
+    // A supernodal factor made outside a team still holds blasMutex(), so that it is safe
+    // beside any other BLAS user on another thread (a Tacho factor, for instance).
     common_.supernodal = omp_get_num_threads() > 1 ? CHOLMOD_SIMPLICIAL : CHOLMOD_SUPERNODAL;
     common_.print = 0;
     if (factor_) cholmod_free_factor(&factor_, &common_);
     withoutNestedThreads([&] {
       factor_ = cholmod_analyze_p(&S, const_cast<LO*>(perm.data()), nullptr, 0, &common_);
-      if (factor_) cholmod_factorize(&S, factor_, &common_);
+      if (!factor_) return;
+      if (factor_->is_super) {
+        std::lock_guard<std::mutex> lock(blasMutex());
+        cholmod_factorize(&S, factor_, &common_);
+      } else {
+        cholmod_factorize(&S, factor_, &common_);
+      }
     });
     if (!factor_ || common_.status != CHOLMOD_OK || factor_->minor < factor_->n)
       throw std::runtime_error("CHOLMOD: the matrix (n = " + std::to_string(A.n) +
@@ -95,7 +106,14 @@ class CholmodCholesky final : public SparseCholesky {
     B.xtype = CHOLMOD_REAL;
     B.dtype = CHOLMOD_DOUBLE;
     cholmod_dense* X = nullptr;
-    withoutNestedThreads([&] { X = cholmod_solve(CHOLMOD_A, factor_, &B, &common_); });
+    withoutNestedThreads([&] {
+      if (factor_->is_super) {  // dtrsv/dgemv, or dtrsm/dgemm for several columns
+        std::lock_guard<std::mutex> lock(blasMutex());
+        X = cholmod_solve(CHOLMOD_A, factor_, &B, &common_);
+      } else {
+        X = cholmod_solve(CHOLMOD_A, factor_, &B, &common_);
+      }
+    });
     if (!X) throw std::runtime_error("CHOLMOD: solve failed");
     const double* xs = static_cast<const double*>(X->x);
     std::copy(xs, xs + B.nzmax, x);
@@ -117,6 +135,36 @@ class CholmodCholesky final : public SparseCholesky {
 }  // namespace
 
 std::unique_ptr<SparseCholesky> makeCholmodCholesky() { return std::make_unique<CholmodCholesky>(); }
+
+long long choleskyFactorNonzeros(const fem::CsrMatrix& A, const std::vector<LO>& perm) {
+  // Symbolic analysis only (pattern, simplicial, given order): column counts of L, no BLAS,
+  // no OpenMP; safe on any thread with its own cholmod_common.
+  cholmod_common common;
+  cholmod_start(&common);
+  common.print = 0;
+  common.nmethods = 1;
+  common.method[0].ordering = CHOLMOD_GIVEN;
+  common.postorder = 1;
+  common.supernodal = CHOLMOD_SIMPLICIAL;
+  cholmod_sparse S{};
+  S.nrow = S.ncol = static_cast<size_t>(A.n);
+  S.nzmax = A.colInd.size();
+  S.p = const_cast<LO*>(A.rowPtr.data());
+  S.i = const_cast<LO*>(A.colInd.data());
+  S.stype = 1;
+  S.itype = CHOLMOD_INT;
+  S.xtype = CHOLMOD_PATTERN;
+  S.dtype = CHOLMOD_DOUBLE;
+  S.sorted = 1;
+  S.packed = 1;
+  long long nnz = -1;
+  if (cholmod_factor* L = cholmod_analyze_p(&S, const_cast<LO*>(perm.data()), nullptr, 0, &common)) {
+    nnz = static_cast<long long>(common.lnz);
+    cholmod_free_factor(&L, &common);
+  }
+  cholmod_finish(&common);
+  return nnz;
+}
 
 std::vector<LO> nestedDissection(const fem::CsrMatrix& A) {
   // METIS wants the adjacency graph without the diagonal.

@@ -5,10 +5,16 @@
 
 namespace tribos::feti {
 
-std::vector<std::string> sparseCholeskyNames() { return {"CHOLMOD"}; }
+std::mutex& blasMutex() {
+  static std::mutex m;
+  return m;
+}
+
+std::vector<std::string> sparseCholeskyNames() { return {"CHOLMOD", "Tacho"}; }
 
 std::unique_ptr<SparseCholesky> makeSparseCholesky(const std::string& name) {
   if (name == "CHOLMOD") return makeCholmodCholesky();
+  if (name == "Tacho") return makeTachoCholesky();
   std::string valid;
   for (const auto& n : sparseCholeskyNames()) valid += " \"" + n + "\"";
   throw core::InputError("FETI/Factorization: \"" + name + "\" is not a sparse Cholesky; valid:" + valid);

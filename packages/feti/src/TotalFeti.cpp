@@ -14,10 +14,6 @@
 #include "tribos/core/Timer.hpp"
 #include "tribos/fem/SubdomainSystem.hpp"
 
-extern "C" void dgemv_(const char* trans, const int* m, const int* n, const double* alpha, const double* a,
-                       const int* lda, const double* x, const int* incx, const double* beta, double* y,
-                       const int* incy);
-
 namespace tribos::feti {
 
 namespace {
@@ -298,9 +294,15 @@ void TotalFeti::applyF(const DualVector& x, DualVector& y) const {
   ++fApplications_;
   applyBlockwise(x, y, [this](Local& L, bool) {
     if (settings_.explicitF) {
-      const int m = L.m(), one = 1;
-      const double alpha = 1.0, beta = 0.0;
-      if (m > 0) dgemv_("N", &m, &m, &alpha, L.denseF.data(), &m, L.in.data(), &one, &beta, L.out.data(), &one);
+      // out = F_s in, column-major. A plain loop: Debian's serial OpenBLAS is not safe to
+      // call from several threads at once (doc/factorization.md).
+      const LO m = L.m();
+      std::fill(L.out.begin(), L.out.end(), 0.0);
+      for (LO c = 0; c < m; ++c) {
+        const double x = L.in[c];
+        const double* column = &L.denseF[static_cast<size_t>(c) * m];
+        for (LO r = 0; r < m; ++r) L.out[r] += column[r] * x;
+      }
       return;
     }
     applyBlockTranspose(*L.block, L.in.data(), L.x.data(), L.n());

@@ -101,7 +101,7 @@ void fetiParameters(ParameterList& pl) {
   Teuchos::setStringToIntegralParameter<int>(
       "Factorization", "CHOLMOD",
       "sparse Cholesky of the regularised subdomain stiffness K_reg and of G G^T (doc/factorization.md)",
-      Teuchos::tuple<std::string>("CHOLMOD"), &pl);
+      Teuchos::tuple<std::string>("CHOLMOD", "Tacho"), &pl);
   Teuchos::setStringToIntegralParameter<int>(
       "Dual Operator", "Implicit",
       "F = B K^dagger B^T: \"Implicit\" (two triangular solves per subdomain and application) or "

@@ -1,9 +1,9 @@
 #pragma once
 /// \file SparseCholesky.hpp
 /// One interface for the supernodal sparse Cholesky factorisations of SPD matrices (the
-/// regularised subdomain stiffness K_reg, G G^T, K_ii). Implementation: "CHOLMOD"
-/// (SuiteSparse) with a METIS fill-reducing ordering; a second one (e.g. Trilinos's
-/// Tacho::Driver) plugs in behind makeSparseCholesky. See doc/factorization.md.
+/// regularised subdomain stiffness K_reg, G G^T, K_ii). Implementations: "CHOLMOD"
+/// (SuiteSparse, the default) and "Tacho" (Trilinos's Tacho::Driver), both with a METIS
+/// fill-reducing ordering. See doc/factorization.md for the measurements behind the default.
 ///
 /// Thread safety: different objects may factorize and solve concurrently from the threads
 /// of core::forEachSubdomain (each object used by one thread at a time).
@@ -32,8 +32,8 @@ class SparseCholesky {
 
 /// Names accepted by makeSparseCholesky.
 std::vector<std::string> sparseCholeskyNames();
-/// Creates a factorisation by name ("CHOLMOD"); throws core::InputError naming the
-/// parameter "FETI/Factorization" and the valid names otherwise.
+/// Creates a factorisation by name ("CHOLMOD" or "Tacho"); throws core::InputError naming
+/// the parameter "FETI/Factorization" and the valid names otherwise.
 std::unique_ptr<SparseCholesky> makeSparseCholesky(const std::string& name);
 
 }  // namespace tribos::feti
