@@ -11,8 +11,15 @@ namespace tribos::qp {
 
 namespace {
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-/// Relative tolerance for "on the boundary" (active). Iterates land on the boundary through
-/// projections and feasible steps, so only round-off needs absorbing.
+/// Relative tolerance for "on the boundary" (active). MPGP's iterates reach a boundary only
+/// through a projection (max(x, l) is exact; the ellipse projection is normalised onto
+/// ||E y|| = 1 to round-off) or a feasible step (x - alpha_f p, exact to a few ulps), so
+/// only round-off needs absorbing; a larger tolerance would freeze blocks that are still
+/// strictly inside and let CG steps leave Omega by that much. Bounds: x - l <= tol (|l| + |x|)
+/// (relative to the size of the numbers subtracted, so independent of the units of x; for
+/// l = 0 only x = 0 is active, which projections produce exactly). Ellipses:
+/// ||E (x - c)|| >= 1 - tol. A block missed by round-off is caught at the next step: its
+/// feasible step is then ~0 and the expansion's projection lands on the boundary exactly.
 constexpr double kActiveTolerance = 1e-12;
 
 bool boundActive(double x, double lower) {
@@ -36,36 +43,54 @@ double intervalProjectedGradient(double y, double lo, double hi, double g) {
 }  // namespace
 
 std::array<double, 2> projectOntoEllipse(std::array<double, 2> w, std::array<double, 2> a) {
-  // Degenerate sets: the centre point, or a segment along one axis.
+  // Work in units of t = max(a_1, a_2, |w_1|, |w_2|) so that the squares in the secular
+  // equation neither overflow nor underflow for any axis ratio. A semi-axis below 1e-150 t
+  // counts as zero: its square would underflow, and the error made is below 1e-150 t.
+  const double t = std::max({a[0], a[1], std::abs(w[0]), std::abs(w[1])});
+  if (!(t > 0.0)) return {0.0, 0.0};
+  for (double& ai : a)
+    if (!(ai > 1e-150 * t)) ai = 0.0;
+  // Degenerate sets (ALGORITHMS.md 5: g = 0 projects onto the centre): the centre point, or
+  // a segment along the axis that is not zero; both are exact.
   if (!(a[0] > 0.0) && !(a[1] > 0.0)) return {0.0, 0.0};
   if (!(a[0] > 0.0)) return {0.0, std::clamp(w[1], -a[1], a[1])};
   if (!(a[1] > 0.0)) return {std::clamp(w[0], -a[0], a[0]), 0.0};
   if (ellipseNorm(w, a) <= 1.0) return w;
-  // y_i = a_i^2 w_i / (a_i^2 + h), h > 0 the root of phi(h) = sum (a_i w_i / (a_i^2 + h))^2 - 1.
-  // phi is convex and decreasing, phi(0) > 0: Newton from h = 0 increases monotonically to
-  // the root (ALGORITHMS.md 5); the bracket [lo, hi] guards it against round-off.
-  const double aw[2] = {a[0] * w[0], a[1] * w[1]};
-  double lo = 0.0, hi = std::hypot(aw[0], aw[1]);  // phi(hi) <= 0
-  double h = 0.0;
-  for (int it = 0; it < 200; ++it) {
-    double phi = -1.0, dphi = 0.0;
-    for (int i = 0; i < 2; ++i) {
-      const double d = a[i] * a[i] + h, t = aw[i] / d;
-      phi += t * t;
-      dphi -= 2.0 * t * t / d;
-    }
-    if (phi > 0.0) lo = h;
-    else hi = h;
-    double next = dphi < 0.0 ? h - phi / dphi : 0.5 * (lo + hi);
-    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-    if (std::abs(next - h) <= 1e-15 * std::max(next, 1e-300)) {
-      h = next;
-      break;
-    }
-    h = next;
+  // A disc (isotropic friction, F1 = F2): radial scaling, exact up to one rounding.
+  if (a[0] == a[1]) {
+    const double r = std::hypot(w[0], w[1]);
+    return {a[0] * (w[0] / r), a[0] * (w[1] / r)};
   }
-  std::array<double, 2> y{a[0] * a[0] * w[0] / (a[0] * a[0] + h), a[1] * a[1] * w[1] / (a[1] * a[1] + h)};
-  // Land exactly on the boundary (round-off in h may leave y slightly off it).
+  // Outside an ellipse: the KKT condition w - y = h diag(1/a^2) y gives
+  // y_i = a_i^2 w_i / (a_i^2 + h) with h > 0 the root of
+  //   s(h) = sum (a_i w_i / (a_i^2 + h))^2 - 1.
+  // s is convex and decreasing with s(0) > 0, so Newton from h = 0 increases monotonically
+  // to the root (ALGORITHMS.md 5); the bracket [lo, hi] (s(hi) <= 0 at hi = ||diag(a) w||)
+  // guards it against round-off with bisection. w_i = 0 gives y_i = 0 exactly.
+  const double as[2] = {a[0] / t, a[1] / t}, ws[2] = {w[0] / t, w[1] / t};
+  const double aw[2] = {as[0] * ws[0], as[1] * ws[1]};
+  double lo = 0.0, hi = std::hypot(aw[0], aw[1]);
+  double h = 0.0;
+  for (int it = 0; it < 300; ++it) {
+    double s = -1.0, ds = 0.0;
+    for (int i = 0; i < 2; ++i) {
+      const double d = as[i] * as[i] + h, q = aw[i] / d;
+      s += q * q;
+      ds -= 2.0 * q * q / d;
+    }
+    if (s > 0.0) lo = h;
+    else hi = h;
+    double next = ds < 0.0 ? h - s / ds : 0.5 * (lo + hi);
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    // Relative 1e-15 in h: Newton converges quadratically there, so y is exact to round-off.
+    const bool done = std::abs(next - h) <= 1e-15 * next;
+    h = next;
+    if (done || !(hi > lo)) break;
+  }
+  std::array<double, 2> y{t * (as[0] * as[0] * ws[0] / (as[0] * as[0] + h)),
+                          t * (as[1] * as[1] * ws[1] / (as[1] * as[1] + h))};
+  // Land exactly on the boundary: the residual of h leaves y off it by round-off, and MPGP
+  // classifies blocks as active by ||E y|| >= 1 - 1e-12.
   const double norm = ellipseNorm(y, a);
   if (norm > 0.0) {
     y[0] /= norm;
@@ -173,7 +198,14 @@ double SeparableSet::maxFeasibleStep(const Vector& x, const Vector& p) const {
 
 void SeparableSet::splitGradient(const Vector& x, const Vector& g, Vector& phi, Vector& beta) const {
   // g^P = -P_T(-g) with T the tangent cone of Omega at x; phi = g on blocks where x is
-  // interior (0 on active blocks), beta = g^P - phi (ALGORITHMS.md 5).
+  // interior (0 on active blocks), beta = g^P - phi (ALGORITHMS.md 5). Per block type:
+  //  - bound at x = l: T = {d >= 0}, g^P = min(g, 0) (n = -e_i);
+  //  - smooth ellipse boundary: T = {d : n^T d <= 0}, g^P = g - min(n^T g, 0) n;
+  //  - point (a = 0): T = {0}, g^P = 0 (any g is balanced by the constraint);
+  //  - segment (one a_j = 0): fixed along the zero axis (g^P = 0 there) and an interval
+  //    along the other, free inside it and a bound at either end.
+  // A degenerate block is never "free": phi = 0 on its fixed axis, so CG and expansion
+  // steps never move it off its segment/point, and only its interval axis can be free.
   phi.assign(g);
   beta.putScalar(0.0);
   auto xv = x.getLocalViewHost(Tpetra::Access::ReadOnly);

@@ -1,9 +1,15 @@
 #include "tribos/qp/SmalseM.hpp"
 
+#include <Teuchos_ParameterList.hpp>
+#include <Teuchos_StandardParameterEntryValidators.hpp>
 #include <Tpetra_Vector.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+
+#include "tribos/core/Errors.hpp"
+#include "tribos/core/Parameters.hpp"
 
 namespace tribos::qp {
 
@@ -35,12 +41,24 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
   const auto map = mu.getMap();
   // Scale-free parameters: rho and M relative to ||A||, eta relative to ||c|| (= ||P h||).
   counters.normA = powerMethod(A, *map, s.powerIterations, 1e-4, &counters.operatorApplications);
-  const double normC = c.norm2();
-  if (normC == 0.0 || counters.normA == 0.0) {
+  double normC = c.norm2();
+  if (counters.normA == 0.0) {
+    // A = 0: the problem is linear and SMALSE-M's scaling is undefined. Only c = 0 with a
+    // feasible mu is a (trivially) solved problem.
+    omega.project(mu);
+    counters.converged = normC == 0.0;
+    return counters;
+  }
+  if (normC == 0.0) {
+    // c = 0: the solution is 0 when 0 lies in Omega (it does in Ker G). Otherwise the
+    // tolerances need another scale of the gradient: ||A|| ||P_Omega(0)||.
     mu.putScalar(0.0);
     omega.project(mu);
-    counters.converged = true;
-    return counters;
+    normC = counters.normA * mu.norm2();
+    if (normC == 0.0) {
+      counters.converged = true;
+      return counters;
+    }
   }
   double rho = s.rho * counters.normA;
   // ||A_rho|| = max(||PFP||, rho): PFP and rho Q act on the orthogonal spaces Ker G and Im G^T.
@@ -57,8 +75,13 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
     Q.applyQ(x, Qmu);
     return Qmu.norm2();
   };
-  // ||G mu|| is measured as ||A|| ||Q mu||: the units of g^P and P h, as in the paper's
-  // problem scaled to ||PFP|| = 1 (ALGORITHMS.md 4).
+  // ||G mu|| is measured as ||A|| ||Q mu|| in the Conventional outer test and in what is
+  // reported: the paper states its tests for the problem scaled to ||PFP|| = 1
+  // (ALGORITHMS.md 4), where ||Q mu|| <= eps ||P h|| compares a multiplier with a gap.
+  // Unscaled, ||A|| ||Q mu|| has the units of g^P and P h, so the test is invariant under
+  // A -> sA, c -> sc (the same minimiser) and under mu -> s mu, c -> s c. The inner bound
+  // M_k ||Q mu|| is consistent with it: M_k = M0 ||A|| carries the same factor. The Paper
+  // test ||Q mu|| <= eps M0 ||mu|| is scale-free as printed.
   const double normA = counters.normA;
   auto smalseConverged = [&](double gp, double gmu, const Vector& x) {
     if (gp > eps) return false;
@@ -116,6 +139,89 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
     }
   }
   return counters;
+}
+
+namespace {
+template <class T>
+Teuchos::RCP<Teuchos::EnhancedNumberValidator<T>> range(T min, T max) {
+  return Teuchos::rcp(new Teuchos::EnhancedNumberValidator<T>(min, max));
+}
+}  // namespace
+
+Teuchos::RCP<const Teuchos::ParameterList> SmalseM::getValidParameters() {
+  static const Teuchos::RCP<const Teuchos::ParameterList> valid = [] {
+    const SmalseSettings d;
+    const double big = std::numeric_limits<double>::max();
+    auto pl = Teuchos::rcp(new Teuchos::ParameterList("qp"));
+    auto& sm = pl->sublist("SMALSE-M", false, "semi-monotonic augmented Lagrangian (paper Section 5, ALGORITHMS.md 4)");
+    sm.set("tolerance", d.tolerance,
+           "epsilon > 0: stop when ||g^P|| <= epsilon ||c|| and the equality test holds", range(0.0, big));
+    sm.set("eta", d.eta, "eta > 0, relative to ||c||: cap of the inner stopping bound min(M_k ||G mu||, eta)",
+           range(0.0, big));
+    sm.set("rho", d.rho, "rho > 0, relative to ||A||: penalty of A_rho = A + rho Q", range(0.0, big));
+    sm.set("initial M", d.M0, "M_0 > 0, relative to ||A||: inner precision control M_k ||G mu||", range(0.0, big));
+    sm.set("beta", d.betaM,
+           "0 < beta_M < 1: M_{k+1} = beta_M M_k when the Lagrangian grew by less than rho/2 ||G mu||^2",
+           range(0.0, 1.0));
+    sm.set("max outer iterations", d.maxOuterIterations, "k_max >= 1: cap on outer iterations", range(1, 1 << 30));
+    Teuchos::setStringToIntegralParameter<int>(
+        "equality test", d.equalityTest,
+        "outer test on ||G mu|| = ||Q mu||: \"Conventional\" (||A|| ||Q mu|| <= epsilon ||c||) or \"Paper\" "
+        "(||Q mu|| <= epsilon M_0 ||mu||)",
+        Teuchos::tuple<std::string>("Conventional", "Paper"), &sm);
+    sm.set("power iterations", d.powerIterations, ">= 1: products with A in the power method for ||A||",
+           range(1, 1 << 30));
+    sm.set("rho growth", d.rhoGrowth,
+           ">= 1: rho is multiplied by it after an outer iteration that reduced ||G mu|| by less than the target "
+           "ratio (1: fixed rho, the paper's algorithm)",
+           range(1.0, big));
+    sm.set("rho target ratio", d.rhoTargetRatio, "in (0, 1]: the reduction of ||G mu|| that rho growth asks for",
+           range(0.0, 1.0));
+    sm.set("inner floor", d.innerFloor,
+           "in [0, 1]: inner solves stop at ||g^P|| <= (inner floor) epsilon ||c|| at the latest", range(0.0, 1.0));
+    auto& mp = pl->sublist("MPGP", false, "inner solver for bounds and ellipses (ALGORITHMS.md 5)");
+    mp.set("step scale", d.mpgp.stepScale, "in (0, 2): alpha_bar = (step scale) / ||A_rho||", range(0.0, 2.0));
+    mp.set("Gamma", d.mpgp.gamma, "Gamma > 0: proportioning test ||beta||^2 <= Gamma^2 phi~^T phi", range(0.0, big));
+    mp.set("max iterations", d.mpgp.maxIterations, ">= 1: cap on MPGP iterations per inner solve", range(1, 1 << 30));
+    mp.set("optimal expansion", d.mpgp.optimalExpansion,
+           "expansion steps try the exact minimiser along the free gradient (projected, monotone safeguard) before "
+           "the fixed alpha_bar step");
+    return Teuchos::rcp_const_cast<const Teuchos::ParameterList>(pl);
+  }();
+  return valid;
+}
+
+SmalseSettings SmalseM::settingsFromParameters(Teuchos::ParameterList& pl) {
+  core::validateAndSetDefaults(pl, *getValidParameters(), "tribos::qp::SmalseM parameters");
+  const auto& sm = pl.sublist("SMALSE-M");
+  const auto& mp = pl.sublist("MPGP");
+  SmalseSettings s;
+  s.tolerance = sm.get<double>("tolerance");
+  s.eta = sm.get<double>("eta");
+  s.rho = sm.get<double>("rho");
+  s.M0 = sm.get<double>("initial M");
+  s.betaM = sm.get<double>("beta");
+  s.maxOuterIterations = sm.get<int>("max outer iterations");
+  s.equalityTest = sm.get<std::string>("equality test");
+  s.powerIterations = sm.get<int>("power iterations");
+  s.rhoGrowth = sm.get<double>("rho growth");
+  s.rhoTargetRatio = sm.get<double>("rho target ratio");
+  s.innerFloor = sm.get<double>("inner floor");
+  s.mpgp.stepScale = mp.get<double>("step scale");
+  s.mpgp.gamma = mp.get<double>("Gamma");
+  s.mpgp.maxIterations = mp.get<int>("max iterations");
+  s.mpgp.optimalExpansion = mp.get<bool>("optimal expansion");
+  // The validators' ranges are closed; the open ends are checked here.
+  const std::string where = "tribos::qp::SmalseM parameters: ";
+  core::requireInput(s.tolerance > 0.0, where + "SMALSE-M/tolerance must be > 0");
+  core::requireInput(s.eta > 0.0, where + "SMALSE-M/eta must be > 0");
+  core::requireInput(s.rho > 0.0, where + "SMALSE-M/rho must be > 0");
+  core::requireInput(s.M0 > 0.0, where + "SMALSE-M/initial M must be > 0");
+  core::requireInput(s.betaM > 0.0 && s.betaM < 1.0, where + "SMALSE-M/beta must lie in (0, 1)");
+  core::requireInput(s.rhoTargetRatio > 0.0, where + "SMALSE-M/rho target ratio must be > 0");
+  core::requireInput(s.mpgp.stepScale > 0.0 && s.mpgp.stepScale < 2.0, where + "MPGP/step scale must lie in (0, 2)");
+  core::requireInput(s.mpgp.gamma > 0.0, where + "MPGP/Gamma must be > 0");
+  return s;
 }
 
 }  // namespace tribos::qp

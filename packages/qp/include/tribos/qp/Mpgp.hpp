@@ -35,9 +35,11 @@ struct MpgpCounters {
 class Mpgp {
  public:
   explicit Mpgp(MpgpSettings settings = {}) : settings_(settings) {}
-  /// Minimises from x (projected onto Omega first) until stop(||g^P||, x) returns true or
-  /// maxIterations. `normA` >= ||A|| (the power method gives it). On return x is the
-  /// iterate and g = A x - b.
+  /// Minimises from x (projected onto Omega first) until stop(||g^P||, x) returns true
+  /// (tested at the start too: converged, 0 iterations) or maxIterations (converged =
+  /// false). `normA` >= ||A|| (the power method's estimate, slightly enlarged);
+  /// alpha_bar = stepScale / normA. On return x is the iterate and g = A x - b. Every
+  /// product with A is counted; iterations = cgSteps + expansionSteps + proportioningSteps.
   MpgpCounters solve(const SymmetricOperator& A, const Vector& b, const SeparableSet& omega, double normA,
                      Vector& x, Vector& g, const std::function<bool(double, const Vector&)>& stop) const;
 
@@ -45,9 +47,12 @@ class Mpgp {
   MpgpSettings settings_;
 };
 
-/// ||A|| by the power method from a deterministic start: `iterations` products with A (or
-/// fewer when the Rayleigh quotient changes by less than `tolerance`). Returns the estimate
-/// and adds the products made to *applications.
+/// ||A|| by the power method from a deterministic start (a function of the global index, so
+/// the estimate does not depend on the number of ranks): `iterations` products with A (or
+/// fewer when the estimate changes by less than `tolerance`, relative). Returns the norm
+/// ratio ||A x|| / ||x|| of the last iterate, a lower bound of ||A|| (callers that need an
+/// upper bound for the MPGP step enlarge it; SmalseM uses 1.02 times it), and adds the
+/// products made to *applications (may be null).
 double powerMethod(const SymmetricOperator& A, const Map& map, int iterations, double tolerance,
                    long long* applications);
 

@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include <Teuchos_RCP.hpp>
+
 #include "tribos/qp/Mpgp.hpp"
 
 namespace tribos::qp {
@@ -20,19 +22,24 @@ struct SmalseProgress {
   int outerIteration = 0;
   int innerIterations = 0;          ///< MPGP iterations of this outer iteration
   double projectedGradient = 0.0;   ///< ||g^P|| / ||c||
-  double equalityResidual = 0.0;    ///< ||G mu|| / ||c||
+  double equalityResidual = 0.0;    ///< ||A|| ||Q mu|| / ||c|| (the scale-free ||G mu||)
   double M = 0.0;                   ///< M_k relative to ||A||
   long long operatorApplications = 0;  ///< products with A so far
 };
 
 struct SmalseSettings {
-  double tolerance = 1e-5;     ///< epsilon: stop when ||g^P|| <= eps ||c|| and ||G mu|| <= eps ||c||
+  /// epsilon: stop when ||g^P|| <= eps ||c|| and the equality test holds. ||G mu|| is
+  /// measured as ||Q mu|| (rows of G orthonormal) and, to be scale-free, enters the
+  /// Conventional test and the reports multiplied by ||A||: the paper's tests hold for the
+  /// problem scaled to ||PFP|| = 1.
+  double tolerance = 1e-5;
   double eta = 1.0;            ///< eta, relative to ||c|| (the paper: eta = ||P h||)
   double rho = 1.0;            ///< rho, relative to ||A|| (the paper: rho = ||P F P||)
   double M0 = 1e-6;            ///< M_0 > 0, relative to ||A|| (M has the units of A); paper: 1e-6
   double betaM = 0.1;          ///< M_{k+1} = betaM M_k when the Lagrangian does not grow enough
   int maxOuterIterations = 100;
-  /// "Conventional": ||G mu|| <= eps ||c||;  "Paper": ||G mu|| <= eps M_0 ||mu|| ||c||.
+  /// "Conventional": ||A|| ||Q mu|| <= eps ||c||;  "Paper": ||Q mu|| <= eps M_0 ||mu||
+  /// (M_0 relative, so the paper's eps M_0 = 1e-11 needs a tolerance above round-off).
   std::string equalityTest = "Conventional";
   MpgpSettings mpgp;
   int powerIterations = 50;    ///< for ||A||
@@ -47,13 +54,14 @@ struct SmalseCounters {
   int outerIterations = 0, innerIterations = 0, cgSteps = 0, expansionSteps = 0, proportioningSteps = 0;
   long long operatorApplications = 0;  ///< products with A (each = one F application in T-FETI), incl. power method
   double projectedGradient = 0.0;      ///< ||g^P|| / ||c|| at return
-  double equalityResidual = 0.0;       ///< ||G mu|| / ||c|| at return
+  double equalityResidual = 0.0;       ///< ||A|| ||Q mu|| / ||c|| at return
   double normA = 0.0;
   bool converged = false;
 };
 
-/// Called after every outer iteration with (k, mu, ||g^P||/||c||, ||G mu||/||c||, M_k), after
-/// the multiplier update. It may change Omega (the Coulomb slip bound update g := lambda_nu).
+/// Called after every outer iteration with (k, mu, ||g^P||/||c||, ||A|| ||Q mu||/||c||,
+/// M_k/||A||), after the multiplier and M updates (the multiplier is not updated at an
+/// iteration that met SMALSE-M's criteria). It may change Omega (the Coulomb slip bound update g := lambda_nu).
 /// It returns true to veto convergence at this iteration (the slip bound moved by more than
 /// epsilon): SMALSE-M stops only when its own criteria hold and the hook returned false.
 using OuterHook = std::function<bool(int, const Vector&, double, double, double)>;
@@ -62,9 +70,24 @@ class SmalseM {
  public:
   explicit SmalseM(SmalseSettings settings = {}) : settings_(settings) {}
   /// Solves from mu (projected on Omega first). A = P F P must map into Ker G; Q projects
-  /// onto Im G^T. Omega may be changed by the hook between outer iterations.
+  /// onto Im G^T. Omega may be changed by the hook between outer iterations; the next inner
+  /// solve starts from mu projected onto the new Omega. Scale-free parameters: rho and M_0
+  /// are relative to ||A|| (power method, its products counted), eta and epsilon to ||c||
+  /// (when c = 0, ||A|| ||P_Omega(0)|| is the scale, and mu = 0 is returned at once if 0 is in
+  /// Omega). A = 0 returns converged = false unless c = 0.
   SmalseCounters solve(const SymmetricOperator& A, const EqualityProjector& Q, const Vector& c, SeparableSet& omega,
                        Vector& mu, const OuterHook& hook = nullptr) const;
+
+  /// The valid parameters (STYLE.md 3): sublist "SMALSE-M" (tolerance, eta, rho, initial M,
+  /// beta, max outer iterations, equality test, power iterations, rho growth, rho target
+  /// ratio, inner floor) and sublist "MPGP" (step scale, Gamma, max iterations, optimal
+  /// expansion), each with a doc string giving the symbol and its range. The defaults are
+  /// those of SmalseSettings / MpgpSettings (the paper's values where it gives them).
+  static Teuchos::RCP<const Teuchos::ParameterList> getValidParameters();
+  /// Validates `pl` against getValidParameters() (unknown or mistyped names and values out
+  /// of range throw core::InputError), fills in the defaults and returns the settings. The
+  /// monitor is left empty.
+  static SmalseSettings settingsFromParameters(Teuchos::ParameterList& pl);
 
  private:
   SmalseSettings settings_;

@@ -1,0 +1,287 @@
+// qp::SmalseM (paper Section 5, ALGORITHMS.md 4) on small QPs in the T-FETI shape
+// (A = P M P, c = P b, Q = G^T (G G^T)^{-1} G formed densely) with bounds, ellipses and an
+// equality G x = 0 (G random 2 x n): against the exact enumeration (bounds only), the KKT
+// conditions with least-squares multipliers and an ADMM reference (bounds + ellipses), and
+// with a hook that moves the semi-axes (the Coulomb slip bound g := x_normal).
+#include <gtest/gtest.h>
+
+#include <Teuchos_ParameterList.hpp>
+
+#include <cmath>
+#include <random>
+
+#include "DenseQp.hpp"
+#include "tribos/core/Errors.hpp"
+#include "tribos/qp/SmalseM.hpp"
+
+using namespace tribos;
+using test::Dense;
+
+namespace {
+/// Random 2 x n rows with G x0 = 0 for a given x0 (so that Omega meets Ker G).
+Dense randomRowsVanishingAt(const std::vector<double>& x0, std::mt19937& gen) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const size_t n = x0.size();
+  Dense G(2, std::vector<double>(n));
+  const double xx = test::norm2(x0) * test::norm2(x0);
+  for (auto& row : G) {
+    for (double& v : row) v = u(gen);
+    if (xx == 0.0) continue;
+    double d = 0.0;
+    for (size_t i = 0; i < n; ++i) d += row[i] * x0[i];
+    for (size_t i = 0; i < n; ++i) row[i] -= d / xx * x0[i];
+  }
+  return G;
+}
+
+qp::SmalseSettings paperSettings() {
+  qp::SmalseSettings s;  // the defaults: rho = ||A||, M0 = 1e-6 ||A||, beta_M = 0.1, eta = ||c||
+  s.tolerance = 1e-10;
+  s.powerIterations = 100;
+  return s;
+}
+qp::SmalseSettings tunedSettings() {
+  qp::SmalseSettings s = paperSettings();  // the solver stack's defaults
+  s.rho = 10.0;
+  s.M0 = 1.0;
+  s.betaM = 0.5;
+  return s;
+}
+
+struct Run {
+  qp::SmalseCounters counters;
+  std::vector<double> x;
+  int hookCalls = 0;
+};
+
+Run runSmalse(const test::EqualityQp& qp, const test::BlockSet& blocks, const qp::SmalseSettings& settings) {
+  const int n = static_cast<int>(qp.b.size());
+  auto map = test::makeMap(n, test::selfComm());
+  auto omega = blocks.build(*map);
+  test::DenseOperator op(qp.A);
+  test::DenseProjector projector(qp.Q);
+  qp::Vector cv(map), mu(map);
+  test::scatter(qp.c, cv);
+  Run run;
+  run.counters = qp::SmalseM(settings).solve(op, projector, cv, omega, mu,
+                                             [&](int k, const qp::Vector&, double, double, double) {
+                                               EXPECT_EQ(k, run.hookCalls);
+                                               ++run.hookCalls;
+                                               return false;
+                                             });
+  EXPECT_EQ(run.counters.operatorApplications, op.applications);
+  EXPECT_EQ(run.counters.innerIterations,
+            run.counters.cgSteps + run.counters.expansionSteps + run.counters.proportioningSteps);
+  EXPECT_EQ(run.hookCalls, run.counters.outerIterations);
+  EXPECT_TRUE(run.counters.converged);
+  EXPECT_LE(run.counters.projectedGradient, settings.tolerance);
+  run.x = test::gather(mu);
+  return run;
+}
+}  // namespace
+
+TEST(SmalseM, matchesEnumerationWithAnEqualityConstraint) {
+  for (unsigned seed = 1; seed <= 16; ++seed) {
+    std::mt19937 gen(seed);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    const int n = 6 + seed % 4;
+    const Dense M = test::randomSpd(n, 30.0, seed + 200);
+    std::vector<double> b(n);
+    for (double& v : b) v = u(gen);
+    test::BlockSet blocks;
+    for (int i = 0; i < n; ++i)
+      if (u(gen) < 0.3) {
+        blocks.boundIndex.push_back(i);
+        blocks.lower.push_back(0.2 * u(gen));
+      }
+    std::vector<double> x0(n, 0.0);
+    blocks.project(x0);
+    const auto qp = test::makeEqualityQp(M, randomRowsVanishingAt(x0, gen), b);
+    // On Ker G, 1/2 x^T P M P x - c^T x = 1/2 x^T M x - b^T x: enumerate with the equality.
+    const auto exact = test::enumerateActiveSets(M, b, blocks.boundIndex, blocks.lower, qp.G);
+    ASSERT_EQ(exact.size(), static_cast<size_t>(n));
+    const auto run = runSmalse(qp, blocks, seed % 2 ? paperSettings() : tunedSettings());
+    EXPECT_LE(test::maxDifference(run.x, exact), 1e-8) << "seed " << seed;
+  }
+}
+
+TEST(SmalseM, satisfiesKktAndMatchesAdmmWithBoundsEllipsesAndEquality) {
+  long long applications = 0;
+  int outer = 0;
+  for (unsigned seed = 1; seed <= 16; ++seed) {
+    std::mt19937 gen(seed + 50);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    std::uniform_int_distribution<int> size(10, 24);
+    const int n = size(gen);
+    const double condition = seed % 2 ? 30.0 : 300.0;
+    const Dense M = test::randomSpd(n, condition, seed + 300);
+    std::vector<double> b(n);
+    for (double& v : b) v = 3.0 * u(gen);
+    const auto blocks = test::randomBlocks(n, gen, {1.5, 2, 1, 1, 0.3, 0.15}, 30.0);
+    std::vector<double> x0(n);
+    for (double& v : x0) v = u(gen);
+    blocks.project(x0);
+    const auto qp = test::makeEqualityQp(M, randomRowsVanishingAt(x0, gen), b);
+    auto settings = seed % 4 < 2 ? paperSettings() : tunedSettings();
+    // The Paper test ||Q mu|| <= eps M0 ||mu|| needs eps M0 above round-off: with M0 = 1.
+    if (seed % 3 == 0) {
+      settings = tunedSettings();
+      settings.equalityTest = "Paper";
+    }
+    const auto run = runSmalse(qp, blocks, settings);
+    const double scale = test::norm2(qp.c);
+    const auto kkt = test::checkKkt(qp.A, qp.c, run.x, blocks, qp.G);
+    EXPECT_LE(kkt.stationarity, 1e-8 * scale) << "seed " << seed;
+    EXPECT_LE(kkt.sign, 1e-8 * scale) << "seed " << seed;
+    EXPECT_LE(kkt.infeasibility, 1e-12) << "seed " << seed;
+    EXPECT_LE(kkt.equality, 1e-8) << "seed " << seed;
+    const auto reference = test::admm(M, b, blocks, qp.G, std::sqrt(condition));
+    EXPECT_LE(test::maxDifference(run.x, reference), 1e-8 * std::max(1.0, test::normInf(reference))) << "seed " << seed;
+    applications += run.counters.operatorApplications;
+    outer += run.counters.outerIterations;
+  }
+  RecordProperty("operator_applications", static_cast<int>(applications));
+  RecordProperty("outer_iterations", outer);
+}
+
+TEST(SmalseM, hookMovingTheSemiAxesConvergesToAFixedPoint) {
+  // Contact nodes (normal, t1, t2): x_nu >= l, and the tangential pair in the ellipse with
+  // semi-axes F_j (x_nu - l) about c (the Coulomb slip bound g := lambda_nu, paper (20)),
+  // plus free entries. The hook updates the semi-axes after every outer iteration and vetoes
+  // convergence while they move; it starts from g = 0 (points: degenerate ellipses).
+  const std::array<double, 2> F{0.3, 0.15};
+  int vetoes = 0, slipping = 0, pressed = 0;
+  for (unsigned seed = 1; seed <= 8; ++seed) {
+    std::mt19937 gen(seed + 900);
+    std::uniform_real_distribution<double> u(-1.0, 1.0), unit(0.0, 1.0);
+    const int nodes = 3, nFree = 4, n = 3 * nodes + nFree;
+    const Dense M = test::randomSpd(n, 50.0, seed + 400);
+    test::BlockSet blocks;
+    std::vector<double> b(n), x0(n, 0.0);
+    for (int k = 0; k < nodes; ++k) {
+      const int i = 3 * k;
+      blocks.boundIndex.push_back(i);
+      blocks.lower.push_back(-0.2 * unit(gen));
+      blocks.ellipses.push_back({i + 1, i + 2, {0.1 * u(gen), 0.1 * u(gen)}, {0.0, 0.0}});
+      b[i] = 20.0 + 5.0 * unit(gen);  // pressed: x_nu > l
+      b[i + 1] = 8.0 * u(gen);        // pulled tangentially: slip
+      b[i + 2] = 8.0 * u(gen);
+      x0[i] = blocks.lower.back();
+      x0[i + 1] = blocks.ellipses.back().c[0];
+      x0[i + 2] = blocks.ellipses.back().c[1];
+    }
+    for (int i = 3 * nodes; i < n; ++i) b[i] = u(gen);
+    const auto qp = test::makeEqualityQp(M, randomRowsVanishingAt(x0, gen), b);
+
+    auto map = test::makeMap(n, test::selfComm());
+    auto omega = blocks.build(*map);
+    test::DenseOperator op(qp.A);
+    test::DenseProjector projector(qp.Q);
+    qp::Vector cv(map), mu(map);
+    test::scatter(qp.c, cv);
+    int calls = 0;
+    auto hook = [&](int, const qp::Vector& current, double, double, double) {
+      ++calls;
+      const auto x = test::gather(current);
+      double change = 0.0, size = 0.0;
+      for (int k = 0; k < nodes; ++k) {
+        const double g = std::max(x[3 * k] - blocks.lower[k], 0.0);
+        const std::array<double, 2> a{F[0] * g, F[1] * g};
+        change = std::max(change, std::abs(a[0] - blocks.ellipses[k].a[0]) / F[0]);
+        size = std::max(size, g);
+        blocks.ellipses[k].a = a;
+        omega.setSemiAxes(k, a);
+      }
+      const bool moved = change > 1e-10 * size;
+      vetoes += moved;
+      return moved;
+    };
+    const auto settings = seed % 2 ? paperSettings() : tunedSettings();
+    const auto counters = qp::SmalseM(settings).solve(op, projector, cv, omega, mu, hook);
+    ASSERT_TRUE(counters.converged) << "seed " << seed;
+    EXPECT_EQ(calls, counters.outerIterations);
+    EXPECT_EQ(counters.operatorApplications, op.applications);
+    EXPECT_EQ(counters.innerIterations, counters.cgSteps + counters.expansionSteps + counters.proportioningSteps);
+    const auto x = test::gather(mu);
+    // A fixed point: the semi-axes are F (x_nu - l) of the solution, and x solves the
+    // problem with those semi-axes (KKT and ADMM).
+    for (int k = 0; k < nodes; ++k) {
+      const double g = x[3 * k] - blocks.lower[k];
+      pressed += g > 0.0;
+      EXPECT_NEAR(blocks.ellipses[k].a[0], F[0] * g, 1e-9 * std::abs(g));
+      const auto& e = blocks.ellipses[k];
+      slipping += std::hypot((x[e.i] - e.c[0]) / e.a[0], (x[e.j] - e.c[1]) / e.a[1]) > 1.0 - 1e-10;
+    }
+    const double scale = test::norm2(qp.c);
+    // x solved the problem with the semi-axes before the last update, which moved them by
+    // up to 1e-10 max g (the fixed-point test), i.e. relatively more on lightly pressed
+    // nodes: activity and feasibility are judged at that level.
+    const auto kkt = test::checkKkt(qp.A, qp.c, x, blocks, qp.G, 1e-6);
+    EXPECT_LE(kkt.stationarity, 1e-8 * scale) << "seed " << seed;
+    EXPECT_LE(kkt.sign, 1e-8 * scale) << "seed " << seed;
+    EXPECT_LE(kkt.infeasibility, 1e-9) << "seed " << seed;
+    EXPECT_LE(kkt.equality, 1e-8) << "seed " << seed;
+    const auto reference = test::admm(M, b, blocks, qp.G, std::sqrt(50.0));
+    EXPECT_LE(test::maxDifference(x, reference), 1e-8 * std::max(1.0, test::normInf(reference))) << "seed " << seed;
+  }
+  EXPECT_GT(vetoes, 8);    // the hook did hold convergence back
+  EXPECT_GT(slipping, 4);  // and the friction constraints matter
+  EXPECT_GT(pressed, 16);
+}
+
+TEST(SmalseM, zeroRightHandSide) {
+  const int n = 6;
+  const Dense M = test::randomSpd(n, 10.0, 5);
+  std::mt19937 gen(5);
+  test::BlockSet blocks;
+  blocks.boundIndex = {0, 3};
+  blocks.lower = {-0.5, 0.25};  // 0 is not in Omega
+  std::vector<double> x0(n, 0.0);
+  blocks.project(x0);
+  const auto qp = test::makeEqualityQp(M, randomRowsVanishingAt(x0, gen), std::vector<double>(n, 0.0));
+  const auto run = runSmalse(qp, blocks, tunedSettings());
+  const auto exact = test::enumerateActiveSets(M, qp.b, blocks.boundIndex, blocks.lower, qp.G);
+  EXPECT_LE(test::maxDifference(run.x, exact), 1e-8);
+  // With 0 in Omega the answer is 0 at once.
+  blocks.lower = {-0.5, -0.25};
+  const auto zero = runSmalse(qp, blocks, tunedSettings());
+  EXPECT_EQ(test::normInf(zero.x), 0.0);
+  EXPECT_EQ(zero.counters.outerIterations, 0);
+}
+
+TEST(SmalseM, parametersAreDocumentedAndValidated) {
+  const auto valid = qp::SmalseM::getValidParameters();
+  for (const char* name : {"SMALSE-M", "MPGP"}) {
+    ASSERT_TRUE(valid->isSublist(name));
+    const auto& sub = valid->sublist(name);
+    for (auto it = sub.begin(); it != sub.end(); ++it)
+      EXPECT_FALSE(sub.entry(it).docString().empty()) << name << "/" << sub.name(it);
+  }
+  // An empty list gives the defaults of SmalseSettings.
+  Teuchos::ParameterList empty;
+  const auto defaults = qp::SmalseM::settingsFromParameters(empty);
+  const qp::SmalseSettings reference;
+  EXPECT_EQ(defaults.rho, reference.rho);
+  EXPECT_EQ(defaults.M0, reference.M0);
+  EXPECT_EQ(defaults.betaM, reference.betaM);
+  EXPECT_EQ(defaults.equalityTest, reference.equalityTest);
+  EXPECT_EQ(defaults.mpgp.stepScale, reference.mpgp.stepScale);
+  // Values are read, and out-of-range or unknown names are errors.
+  Teuchos::ParameterList pl;
+  pl.sublist("SMALSE-M").set("rho", 10.0);
+  pl.sublist("SMALSE-M").set("equality test", "Paper");
+  pl.sublist("MPGP").set("Gamma", 2.0);
+  const auto s = qp::SmalseM::settingsFromParameters(pl);
+  EXPECT_EQ(s.rho, 10.0);
+  EXPECT_EQ(s.equalityTest, "Paper");
+  EXPECT_EQ(s.mpgp.gamma, 2.0);
+  Teuchos::ParameterList bad;
+  bad.sublist("SMALSE-M").set("beta", 1.0);
+  EXPECT_THROW(qp::SmalseM::settingsFromParameters(bad), std::exception);
+  Teuchos::ParameterList unknown;
+  unknown.sublist("MPGP").set("step size", 1.0);
+  EXPECT_THROW(qp::SmalseM::settingsFromParameters(unknown), std::exception);
+  Teuchos::ParameterList step;
+  step.sublist("MPGP").set("step scale", 2.0);
+  EXPECT_THROW(qp::SmalseM::settingsFromParameters(step), core::InputError);
+}
