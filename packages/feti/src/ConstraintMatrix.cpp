@@ -2,9 +2,8 @@
 /// B = [N; T1; T2; B_e; B_d] and c (paper Sections 3-4, ALGORITHMS.md 2). Every row is
 /// built once as a list of (subdomain, local dof, value) entries, given its owner rank and
 /// a sort key, then all rows are numbered by (owner, key) and scattered into the
-/// per-subdomain blocks. Cost: O(#copies + #rows log #rows) plus O(#slave log #master)
-/// for the contact pairing (a k-d tree), so Table 1's largest cell (125k rows) takes a few
-/// tens of milliseconds.
+/// per-subdomain blocks. Cost: O(#copies + #rows log #rows) plus the contact search
+/// (mesh/ContactSearch.hpp: O(#slave log #master faces)).
 #include "tribos/feti/ConstraintMatrix.hpp"
 
 #include <algorithm>
@@ -15,6 +14,7 @@
 #include <tuple>
 
 #include "tribos/core/Errors.hpp"
+#include "tribos/mesh/ContactSearch.hpp"
 
 namespace tribos::feti {
 
@@ -64,94 +64,6 @@ struct Row {
   int contact = -1;  ///< index into the contact nodes (N rows only)
 };
 
-/// Vertices of the faces of a side set, ascending, unique.
-std::vector<LO> sideSetNodes(const mesh::Mesh& mesh, const mesh::SideSet& set) {
-  std::vector<LO> nodes;
-  nodes.reserve(3 * set.elements.size());
-  for (size_t f = 0; f < set.elements.size(); ++f)
-    for (int v : mesh::kTetFaceVertices[set.sides[f]]) nodes.push_back(mesh.tets[set.elements[f]][v]);
-  std::sort(nodes.begin(), nodes.end());
-  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
-  return nodes;
-}
-
-/// Sum over the faces of a side set of their outward normals (length = twice the face
-/// area, so the sum is area-weighted), per node; zero off the set.
-std::vector<Vec3> outerNormals(const mesh::Mesh& mesh, const mesh::SideSet& set) {
-  std::vector<Vec3> normal(mesh.numNodes(), Vec3{0.0, 0.0, 0.0});
-  for (size_t f = 0; f < set.elements.size(); ++f) {
-    const auto& tet = mesh.tets[set.elements[f]];
-    const Vec3 n = mesh.faceNormal(set.elements[f], set.sides[f]);
-    for (int v : mesh::kTetFaceVertices[set.sides[f]])
-      for (int d = 0; d < 3; ++d) normal[tet[v]][d] += n[d];
-  }
-  return normal;
-}
-
-/// Static k-d tree over the master-surface nodes for the nearest-node search. Unlike a
-/// hash grid its cost does not depend on the search distance (which the user sets, from
-/// 0 to far more than the mesh spacing): O(log n) per query. Ties in distance go to the
-/// lower node id, so the pairing is deterministic.
-class NearestNode {
- public:
-  NearestNode(const mesh::Mesh& mesh, std::vector<LO> nodes)
-      : coords_(mesh.coords), nodes_(std::move(nodes)), axis_(nodes_.size(), 0) {
-    build(0, nodes_.size());
-  }
-
-  /// The nearest node within `radius` (distance <= radius), or -1; and its distance.
-  std::pair<LO, double> nearest(const Vec3& x, double radius) const {
-    LO best = -1;
-    double best2 = radius * radius;
-    search(0, nodes_.size(), x, best, best2);
-    return {best, best < 0 ? std::numeric_limits<double>::infinity() : std::sqrt(best2)};
-  }
-
- private:
-  void build(size_t lo, size_t hi) {
-    if (hi - lo <= 1) return;
-    // Split on the widest extent of the range at its median.
-    Vec3 low{}, high{};
-    for (int d = 0; d < 3; ++d) low[d] = high[d] = coords_[nodes_[lo]][d];
-    for (size_t i = lo; i < hi; ++i)
-      for (int d = 0; d < 3; ++d) {
-        low[d] = std::min(low[d], coords_[nodes_[i]][d]);
-        high[d] = std::max(high[d], coords_[nodes_[i]][d]);
-      }
-    int axis = 0;
-    for (int d = 1; d < 3; ++d)
-      if (high[d] - low[d] > high[axis] - low[axis]) axis = d;
-    const size_t mid = lo + (hi - lo) / 2;
-    std::nth_element(nodes_.begin() + lo, nodes_.begin() + mid, nodes_.begin() + hi,
-                     [&](LO a, LO b) { return coords_[a][axis] < coords_[b][axis]; });
-    axis_[mid] = static_cast<signed char>(axis);
-    build(lo, mid);
-    build(mid + 1, hi);
-  }
-
-  void search(size_t lo, size_t hi, const Vec3& x, LO& best, double& best2) const {
-    if (lo >= hi) return;
-    const size_t mid = lo + (hi - lo) / 2;
-    const LO n = nodes_[mid];
-    const Vec3 diff = minus(coords_[n], x);
-    const double d2 = dot(diff, diff);
-    if (d2 < best2 || (d2 == best2 && (best < 0 || n < best))) {
-      best = n;
-      best2 = d2;
-    }
-    if (hi - lo == 1) return;
-    const double along = x[axis_[mid]] - coords_[n][axis_[mid]];
-    // Nodes left of mid have coordinate <= the split value, right of it >= (nth_element).
-    const bool leftFirst = along < 0.0;
-    search(leftFirst ? lo : mid + 1, leftFirst ? mid : hi, x, best, best2);
-    if (along * along <= best2) search(leftFirst ? mid + 1 : lo, leftFirst ? hi : mid, x, best, best2);
-  }
-
-  const std::vector<std::array<double, 3>>& coords_;
-  std::vector<LO> nodes_;
-  std::vector<signed char> axis_;
-};
-
 /// t1 = `direction` projected on the plane orthogonal to `normal`, normalised; when the
 /// direction is (nearly) parallel to the normal, the first of x, y, z that is not.
 Vec3 tangent(const Vec3& direction, const Vec3& normal) {
@@ -163,6 +75,43 @@ Vec3 tangent(const Vec3& direction, const Vec3& normal) {
     if (tl > 1e-6 * length) return scaled(t, 1.0 / tl);
   }
   return {1.0, 0.0, 0.0};  // unreachable for a unit normal: one axis is at most 55 degrees off the plane
+}
+
+/// Prescribed displacement components: per (node, component) whether it is prescribed,
+/// its value and the condition that prescribed it (for messages).
+struct Prescribed {
+  std::vector<char> fixed;     ///< 3 * numNodes
+  std::vector<double> value;   ///< 3 * numNodes
+  bool any(LO node) const { return fixed[3 * node] || fixed[3 * node + 1] || fixed[3 * node + 2]; }
+  bool all(LO node) const { return fixed[3 * node] && fixed[3 * node + 1] && fixed[3 * node + 2]; }
+};
+
+Prescribed prescribedComponents(const mesh::Mesh& mesh, const ConstraintSpec& spec) {
+  std::vector<DisplacementCondition> conditions;
+  for (const auto& name : spec.dirichletNodeSets)
+    conditions.push_back({"Dirichlet Node Sets (" + name + ")", name, {true, true, true}, {0.0, 0.0, 0.0}});
+  conditions.insert(conditions.end(), spec.displacementConditions.begin(), spec.displacementConditions.end());
+  const size_t n3 = 3 * static_cast<size_t>(mesh.numNodes());
+  Prescribed p{std::vector<char>(n3, 0), std::vector<double>(n3, 0.0)};
+  std::vector<int> by(n3, -1);
+  for (size_t k = 0; k < conditions.size(); ++k) {
+    const auto& condition = conditions[k];
+    for (double v : condition.value)
+      core::requireInput(std::isfinite(v), "Boundary/" + condition.name + ": Displacement is not finite");
+    for (LO n : mesh.nodeSet(condition.nodeSet).nodes)
+      for (int c = 0; c < 3; ++c) {
+        if (!condition.components[c]) continue;
+        const size_t i = 3 * static_cast<size_t>(n) + c;
+        if (by[i] >= 0 && p.value[i] != condition.value[c])
+          throw core::InputError("Boundary: node " + std::to_string(n + 1) + " at " + str(mesh.coords[n]) + " gets u_" +
+                                 "xyz"[c] + " = " + str(p.value[i]) + " from " + conditions[by[i]].name + " and " +
+                                 str(condition.value[c]) + " from " + condition.name);
+        p.fixed[i] = 1;
+        p.value[i] = condition.value[c];
+        by[i] = static_cast<int>(k);
+      }
+  }
+  return p;
 }
 }  // namespace
 
@@ -188,9 +137,7 @@ ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decom
   }
   auto numCopies = [&](LO node) { return copyPtr[node + 1] - copyPtr[node]; };
 
-  std::vector<char> clamped(numNodes, 0);
-  for (const auto& name : spec.dirichletNodeSets)
-    for (LO n : mesh.nodeSet(name).nodes) clamped[n] = 1;
+  const Prescribed prescribed = prescribedComponents(mesh, spec);
 
   // A row belongs to the rank that owns the lowest subdomain it touches (header).
   auto ownerOf = [&](const std::vector<Entry>& entries) {
@@ -202,130 +149,116 @@ ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decom
   std::vector<Row> rows;
   ConstraintMatrix B;
 
-  // (2) Contact rows: node-to-node, slave -> master (paper Section 3, ALGORITHMS.md 2,
-  // DESIGN.md conventions).
+  // (2) Contact rows, node-to-surface: slave node minus the master displacement
+  // interpolated at its projection (paper Section 3, the transfer mapping chi; DESIGN.md).
   core::requireInput(spec.slaveSideSet.empty() == spec.masterSideSet.empty(),
                      "contact: give both the slave and the master side set, or neither (slave \"" +
                          spec.slaveSideSet + "\", master \"" + spec.masterSideSet + "\")");
   if (!spec.slaveSideSet.empty()) {
-    const auto& slaveSet = mesh.sideSet(spec.slaveSideSet);
-    const auto& masterSet = mesh.sideSet(spec.masterSideSet);
-    const auto slaves = sideSetNodes(mesh, slaveSet);
-    const NearestNode masters(mesh, sideSetNodes(mesh, masterSet));
-    const auto slaveNormal = outerNormals(mesh, slaveSet);
-    const double radius = std::max(spec.searchDistance, 0.0);
-    // Gaps below round-off of the coordinates count as zero (then nu = the outer normal).
-    double coordinateScale = 1.0;
-    for (const auto& x : mesh.coords)
-      coordinateScale = std::max({coordinateScale, std::abs(x[0]), std::abs(x[1]), std::abs(x[2])});
-    const double zeroGap = 1e-12 * coordinateScale;
+    const auto search = mesh::searchContactPairs(mesh, spec.slaveSideSet, spec.masterSideSet, spec.searchDistance);
+    B.unpairedSlaveNodes = static_cast<GO>(search.unpaired.size());
+    B.overlappingPairs = search.overlapping;
+    B.largestOverlap = search.largestOverlap;
     const int numDirections = spec.tangentialRows ? 3 : 1;
-    rows.reserve(numDirections * slaves.size());
+    rows.reserve(numDirections * search.pairs.size());
 
-    for (LO slave : slaves) {
-      const Vec3& xs = mesh.coords[slave];
-      const auto [master, distance] = masters.nearest(xs, radius);
-      if (master < 0) {
-        const double nearest = masters.nearest(xs, std::numeric_limits<double>::infinity()).second;
-        throw core::InputError("contact: slave node " + std::to_string(slave + 1) + " at " + str(xs) +
-                               " of side set \"" + spec.slaveSideSet + "\" has no node of side set \"" +
-                               spec.masterSideSet + "\" within Contact/Search Distance = " + str(radius) +
-                               " (the nearest is at distance " + str(nearest) + ")");
-      }
-      if (master == slave)
-        throw core::InputError("contact: node " + std::to_string(slave + 1) + " belongs to both side sets \"" +
-                               spec.slaveSideSet + "\" and \"" + spec.masterSideSet +
-                               "\": the bodies share their interface nodes; give each body its own nodes "
-                               "(gmsh meshes: tribos-msh2exo --split-bodies)");
+    for (const auto& pair : search.pairs) {
       ContactNode node;
-      node.slaveNode = slave;
-      node.masterNode = master;
-      const Vec3 outer = slaveNormal[slave];
-      const double outerLength = norm(outer);
-      core::requireInput(outerLength > 0.0, "contact: the faces of side set \"" + spec.slaveSideSet +
-                                                "\" at slave node " + std::to_string(slave + 1) + " at " + str(xs) +
-                                                " have a zero summed normal (degenerate or folded surface)");
-      const Vec3 toMaster = minus(mesh.coords[master], xs);
-      if (distance > zeroGap) {
-        // nu from the slave node to its master node, d = their distance (DESIGN.md). A
-        // master node behind the slave's surface means the bodies overlap initially: with
-        // nu pointing into the slave body the non-penetration row would be meaningless.
-        core::requireInput(dot(toMaster, outer) > 0.0,
-                           "contact: master node " + std::to_string(master + 1) + " at " + str(mesh.coords[master]) +
-                               " lies behind the surface of side set \"" + spec.slaveSideSet + "\" at slave node " +
-                               std::to_string(slave + 1) + " at " + str(xs) +
-                               " (initial penetration, or nodes meant to coincide that differ by " + str(distance) +
-                               ")");
-        node.normal = scaled(toMaster, 1.0 / distance);
-        node.gap = distance;
-      } else {
-        node.normal = scaled(outer, 1.0 / outerLength);
-        node.gap = 0.0;
-      }
+      node.slaveNode = pair.slaveNode;
+      node.masterNode = pair.nearestMasterNode();
+      node.masterNodes = pair.masterNodes;
+      node.masterWeights = pair.weights;
+      node.normal = pair.normal;
+      node.gap = pair.gap;
       node.t1 = tangent(spec.t1Direction, node.normal);
       node.t2 = cross(node.normal, node.t1);  // right-handed (nu, t1, t2)
-
-      const bool slaveFixed = clamped[slave], masterFixed = clamped[master];
-      if (slaveFixed && masterFixed) {
-        // Both sides clamped: N, T1, T2 at this node are combinations of Dirichlet rows
-        // (DESIGN.md: the paper's Table 1 counts them; we remove and count them).
-        B.removedRedundantRows += numDirections;
-        continue;
-      }
-      // Rows act on (mean of the slave copies - mean of the master copies), weights 1/k:
-      // then they are orthogonal to every gluing row (which is orthogonal to the mean) and
-      // to the Dirichlet rows (a clamped side is dropped, its displacement is zero).
-      const LO ks = numCopies(slave), km = numCopies(master);
-      const double ws = slaveFixed ? 0.0 : 1.0 / ks, wm = masterFixed ? 0.0 : 1.0 / km;
-      node.rowScale = 1.0 / std::sqrt(ws * ws * ks + wm * wm * km);  // raw norm sqrt(1/ks + 1/km)
-      const int contactIndex = static_cast<int>(B.contact.size());
+      // The nodes of the row with their weights: +1 on the slave, -w_i on master vertex i.
+      // Each node's weight is spread evenly over its copies (1/k each): the row is then
+      // orthogonal to every gluing row, which is orthogonal to the mean of the copies.
+      std::vector<std::pair<LO, double>> sides{{pair.slaveNode, 1.0}};
+      for (int v = 0; v < 3; ++v)
+        if (pair.weights[v] > 0.0) sides.push_back({pair.masterNodes[v], -pair.weights[v]});
       const Vec3* directions[3] = {&node.normal, &node.t1, &node.t2};
+      const int contactIndex = static_cast<int>(B.contact.size());
+      std::vector<Row> nodeRows;
       for (int d = 0; d < numDirections; ++d) {
         const Vec3& dir = *directions[d];
         Row row;
         row.kind = static_cast<RowKind>(d);
-        row.entries.reserve(3 * (ks + km));
-        auto addSide = [&](LO global, double weight) {
-          for (LO k = copyPtr[global]; k < copyPtr[global + 1]; ++k)
+        // Prescribed components leave the row; their known part moves to the right side.
+        // (The arithmetic repeats the node-to-node rows' exactly when nothing is prescribed.)
+        double known = 0.0, free2 = 0.0, full2 = 0.0;
+        for (const auto& [global, weight] : sides) {
+          const LO k = numCopies(global);
+          const double perCopy = weight / k;
+          double freeDirection2 = 1.0;  // |dir|^2 over the free components (dir is a unit vector)
+          if (prescribed.any(global)) {
+            freeDirection2 = 0.0;
             for (int c = 0; c < 3; ++c)
-              if (dir[c] != 0.0)
-                row.entries.push_back({copies[k].subdomain, 3 * copies[k].localNode + c, weight * dir[c] * node.rowScale});
-        };
-        if (!slaveFixed) addSide(slave, ws);
-        if (!masterFixed) addSide(master, -wm);
-        // N u <= c: rowScale (u_s - u_m) . nu <= rowScale d.
-        row.c = d == 0 ? node.rowScale * node.gap : 0.0;
-        row.key = {0, slave, d, 0};
+              if (prescribed.fixed[3 * global + c]) known += weight * dir[c] * prescribed.value[3 * global + c];
+              else freeDirection2 += dir[c] * dir[c];
+          }
+          full2 += perCopy * perCopy * k;
+          free2 += perCopy * perCopy * k * freeDirection2;
+          for (int c = 0; c < 3; ++c) {
+            if (dir[c] == 0.0 || prescribed.fixed[3 * global + c]) continue;
+            for (LO j = copyPtr[global]; j < copyPtr[global + 1]; ++j)
+              row.entries.push_back({copies[j].subdomain, 3 * copies[j].localNode + c, perCopy * dir[c]});
+          }
+        }
+        // A row (almost) entirely on prescribed components is redundant: removed, counted.
+        if (!(free2 > 1e-16 * full2)) {
+          if (d == 0) break;  // no normal row: the node cannot press, its tangential rows go too
+          continue;
+        }
+        const double scale = 1.0 / std::sqrt(free2);
+        for (auto& e : row.entries) e.value *= scale;
+        // N u <= d: scale ((u_s - chi u_m) . nu) <= scale (d - known part).
+        row.c = scale * ((d == 0 ? node.gap : 0.0) - known);
+        row.key = {0, pair.slaveNode, d, 0};
         row.contact = d == 0 ? contactIndex : -1;
         row.owner = ownerOf(row.entries);
+        if (d == 0) node.rowScale = scale;
+        else {
+          node.hasTangential[d - 1] = true;
+          node.tangentialScale[d - 1] = scale;
+        }
+        nodeRows.push_back(std::move(row));
+      }
+      B.removedRedundantRows += numDirections - static_cast<GO>(nodeRows.size());
+      if (nodeRows.empty()) continue;
+      // All rows of a node go to the owner of its normal row (they are consecutive there).
+      for (auto& row : nodeRows) {
+        row.owner = nodeRows.front().owner;
         rows.push_back(std::move(row));
       }
       B.contact.push_back(node);
     }
   }
 
-  // (3) Gluing (Helmert basis of the differences of the copies) and Dirichlet rows.
+  // (3) Gluing (Helmert basis of the differences of the copies) per free component, and
+  // displacement rows per prescribed component.
   for (LO n = 0; n < numNodes; ++n) {
     const LO k = numCopies(n);
-    if (clamped[n]) {
-      // Every copy fixed, no gluing rows: same count as the paper (k-1 gluing + 1
-      // Dirichlet per component) and B stays orthonormal (ALGORITHMS.md 2).
-      for (LO j = 0; j < k; ++j)
-        for (int c = 0; c < 3; ++c) {
+    // Copies ascend by subdomain, so copy 1 is the lowest one: every gluing row at this
+    // node touches it and has the same owner.
+    const int owner = k > 1 ? mesh::ownerRank(copies[copyPtr[n]].subdomain, numSubdomains, numRanks) : 0;
+    for (int c = 0; c < 3; ++c) {
+      if (prescribed.fixed[3 * n + c]) {
+        // Every copy prescribed, no gluing rows: the paper's count (k-1 gluing + 1
+        // Dirichlet per component) and B stays orthonormal (ALGORITHMS.md 2).
+        for (LO j = 0; j < k; ++j) {
           const Copy& cp = copies[copyPtr[n] + j];
           Row row;
           row.kind = RowKind::Dirichlet;
           row.entries.push_back({cp.subdomain, 3 * cp.localNode + c, 1.0});
+          row.c = prescribed.value[3 * n + c];
           row.key = {2, n, j, c};
           row.owner = mesh::ownerRank(cp.subdomain, numSubdomains, numRanks);
           rows.push_back(std::move(row));
         }
-      continue;
-    }
-    // Copies ascend by subdomain, so copy 1 is the lowest one: every row at this node
-    // touches it and has the same owner.
-    const int owner = k > 1 ? mesh::ownerRank(copies[copyPtr[n]].subdomain, numSubdomains, numRanks) : 0;
-    for (int c = 0; c < 3; ++c)
+        continue;
+      }
       for (LO j = 1; j < k; ++j) {
         // Row j: copy j+1 against the mean of copies 1..j, i.e. coefficients -1/j and +1,
         // normalised by 1/sqrt(1 + 1/j); orthonormal and orthogonal to the mean.
@@ -343,6 +276,7 @@ ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decom
         row.owner = owner;
         rows.push_back(std::move(row));
       }
+    }
   }
 
   // (4) Number the rows by (owner rank, key): rank p owns a contiguous range.

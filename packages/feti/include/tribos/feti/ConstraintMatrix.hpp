@@ -5,13 +5,20 @@
 ///  - gluing: a node shared by k subdomain copies gets k-1 rows per component, an
 ///    orthonormal (Helmert) basis of the differences: row j couples copy j+1 against the
 ///    mean of copies 1..j;
-///  - Dirichlet: at a clamped node every copy gets a unit row per component (no gluing
-///    rows there) — the paper's count, and B stays orthonormal;
-///  - contact (node-to-node, slave side -> master side): rows N_r, T1_r, T2_r acting on
-///    (mean of the slave copies - mean of the master copies) projected on nu, t1, t2 and
-///    scaled to unit norm; orthogonal to the gluing rows by construction. A side that is
-///    clamped is dropped from the row (its displacement is zero anyway); a contact node
-///    whose two sides are both clamped gives redundant rows: they are removed and counted.
+///  - displacement conditions: at a node whose component c is prescribed (u_c = value,
+///    c = x, y or z; "Dirichlet Node Sets" prescribe all three to 0) every copy gets a unit
+///    row for that component with the value in c, and that component gets no gluing rows —
+///    the paper's count, and B stays orthonormal;
+///  - contact (node-to-surface, mesh/ContactSearch.hpp): rows N_r, T1_r, T2_r acting on
+///    (mean of the slave copies - sum_i w_i mean of the copies of master vertex i) projected
+///    on nu, t1, t2, with w the barycentric weights of the slave node's projection on the
+///    master surface (the paper's transfer mapping chi; node-to-node on matching meshes),
+///    scaled to unit norm; orthogonal to the gluing rows by construction. Prescribed
+///    components are dropped from a contact row and their known contribution moved into c
+///    (so the row stays orthogonal to the displacement rows); a row with nothing left (both
+///    sides clamped, or a direction fully prescribed, e.g. t2 = the axis of a plane-strain
+///    slice) is removed and counted. Contact rows of different slave nodes that share
+///    master vertices are not orthogonal (B B^T != I on those rows; doc/theory.md).
 /// B is built on every rank (it is small next to the subdomain factors); each row is owned
 /// by one rank — the owner of the lowest subdomain it touches — and rows are numbered so
 /// that the rows of rank p are the contiguous range [firstRowOfRank[p], firstRowOfRank[p+1]).
@@ -27,23 +34,43 @@ namespace tribos::feti {
 
 enum class RowKind : int { ContactNormal = 0, ContactT1 = 1, ContactT2 = 2, Gluing = 3, Dirichlet = 4 };
 
+/// u_c = value[c] for the chosen components c of every node of a node set.
+struct DisplacementCondition {
+  std::string name;                             ///< for messages (the XML sublist)
+  std::string nodeSet;
+  std::array<bool, 3> components{true, true, true};
+  std::array<double, 3> value{0.0, 0.0, 0.0};
+};
+
 struct ConstraintSpec {
-  std::vector<std::string> dirichletNodeSets;  ///< node sets with u = 0
+  std::vector<std::string> dirichletNodeSets;  ///< node sets with u = 0 (all components)
+  std::vector<DisplacementCondition> displacementConditions;
   std::string slaveSideSet, masterSideSet;     ///< contact surfaces; both empty = no contact
   bool tangentialRows = true;                  ///< T1, T2 rows (friction or bonded); false: N only
   std::array<double, 3> t1Direction{1.0, 0.0, 0.0};  ///< t1 = this projected on the tangent plane
-  /// A slave node pairs with the nearest master-surface node within this distance (the
-  /// mesh's units); farther means no partner (InputError naming the node).
+  /// A slave node is projected on the master surface within this distance (the mesh's
+  /// units); a slave node farther from every master face gets no contact rows.
   double searchDistance = 1e-6;
 };
 
-/// One slave contact node r with its partner and frame (DESIGN.md conventions).
+/// One slave contact node r with its projection and frame (DESIGN.md conventions).
 struct ContactNode {
-  LO slaveNode = -1, masterNode = -1;      ///< global mesh node ids
+  LO slaveNode = -1;                       ///< global mesh node id
+  LO masterNode = -1;                      ///< the master vertex with the largest weight
+  std::array<LO, 3> masterNodes{};         ///< vertices of the master face of the projection
+  std::array<double, 3> masterWeights{};   ///< their barycentric weights (sum 1)
   std::array<double, 3> normal{}, t1{}, t2{};  ///< orthonormal frame, normal from slave to master
-  double gap = 0.0;                        ///< d_r: distance from slave to master along normal (>= 0)
-  GO normalRow = -1;                       ///< row of N_r (T1_r = normalRow + 1, T2_r = + 2)
-  double rowScale = 1.0;                   ///< the factor that made the contact rows unit norm
+  double gap = 0.0;                        ///< d_r: signed distance along normal (< 0: initial overlap)
+  GO normalRow = -1;                       ///< row of N_r; the present tangential rows follow it
+  std::array<bool, 2> hasTangential{false, false};  ///< T1_r, T2_r present
+  double rowScale = 1.0;                   ///< the factor that made N_r unit norm (force = rowScale lambda)
+  std::array<double, 2> tangentialScale{1.0, 1.0};  ///< the same for T1_r, T2_r
+  /// Row of T1_r (j = 0) or T2_r (j = 1), or -1 when that row is absent.
+  GO tangentialRow(int j) const {
+    if (!hasTangential[j]) return -1;
+    return normalRow + 1 + (j == 1 && hasTangential[0] ? 1 : 0);
+  }
+  int numRows() const { return 1 + hasTangential[0] + hasTangential[1]; }
 };
 
 /// B_s: the rows of B that touch subdomain s, as a sparse (rows x local dofs) matrix.
@@ -61,12 +88,15 @@ struct ConstraintMatrix {
   std::vector<double> c;             ///< per row: scaled gap for N rows, 0 otherwise
   std::vector<GO> firstRowOfRank;    ///< numRanks + 1 entries
   std::vector<ContactNode> contact;  ///< contact nodes, in row order
+  GO unpairedSlaveNodes = 0;         ///< slave nodes with no master face within the search distance
+  GO overlappingPairs = 0;           ///< contact nodes with a negative initial gap
+  double largestOverlap = 0.0;       ///< max(-gap) over them
   std::vector<SubdomainBlock> blocks;  ///< index = global subdomain
   GO count(RowKind k) const;
 };
 
 /// Builds B and c. Throws core::InputError naming the set / node on bad input (unknown
-/// set, a slave node without a master partner within searchDistance).
+/// set, a component prescribed twice with different values, folded contact surfaces).
 ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decomposition& decomposition,
                                        const ConstraintSpec& spec, int numRanks);
 

@@ -1,0 +1,68 @@
+#pragma once
+/// \file ContactSearch.hpp
+/// Contact search and pairing (the paper's transfer mapping chi, DESIGN.md conventions):
+/// every node of the slave side set is projected on the master *surface* — the closest
+/// point on the triangles of the master side set within the search distance, found with a
+/// bounding-volume tree over the triangles (O(log n) per slave node, no quadratic search).
+/// The result per slave node: the master triangle, the barycentric weights of the
+/// projection (the master displacement there is interpolated with them), the contact
+/// normal nu and the signed initial gap d along it.
+///
+/// The normal is the *smoothed* master normal at the projection point: the barycentric
+/// interpolation of the master's nodal normals (area-weighted means of the outer normals of
+/// the faces at each master node), negated so that nu points from the slave into the
+/// master. It is continuous over the master surface, so the directions of neighbouring
+/// slave nodes on a faceted curved surface do not jump from face to face; on a flat master
+/// it is the exact face normal. d = (x_projection - x_slave) . nu: positive for an open
+/// gap, negative for an initial overlap (a small overlap is a negative gap, not an error).
+/// On matching meshes every slave node lies on a master vertex: weights (1, 0, 0), the
+/// pairing is node-to-node.
+#include <array>
+#include <string>
+#include <vector>
+
+#include "tribos/mesh/Mesh.hpp"
+
+namespace tribos::mesh {
+
+/// One slave node and its projection on the master surface.
+struct ContactPair {
+  LO slaveNode = -1;
+  LO masterFace = -1;                    ///< index of the face in the master side set
+  std::array<LO, 3> masterNodes{};       ///< vertices of that face (global node ids)
+  std::array<double, 3> weights{};       ///< barycentric weights of the projection (>= 0, sum 1)
+  std::array<double, 3> normal{};        ///< unit nu, from the slave into the master
+  double gap = 0.0;                      ///< signed distance along nu (< 0: initial overlap)
+  double distance = 0.0;                 ///< |x_projection - x_slave|
+  /// The master vertex with the largest weight (node-to-node pairing on matching meshes).
+  LO nearestMasterNode() const;
+};
+
+struct ContactSearchResult {
+  std::vector<ContactPair> pairs;  ///< ascending slave node
+  std::vector<LO> unpaired;        ///< slave nodes with no master face within the search distance
+  LO overlapping = 0;              ///< pairs with a negative initial gap
+  double largestOverlap = 0.0;     ///< max(-gap) over them (0 if none)
+};
+
+/// Pairs every node of `slaveSideSet` with the master surface `masterSideSet` within
+/// `searchDistance` (>= 0, the mesh's units; a slave node farther from every master face
+/// cannot touch and is listed in `unpaired`). Throws core::InputError naming the set and
+/// node when the surfaces share a node, a surface is folded (zero summed normal at a node),
+/// or the master surface at a projection faces away from the slave surface.
+ContactSearchResult searchContactPairs(const Mesh& mesh, const std::string& slaveSideSet,
+                                       const std::string& masterSideSet, double searchDistance);
+
+/// Closest point of triangle (a, b, c) to x, as barycentric weights (w_a, w_b, w_c):
+/// exact (0 or 1) in the vertex and edge regions. Exposed for tests.
+std::array<double, 3> closestPointOnTriangle(const std::array<double, 3>& x, const std::array<double, 3>& a,
+                                             const std::array<double, 3>& b, const std::array<double, 3>& c);
+
+/// Vertices of the faces of a side set, ascending, unique.
+std::vector<LO> sideSetNodes(const Mesh& mesh, const SideSet& set);
+
+/// Per node: the sum over the faces of `set` that contain it of their outward normals
+/// (length twice the face area, so the sum is area-weighted); zero off the set.
+std::vector<std::array<double, 3>> summedFaceNormals(const Mesh& mesh, const SideSet& set);
+
+}  // namespace tribos::mesh

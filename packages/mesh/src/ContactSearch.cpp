@@ -1,0 +1,287 @@
+/// \file ContactSearch.cpp
+/// Node-to-surface contact search (header). Cost: O(F log F) to build the tree over the F
+/// master faces, O(log F) expected per slave node; the tree prunes by the distance of the
+/// best face found so far, so a large search distance costs no more than a small one.
+#include "tribos/mesh/ContactSearch.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <sstream>
+
+#include "tribos/core/Errors.hpp"
+
+namespace tribos::mesh {
+
+namespace {
+using Vec3 = std::array<double, 3>;
+
+double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+Vec3 minus(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+double norm(const Vec3& v) { return std::sqrt(dot(v, v)); }
+
+std::string str(double x) {
+  std::ostringstream os;
+  os.precision(10);
+  os << x;
+  return os.str();
+}
+std::string str(const Vec3& x) { return "(" + str(x[0]) + ", " + str(x[1]) + ", " + str(x[2]) + ")"; }
+
+struct Box {
+  Vec3 low, high;
+  /// Squared distance from x to the box (0 inside).
+  double distance2(const Vec3& x) const {
+    double d2 = 0.0;
+    for (int d = 0; d < 3; ++d) {
+      const double out = std::max({low[d] - x[d], 0.0, x[d] - high[d]});
+      d2 += out * out;
+    }
+    return d2;
+  }
+};
+
+/// A bounding-volume tree over triangles, stored implicitly: the faces of a range
+/// [lo, hi) are split at their median centroid along the widest axis; the box of the
+/// range is kept at its middle position. Queries visit ranges nearest-first and skip
+/// those farther than the best distance so far.
+class TriangleTree {
+ public:
+  explicit TriangleTree(std::vector<std::array<Vec3, 3>> triangles)
+      : triangles_(std::move(triangles)), order_(triangles_.size()), boxes_(triangles_.size()) {
+    std::iota(order_.begin(), order_.end(), LO{0});
+    build(0, order_.size());
+  }
+
+  /// Calls visit(face, bestDistance2) for every face whose box lies within
+  /// sqrt(bestDistance2) of x; visit may lower bestDistance2.
+  template <class Visit>
+  void query(const Vec3& x, double& bestDistance2, Visit&& visit) const {
+    search(0, order_.size(), x, bestDistance2, visit);
+  }
+
+  const std::array<Vec3, 3>& triangle(LO face) const { return triangles_[face]; }
+
+ private:
+  static size_t middle(size_t lo, size_t hi) { return lo + (hi - lo) / 2; }
+
+  Vec3 centroid(LO face) const {
+    const auto& t = triangles_[face];
+    return {(t[0][0] + t[1][0] + t[2][0]) / 3.0, (t[0][1] + t[1][1] + t[2][1]) / 3.0,
+            (t[0][2] + t[1][2] + t[2][2]) / 3.0};
+  }
+
+  void build(size_t lo, size_t hi) {
+    if (lo >= hi) return;
+    Box box{triangles_[order_[lo]][0], triangles_[order_[lo]][0]};
+    for (size_t i = lo; i < hi; ++i)
+      for (const Vec3& v : triangles_[order_[i]])
+        for (int d = 0; d < 3; ++d) {
+          box.low[d] = std::min(box.low[d], v[d]);
+          box.high[d] = std::max(box.high[d], v[d]);
+        }
+    int axis = 0;
+    for (int d = 1; d < 3; ++d)
+      if (box.high[d] - box.low[d] > box.high[axis] - box.low[axis]) axis = d;
+    const size_t mid = middle(lo, hi);
+    std::nth_element(order_.begin() + lo, order_.begin() + mid, order_.begin() + hi,
+                     [&](LO a, LO b) { return centroid(a)[axis] < centroid(b)[axis]; });
+    boxes_[mid] = box;
+    build(lo, mid);
+    build(mid + 1, hi);
+  }
+
+  template <class Visit>
+  void search(size_t lo, size_t hi, const Vec3& x, double& best2, Visit& visit) const {
+    if (lo >= hi) return;
+    const size_t mid = middle(lo, hi);
+    if (boxes_[mid].distance2(x) > best2) return;
+    visit(order_[mid], best2);
+    const size_t leftMid = middle(lo, mid), rightMid = middle(mid + 1, hi);
+    const double left = lo < mid ? boxes_[leftMid].distance2(x) : kFar;
+    const double right = mid + 1 < hi ? boxes_[rightMid].distance2(x) : kFar;
+    if (left <= right) {
+      search(lo, mid, x, best2, visit);
+      search(mid + 1, hi, x, best2, visit);
+    } else {
+      search(mid + 1, hi, x, best2, visit);
+      search(lo, mid, x, best2, visit);
+    }
+  }
+
+  static constexpr double kFar = std::numeric_limits<double>::infinity();
+  std::vector<std::array<Vec3, 3>> triangles_;
+  std::vector<LO> order_;
+  std::vector<Box> boxes_;
+};
+
+/// Unit vectors of the summed normals; zero where the sum is zero.
+std::vector<Vec3> unitNodalNormals(const Mesh& mesh, const SideSet& set) {
+  auto n = summedFaceNormals(mesh, set);
+  for (auto& v : n) {
+    const double length = norm(v);
+    if (length > 0.0)
+      for (double& c : v) c /= length;
+  }
+  return n;
+}
+
+/// The largest absolute coordinate (at least 1): the scale of round-off in distances.
+double coordinateScale(const Mesh& mesh) {
+  double scale = 1.0;
+  for (const auto& x : mesh.coords) scale = std::max({scale, std::abs(x[0]), std::abs(x[1]), std::abs(x[2])});
+  return scale;
+}
+}  // namespace
+
+LO ContactPair::nearestMasterNode() const {
+  return masterNodes[std::max_element(weights.begin(), weights.end()) - weights.begin()];
+}
+
+std::vector<LO> sideSetNodes(const Mesh& mesh, const SideSet& set) {
+  std::vector<LO> nodes;
+  nodes.reserve(3 * set.elements.size());
+  for (size_t f = 0; f < set.elements.size(); ++f)
+    for (int v : kTetFaceVertices[set.sides[f]]) nodes.push_back(mesh.tets[set.elements[f]][v]);
+  std::sort(nodes.begin(), nodes.end());
+  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  return nodes;
+}
+
+std::vector<Vec3> summedFaceNormals(const Mesh& mesh, const SideSet& set) {
+  std::vector<Vec3> normal(mesh.numNodes(), Vec3{0.0, 0.0, 0.0});
+  for (size_t f = 0; f < set.elements.size(); ++f) {
+    const auto& tet = mesh.tets[set.elements[f]];
+    const Vec3 n = mesh.faceNormal(set.elements[f], set.sides[f]);
+    for (int v : kTetFaceVertices[set.sides[f]])
+      for (int d = 0; d < 3; ++d) normal[tet[v]][d] += n[d];
+  }
+  return normal;
+}
+
+std::array<double, 3> closestPointOnTriangle(const Vec3& x, const Vec3& a, const Vec3& b, const Vec3& c) {
+  // Voronoi regions of the vertices, then of the edges, else the interior; each test uses
+  // the dot products of the edge vectors with x - vertex, so vertex and edge regions give
+  // exact 0 / 1 weights (matching meshes pair node-to-node exactly).
+  const Vec3 ab = minus(b, a), ac = minus(c, a), ax = minus(x, a);
+  const double d1 = dot(ab, ax), d2 = dot(ac, ax);
+  if (d1 <= 0.0 && d2 <= 0.0) return {1.0, 0.0, 0.0};
+  const Vec3 bx = minus(x, b);
+  const double d3 = dot(ab, bx), d4 = dot(ac, bx);
+  if (d3 >= 0.0 && d4 <= d3) return {0.0, 1.0, 0.0};
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) {
+    const double t = d1 / (d1 - d3);
+    return {1.0 - t, t, 0.0};
+  }
+  const Vec3 cx = minus(x, c);
+  const double d5 = dot(ab, cx), d6 = dot(ac, cx);
+  if (d6 >= 0.0 && d5 <= d6) return {0.0, 0.0, 1.0};
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) {
+    const double t = d2 / (d2 - d6);
+    return {1.0 - t, 0.0, t};
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0) {
+    const double t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    return {0.0, 1.0 - t, t};
+  }
+  const double inverse = 1.0 / (va + vb + vc);
+  const double v = vb * inverse, w = vc * inverse;
+  return {1.0 - v - w, v, w};
+}
+
+ContactSearchResult searchContactPairs(const Mesh& mesh, const std::string& slaveSideSet,
+                                       const std::string& masterSideSet, double searchDistance) {
+  core::requireInput(std::isfinite(searchDistance) && searchDistance >= 0.0,
+                     "Contact/Search Distance must be finite and >= 0, got " + str(searchDistance));
+  const SideSet& slaveSet = mesh.sideSet(slaveSideSet);
+  const SideSet& masterSet = mesh.sideSet(masterSideSet);
+  const auto slaves = sideSetNodes(mesh, slaveSet);
+  const auto masterNodes = sideSetNodes(mesh, masterSet);
+
+  std::vector<std::array<Vec3, 3>> triangles(masterSet.elements.size());
+  std::vector<std::array<LO, 3>> faceNodes(masterSet.elements.size());
+  for (size_t f = 0; f < triangles.size(); ++f)
+    for (int v = 0; v < 3; ++v) {
+      faceNodes[f][v] = mesh.tets[masterSet.elements[f]][kTetFaceVertices[masterSet.sides[f]][v]];
+      triangles[f][v] = mesh.coords[faceNodes[f][v]];
+    }
+  const TriangleTree tree(std::move(triangles));
+  const auto masterNormal = unitNodalNormals(mesh, masterSet);
+  const auto slaveNormal = unitNodalNormals(mesh, slaveSet);
+  const double zeroGap = 1e-12 * coordinateScale(mesh);
+
+  ContactSearchResult result;
+  for (LO slave : slaves) {
+    const Vec3& xs = mesh.coords[slave];
+    if (std::binary_search(masterNodes.begin(), masterNodes.end(), slave))
+      throw core::InputError("contact: node " + std::to_string(slave + 1) + " belongs to both side sets \"" +
+                             slaveSideSet + "\" and \"" + masterSideSet +
+                             "\": the bodies share their interface nodes; give each body its own nodes "
+                             "(gmsh meshes: tribos-msh2exo --split-bodies)");
+    core::requireInput(norm(slaveNormal[slave]) > 0.0,
+                       "contact: the faces of side set \"" + slaveSideSet + "\" at slave node " +
+                           std::to_string(slave + 1) + " at " + str(xs) +
+                           " have a zero summed normal (degenerate or folded surface)");
+    // Nearest face within the search distance; ties go to the lower face index.
+    LO bestFace = -1;
+    std::array<double, 3> bestWeights{};
+    double best2 = searchDistance * searchDistance;
+    tree.query(xs, best2, [&](LO face, double& bound2) {
+      const auto& t = tree.triangle(face);
+      const auto w = closestPointOnTriangle(xs, t[0], t[1], t[2]);
+      Vec3 p{};
+      for (int d = 0; d < 3; ++d) p[d] = w[0] * t[0][d] + w[1] * t[1][d] + w[2] * t[2][d];
+      const Vec3 diff = minus(p, xs);
+      const double d2 = dot(diff, diff);
+      if (d2 < bound2 || (d2 == bound2 && (bestFace < 0 || face < bestFace))) {
+        bestFace = face;
+        bestWeights = w;
+        bound2 = d2;
+      }
+    });
+    if (bestFace < 0) {
+      result.unpaired.push_back(slave);
+      continue;
+    }
+    ContactPair pair;
+    pair.slaveNode = slave;
+    pair.masterFace = bestFace;
+    pair.masterNodes = faceNodes[bestFace];
+    pair.weights = bestWeights;
+    // nu = -(interpolated master normal), normalised (header: the smoothed normal).
+    Vec3 n{0.0, 0.0, 0.0}, p{0.0, 0.0, 0.0};
+    for (int v = 0; v < 3; ++v)
+      for (int d = 0; d < 3; ++d) {
+        n[d] -= pair.weights[v] * masterNormal[pair.masterNodes[v]][d];
+        p[d] += pair.weights[v] * mesh.coords[pair.masterNodes[v]][d];
+      }
+    const double length = norm(n);
+    core::requireInput(length > 0.0, "contact: the master surface \"" + masterSideSet + "\" is folded at " + str(p) +
+                                         " (its nodal normals cancel), the projection of slave node " +
+                                         std::to_string(slave + 1));
+    for (double& c : n) c /= length;
+    // The master surface must face the slave surface there (else the sets are swapped, or
+    // the slave node found the back of a thin master body).
+    core::requireInput(dot(n, slaveNormal[slave]) > 0.0,
+                       "contact: at slave node " + std::to_string(slave + 1) + " at " + str(xs) + " of side set \"" +
+                           slaveSideSet + "\" the master surface \"" + masterSideSet + "\" (face " +
+                           std::to_string(bestFace + 1) + ", projection " + str(p) +
+                           ") faces away from the slave surface; check the side sets and Contact/Search Distance");
+    pair.normal = n;
+    pair.distance = std::sqrt(best2);
+    pair.gap = dot(minus(p, xs), n);
+    if (std::abs(pair.gap) <= zeroGap) pair.gap = 0.0;
+    if (pair.gap < 0.0) {
+      ++result.overlapping;
+      result.largestOverlap = std::max(result.largestOverlap, -pair.gap);
+    }
+    result.pairs.push_back(pair);
+  }
+  return result;
+}
+
+}  // namespace tribos::mesh
