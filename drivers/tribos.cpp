@@ -28,6 +28,7 @@
 #include "tribos/core/Timer.hpp"
 #include "tribos/mesh/ExodusIO.hpp"
 #include "tribos/feti/ConstraintMatrix.hpp"
+#include "tribos/feti/Solvability.hpp"
 #include "tribos/stack/ContactSolve.hpp"
 #include "tribos/stack/LinearFetiSolve.hpp"
 #include "tribos/stack/Scene.hpp"
@@ -80,6 +81,9 @@ nlohmann::json summaryJson(const stack::Scene& scene, const stack::SetupReport& 
   j["n_elements"] = scene.mesh.numElements();
   j["stiffness_nonzeros"] = report.nnz;
   j["contact_nodes_paired"] = B.contact.size();
+  j["contact_nodes_unpaired"] = B.unpairedSlaveNodes;
+  j["contact_initial_overlaps"] = B.overlappingPairs;
+  j["contact_largest_initial_overlap"] = B.largestOverlap;
   j["times"] = {{"mesh_s", scene.meshSeconds},
                 {"decomposition_s", scene.decompositionSeconds},
                 {"assembly_s", report.assemblySeconds}};
@@ -146,6 +150,9 @@ int run(int argc, char** argv, int rank) {
   core::Stopwatch constraintWatch;
   const feti::ConstraintMatrix B =
       feti::buildConstraintMatrix(scene.mesh, scene.decomposition, stack::constraintSpec(scene), numRanks);
+  // Before any solve: every rigid motion of every body must meet a row of B (exit 2 naming
+  // the body and its free motions otherwise).
+  feti::requireRestrainedBodies(scene.mesh, scene.decomposition, B);
   const double constraintSeconds = constraintWatch.seconds();
   const double setupSeconds = setup.seconds();
 
@@ -157,6 +164,12 @@ int run(int argc, char** argv, int rank) {
               << report.nThreads << " thread(s)\n"
               << "  n_primal = " << report.nPrimal << ", n_dual = " << B.numRows << " (removed "
               << B.removedRedundantRows << " redundant rows), n_rigid = " << report.nRigid << "\n"
+              << (scene.contact.hasContact()
+                      ? "  contact: " + std::to_string(B.contact.size()) + " slave nodes paired, " +
+                            std::to_string(B.unpairedSlaveNodes) + " beyond Contact/Search Distance (no rows), " +
+                            std::to_string(B.overlappingPairs) + " with initial overlap" +
+                            (B.overlappingPairs > 0 ? " (largest " + std::to_string(B.largestOverlap) + ")" : "") + "\n"
+                      : std::string("  contact: none (linear T-FETI)\n"))
               << "  set-up: " << setupSeconds << " s (assembly " << report.assemblySeconds << " s, B "
               << constraintSeconds << " s)\n";
   }
@@ -205,7 +218,8 @@ int run(int argc, char** argv, int rank) {
                       {"friction_admissibility", r.kkt.frictionAdmissibility},
                       {"slip_rule", r.kkt.slipRule},
                       {"stick_rule", r.kkt.stickRule},
-                      {"max_copy_jump", contactSolve.displacement.maxCopyJump}};
+                      {"max_copy_jump", contactSolve.displacement.maxCopyJump},
+                      {"tolerance", r.kktTolerance}};
     summary["contact_nodes"] = {{"no_contact", r.statusCounts[0]}, {"stick", r.statusCounts[1]},
                                 {"slip", r.statusCounts[2]}};
     summary["total_normal_force"] = contactSolve.totalNormalForce;
@@ -219,9 +233,11 @@ int run(int argc, char** argv, int rank) {
                 << " slip-bound updates\n"
                 << "  contact nodes: " << r.statusCounts[0] << " no contact, " << r.statusCounts[1] << " stick, "
                 << r.statusCounts[2] << " slip; total normal force " << contactSolve.totalNormalForce << "\n"
-                << "  KKT: equilibrium " << r.kkt.equilibrium << ", gluing/Dirichlet " << r.kkt.equality
-                << ", penetration " << r.kkt.nonPenetration << ", complementarity " << r.kkt.complementarity
-                << ", friction " << r.kkt.frictionAdmissibility << ", slip rule " << r.kkt.slipRule << "\n"
+                << "  KKT (each <= " << r.kktTolerance << " for \"converged\"): equilibrium " << r.kkt.equilibrium
+                << ", gluing/Dirichlet " << r.kkt.equality << ", penetration " << r.kkt.nonPenetration
+                << ", complementarity " << r.kkt.complementarity << ", normal sign " << r.kkt.normalSign
+                << ", friction " << r.kkt.frictionAdmissibility << ", slip rule " << r.kkt.slipRule << ", stick rule "
+                << r.kkt.stickRule << "\n"
                 << "  times: factorization " << contactSolve.factorizationSeconds << " s, solve "
                 << contactSolve.solveSeconds << " s\n";
   } else {

@@ -30,6 +30,9 @@ inline SolvedContactScene solveContactScene(const std::vector<std::string>& over
   MPI_Comm_size(comm, &size);
   SolvedContactScene s;
   const auto valid = stack::sceneValidParameters();
+  // The paper's contact pair unless the overrides say otherwise (the scene default is no contact).
+  for (const char* pair : {"Contact/Slave Side Set=contact_aluminium", "Contact/Master Side Set=contact_steel"})
+    core::applyOverride(s.params, *valid, pair);
   for (const auto& o : overrides) core::applyOverride(s.params, *valid, o);
   core::validateAndSetDefaults(s.params, *valid, "test");
   s.scene = stack::buildScene(s.params, "test");

@@ -104,6 +104,10 @@ TEST(tribosDriver, outputCarriesTheSubdomainsAndReadsBackThroughMetis) {
             "<ParameterList name=\"Loads\"><ParameterList name=\"top\">"
             "<Parameter name=\"Side Set\" type=\"string\" value=\"load_top\"/>"
             "<Parameter name=\"Traction\" type=\"Array(double)\" value=\"{0, 0, -30}\"/></ParameterList></ParameterList>"
+            "<ParameterList name=\"Boundary\"><Parameter name=\"Dirichlet Node Sets\" type=\"Array(string)\" "
+            "value=\"{dirichlet_aluminium, dirichlet_steel}\"/></ParameterList>"
+            "<ParameterList name=\"Contact\"><Parameter name=\"Slave Side Set\" type=\"string\" value=\"contact_aluminium\"/>"
+            "<Parameter name=\"Master Side Set\" type=\"string\" value=\"contact_steel\"/></ParameterList>"
             "</ParameterList>");
   const auto summary = dir / "summary.json";
   run = runCommand(kDriver + " --input " + quote((dir / "from_exodus.xml").string()) + " --dry-run --summary " +

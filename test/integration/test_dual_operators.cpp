@@ -37,6 +37,8 @@ std::unique_ptr<Problem> makeProblem(const std::string& grid, int hOverH, bool e
   core::applyOverride(params, *valid, "Mesh/Subdomains Per Brick=" + grid);
   core::applyOverride(params, *valid, "Mesh/H Over h=" + std::to_string(hOverH));
   core::applyOverride(params, *valid, "Contact/Friction Model=Bonded");
+  core::applyOverride(params, *valid, "Contact/Slave Side Set=contact_aluminium");
+  core::applyOverride(params, *valid, "Contact/Master Side Set=contact_steel");
   core::validateAndSetDefaults(params, *valid, "test");
   auto p = std::make_unique<Problem>();
   p->scene = stack::buildScene(params, "test");

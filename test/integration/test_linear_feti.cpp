@@ -24,6 +24,9 @@ using namespace tribos;
 Teuchos::ParameterList paramsFor(const std::vector<std::string>& overrides) {
   Teuchos::ParameterList params("Tribos");
   const auto valid = stack::sceneValidParameters();
+  // The paper's contact pair (tied when Bonded) unless the overrides remove it.
+  for (const char* pair : {"Contact/Slave Side Set=contact_aluminium", "Contact/Master Side Set=contact_steel"})
+    core::applyOverride(params, *valid, pair);
   for (const auto& o : overrides) core::applyOverride(params, *valid, o);
   core::validateAndSetDefaults(params, *valid, "test");
   return params;

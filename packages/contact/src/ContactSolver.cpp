@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 
 #include "tribos/core/Errors.hpp"
 
@@ -44,19 +45,66 @@ class CoarseSpaceProjector : public qp::EqualityProjector {
 
 /// The contact nodes whose rows this rank owns, with local row indices.
 struct LocalContact {
-  std::vector<int> node;       ///< index into B.contact
-  std::vector<LO> normalRow;   ///< local index of N_r (T1 = +1, T2 = +2)
+  std::vector<int> node;                    ///< index into B.contact
+  std::vector<LO> normalRow;                ///< local index of N_r
+  std::vector<std::array<LO, 2>> tangentialRow;  ///< local indices of T1_r, T2_r (-1: absent)
+  /// Multiplier of T_j per unit multiplier of N_r at equal physical force: rowScale_N /
+  /// rowScale_Tj (rows are scaled to unit norm separately; 1 unless prescribed components
+  /// were dropped from some rows).
+  std::vector<std::array<double, 2>> axisScale;
+  std::vector<int> ellipse;                 ///< index of the node's friction block, -1 if none
 };
 
 LocalContact localContact(const feti::ConstraintMatrix& B, int rank) {
   LocalContact lc;
   const GO first = B.firstRowOfRank[rank], end = B.firstRowOfRank[rank + 1];
-  for (size_t i = 0; i < B.contact.size(); ++i)
-    if (B.contact[i].normalRow >= first && B.contact[i].normalRow < end) {
-      lc.node.push_back(static_cast<int>(i));
-      lc.normalRow.push_back(static_cast<LO>(B.contact[i].normalRow - first));
-    }
+  for (size_t i = 0; i < B.contact.size(); ++i) {
+    const auto& c = B.contact[i];
+    if (c.normalRow < first || c.normalRow >= end) continue;
+    lc.node.push_back(static_cast<int>(i));
+    lc.normalRow.push_back(static_cast<LO>(c.normalRow - first));
+    std::array<LO, 2> t{-1, -1};
+    std::array<double, 2> s{1.0, 1.0};
+    for (int j = 0; j < 2; ++j)
+      if (c.hasTangential[j]) {
+        t[j] = static_cast<LO>(c.tangentialRow(j) - first);
+        s[j] = c.rowScale / c.tangentialScale[j];
+      }
+    lc.tangentialRow.push_back(t);
+    lc.axisScale.push_back(s);
+    lc.ellipse.push_back(-1);
+  }
   return lc;
+}
+
+/// Where lambda_t of one node stands against its friction bound g (N-multiplier units):
+/// semi-axes a_j = F_j axisScale_j g on the present tangential rows.
+struct FrictionState {
+  bool degenerate = false;  ///< a present axis has a = 0: the node slides freely along it
+  double normalised = 0.0;  ///< ||diag(1/a) lambda_t|| over the non-degenerate axes
+  double excess = 0.0;      ///< max(||F^-1 lambda_t|| - g, 0) + |lambda_t| on zero axes (N units)
+  std::array<double, 2> axes{0.0, 0.0};
+};
+
+FrictionState frictionState(const std::array<double, 2>& lambdaT, const std::array<LO, 2>& rows,
+                            const std::array<double, 2>& axisScale, const std::array<double, 2>& F, double g,
+                            double tinyForce) {
+  FrictionState s;
+  double scaled2 = 0.0, unitBound2 = 0.0;
+  for (int j = 0; j < 2; ++j) {
+    if (rows[j] < 0) continue;
+    s.axes[j] = F[j] * axisScale[j] * g;
+    if (!(s.axes[j] > tinyForce)) {
+      s.degenerate = true;
+      s.excess += std::abs(lambdaT[j]) / axisScale[j];
+      continue;
+    }
+    scaled2 += (lambdaT[j] / s.axes[j]) * (lambdaT[j] / s.axes[j]);
+    unitBound2 += (lambdaT[j] / (F[j] * axisScale[j])) * (lambdaT[j] / (F[j] * axisScale[j]));
+  }
+  s.normalised = std::sqrt(scaled2);
+  s.excess += std::max(std::sqrt(unitBound2) - g, 0.0);
+  return s;
 }
 
 double globalSum(const Teuchos::Comm<int>& comm, double v) {
@@ -83,11 +131,8 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
   if (friction.model != "None" && friction.model != "Tresca" && friction.model != "Coulomb")
     throw core::InputError("Contact/Friction Model: \"" + friction.model +
                            "\" is not a contact model (None, Tresca, Coulomb)");
-  if (frictional && B.count(feti::RowKind::ContactT1) != static_cast<GO>(B.contact.size()))
-    throw std::invalid_argument("tribos::contact::solveContact: B has no tangential rows; build it with "
-                                "tangentialRows = true for friction");
   ContactResult result;
-  const LocalContact lc = localContact(B, rank);
+  LocalContact lc = localContact(B, rank);  // its ellipse indices are set below
   const auto& lambdaIm = feti.lambdaIm();
   const auto lIm = lambdaIm.getLocalViewHost(Tpetra::Access::ReadOnly);
 
@@ -101,17 +146,23 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
   // semi-axes F_j g centred at -lambda_Im,t). g lives in multiplier units: a nodal force f
   // corresponds to the multiplier f / rowScale (rows of B are scaled to unit norm).
   qp::SeparableSet omega;
-  std::vector<double> slip(lc.node.size(), 0.0);  // g per local contact node (multiplier units)
+  const std::array<double, 2> F{friction.F1, friction.F2};
+  std::vector<double> slip(lc.node.size(), 0.0);  // g per local contact node (N-multiplier units)
+  auto semiAxes = [&](size_t k, double g) {
+    return std::array<double, 2>{F[0] * lc.axisScale[k][0] * g, F[1] * lc.axisScale[k][1] * g};
+  };
   for (size_t k = 0; k < lc.node.size(); ++k) {
     const LO r = lc.normalRow[k];
     omega.addBound(r, -lIm(r, 0));
-    if (!frictional) continue;
+    const auto& t = lc.tangentialRow[k];
+    if (!frictional || (t[0] < 0 && t[1] < 0)) continue;
     if (friction.model == "Tresca") slip[k] = friction.slipBound / B.contact[lc.node[k]].rowScale;
-    omega.addEllipse({r + 1, r + 2}, {-lIm(r + 1, 0), -lIm(r + 2, 0)},
-                     {friction.F1 * slip[k], friction.F2 * slip[k]});
+    lc.ellipse[k] = omega.numEllipses();
+    omega.addEllipse(t, {t[0] >= 0 ? -lIm(t[0], 0) : 0.0, t[1] >= 0 ? -lIm(t[1], 0) : 0.0}, semiAxes(k, slip[k]));
   }
   auto setSlipBounds = [&](const std::vector<double>& g) {
-    for (size_t k = 0; k < g.size(); ++k) omega.setSemiAxes(static_cast<int>(k), {friction.F1 * g[k], friction.F2 * g[k]});
+    for (size_t k = 0; k < g.size(); ++k)
+      if (lc.ellipse[k] >= 0) omega.setSemiAxes(lc.ellipse[k], semiAxes(k, g[k]));
   };
   // The slip bound the current mu implies: g = max(mu_nu + lambda_Im,nu, 0).
   auto impliedSlip = [&](const qp::Vector& mu) {
@@ -239,26 +290,37 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
   double lambdaNuMax = 0.0;
   for (size_t k = 0; k < lc.node.size(); ++k) lambdaNuMax = std::max(lambdaNuMax, std::abs(lam(lc.normalRow[k], 0)));
   lambdaNuMax = globalMax(comm, lambdaNuMax);
+  // The force scale of the status tests: the largest multiplier of any row (gluing and
+  // Dirichlet rows carry the internal and reaction forces) or nodal load. It is right when
+  // nothing touches: then every lambda_nu is round-off against it.
+  const double forceScale =
+      std::max({globalMax(comm, lambda->normInf()), feti.loadNormInf(), std::numeric_limits<double>::min()});
   const double tau = std::max(100.0 * eps, 1e-8);  // relative tolerance of the status tests
+  const double tinyForce = tau * forceScale;
   const GO first = B.firstRowOfRank[rank];
   std::vector<char> inactive(B.numRows, 0);
   for (GO r = first; r < B.firstRowOfRank[rank + 1]; ++r) {
     const auto kind = B.kind[r];
     if (kind == feti::RowKind::Gluing || kind == feti::RowKind::Dirichlet) inactive[r] = 1;
   }
-  auto tangentialRatio = [&](size_t k) {  // ||F^-1 lambda_t|| / g, or 0 when g = 0
-    const LO r = lc.normalRow[k];
-    if (!(slip[k] > 0.0)) return 0.0;
-    const double a = lam(r + 1, 0) / friction.F1, b = lam(r + 2, 0) / friction.F2;
-    return std::sqrt(a * a + b * b) / slip[k];
+  auto tangential = [&](size_t k) {
+    std::array<double, 2> t{0.0, 0.0};
+    for (int j = 0; j < 2; ++j)
+      if (lc.tangentialRow[k][j] >= 0) t[j] = lam(lc.tangentialRow[k][j], 0);
+    return t;
+  };
+  // The bound of the friction law at node k: Coulomb's is lambda_nu itself, Tresca's the given g.
+  auto bound = [&](size_t k) {
+    return friction.model == "Coulomb" ? std::max(lam(lc.normalRow[k], 0), 0.0) : slip[k];
   };
   for (size_t k = 0; k < lc.node.size(); ++k) {
     const LO r = lc.normalRow[k];
-    if (lam(r, 0) > tau * lambdaNuMax) inactive[first + r] = 1;
-    if (frictional && slip[k] > 0.0 && tangentialRatio(k) < 1.0 - tau) {
-      inactive[first + r + 1] = 1;
-      inactive[first + r + 2] = 1;
-    }
+    if (lam(r, 0) > tinyForce) inactive[first + r] = 1;
+    if (lc.ellipse[k] < 0) continue;
+    const auto state = frictionState(tangential(k), lc.tangentialRow[k], lc.axisScale[k], F, slip[k], tinyForce);
+    if (!state.degenerate && state.normalised < 1.0 - tau)
+      for (LO t : lc.tangentialRow[k])
+        if (t >= 0) inactive[first + t] = 1;
   }
   std::vector<char> mask(B.numRows, 0);
   Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, static_cast<int>(B.numRows), inactive.data(), mask.data());
@@ -275,13 +337,15 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
     for (double v : us) uInf = std::max(uInf, std::abs(v));
   uInf = globalMax(comm, uInf);
   const double uScale = uInf > 0.0 ? uInf : 1.0;
-  const double lScale = lambdaNuMax > 0.0 ? lambdaNuMax : 1.0;
+  const double lScale = std::max(lambdaNuMax, tinyForce);
   double equality = 0.0, uNorm2 = 0.0;
   for (const auto& us : result.displacement)
     for (double v : us) uNorm2 += v * v;
   for (GO r = first; r < B.firstRowOfRank[rank + 1]; ++r)
-    if (B.kind[r] == feti::RowKind::Gluing || B.kind[r] == feti::RowKind::Dirichlet)
-      equality += bu(r - first, 0) * bu(r - first, 0);
+    if (B.kind[r] == feti::RowKind::Gluing || B.kind[r] == feti::RowKind::Dirichlet) {
+      const double residual = bu(r - first, 0) - B.c[r];  // B_E u = c_E (prescribed values)
+      equality += residual * residual;
+    }
   KktReport& kkt = result.kkt;
   kkt.equilibrium = feti.equilibriumResidual(*lambda, result.displacement) /
                     std::max(feti.loadNormInf(), std::numeric_limits<double>::min());
@@ -303,28 +367,37 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
     out.force[0] = node.rowScale * lam(r, 0);
     out.relativeDisplacement[0] = bu(r, 0) / node.rowScale;
     // In contact without friction the node slides freely: "slip".
-    ContactStatus status = lam(r, 0) > tau * lScale ? (frictional ? ContactStatus::Stick : ContactStatus::Slip)
-                                                    : ContactStatus::NoContact;
-    if (frictional) {
-      // Coulomb's law bounds lambda_t by lambda_nu itself; Tresca by the given g.
-      const double g = friction.model == "Coulomb" ? std::max(lam(r, 0), 0.0) : slip[k];
+    const bool touching = lam(r, 0) > tinyForce;
+    ContactStatus status = !touching ? ContactStatus::NoContact
+                                     : (lc.ellipse[k] >= 0 ? ContactStatus::Stick : ContactStatus::Slip);
+    if (lc.ellipse[k] >= 0) {
+      const double g = bound(k);
       out.slipBound = node.rowScale * g;
-      for (int j = 1; j < 3; ++j) {
-        out.force[j] = node.rowScale * lam(r + j, 0);
-        out.relativeDisplacement[j] = bu(r + j, 0) / node.rowScale;
+      const auto lt = tangential(k);
+      std::array<double, 2> v{0.0, 0.0};  // tangential slip T u (row-scaled: lambda_t^T v is the power)
+      for (int j = 0; j < 2; ++j) {
+        const LO t = lc.tangentialRow[k][j];
+        if (t < 0) continue;
+        out.force[j + 1] = node.tangentialScale[j] * lt[j];
+        out.relativeDisplacement[j + 1] = bu(t, 0) / node.tangentialScale[j];
+        v[j] = bu(t, 0);
       }
-      const double a = lam(r + 1, 0) / friction.F1, b = lam(r + 2, 0) / friction.F2;
-      const double ratio = std::sqrt(a * a + b * b);  // ||F^-1 lambda_t||
-      admissibility = std::max(admissibility, ratio - g);
-      // Tangential slip v = T u (multiplier scaling drops out of the direction tests).
-      const double v1 = bu(r + 1, 0), v2 = bu(r + 2, 0), vNorm = std::hypot(v1, v2);
-      const bool onBoundary = g > 0.0 && ratio >= (1.0 - tau) * g;
-      if (status != ContactStatus::NoContact && onBoundary && vNorm > tau * uScale) {
+      const auto state = frictionState(lt, lc.tangentialRow[k], lc.axisScale[k], F, g, tinyForce);
+      admissibility = std::max(admissibility, state.excess);
+      const double vNorm = std::hypot(out.relativeDisplacement[1], out.relativeDisplacement[2]);
+      const bool onBoundary = state.degenerate || state.normalised >= 1.0 - tau;
+      if (touching && onBoundary && (state.degenerate || vNorm > tau * uScale)) {
+        // On the bound and sliding, or free to slide along a zero axis (F_j = 0, g = 0): the
+        // frictionless / degenerate-ellipse limits are slip, never 0/0 "stick".
         status = ContactStatus::Slip;
-        // Slip rule: F^-1 lambda_t parallel to F v, same sense (the maximiser of lambda_t^T v).
-        const double fv1 = friction.F1 * v1, fv2 = friction.F2 * v2;
-        const double cosine = (a * fv1 + b * fv2) / (ratio * std::hypot(fv1, fv2));
-        slipRule = std::max(slipRule, 1.0 - cosine);
+        if (!state.degenerate && vNorm > tau * uScale) {
+          // Slip rule: lambda_t maximises lambda_t^T v over the ellipse, i.e.
+          // diag(1/a) lambda_t is parallel to diag(a) v, in the same sense.
+          const double y1 = lt[0] / std::max(state.axes[0], tinyForce), y2 = lt[1] / std::max(state.axes[1], tinyForce);
+          const double w1 = state.axes[0] * v[0], w2 = state.axes[1] * v[1];
+          const double cosine = (y1 * w1 + y2 * w2) / (std::hypot(y1, y2) * std::hypot(w1, w2));
+          slipRule = std::max(slipRule, 1.0 - cosine);
+        }
       } else if (status == ContactStatus::Stick) {
         stickRule = std::max(stickRule, vNorm / uScale);
       }
@@ -344,6 +417,25 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
     int global = 0;
     Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, 1, &result.statusCounts[s], &global);
     result.statusCounts[s] = global;
+  }
+  // (6) "Converged" only if the discrete KKT conditions hold too (to tau = max(100 eps,
+  // 1e-8), the status tolerance): SMALSE-M's own tests are on the dual QP.
+  result.kktTolerance = tau;
+  if (result.converged) {
+    const std::pair<const char*, double> residuals[] = {
+        {"equilibrium", kkt.equilibrium},       {"gluing/Dirichlet", kkt.equality},
+        {"penetration", kkt.nonPenetration},    {"complementarity", kkt.complementarity},
+        {"normal sign", kkt.normalSign},        {"friction admissibility", kkt.frictionAdmissibility},
+        {"slip rule", kkt.slipRule},            {"stick rule", kkt.stickRule}};
+    for (const auto& [name, value] : residuals)
+      if (!(value <= tau)) {
+        result.converged = false;
+        std::ostringstream why;
+        why << "SMALSE-M converged but the KKT residual \"" << name << "\" = " << value
+            << " exceeds max(100 eps, 1e-8) = " << tau;
+        result.message = why.str();
+        break;
+      }
   }
   return result;
 }

@@ -51,6 +51,12 @@ void validateLevel(Teuchos::ParameterList& user, const Teuchos::ParameterList& v
   for (auto it = user.begin(); it != user.end(); ++it) {
     const std::string& name = user.name(it);
     const std::string here = path.empty() ? name : path + "/" + name;
+    if (!valid.isParameter(name) && valid.isSublist(kAnyName) && user.entry(it).isList()) {
+      // Beside named entries, a template kAnyName validates user-named sublists (one per
+      // boundary condition, ...).
+      validateLevel(user.sublist(name), valid.sublist(kAnyName), where, here, depth - 1, /*fillDefaults=*/false);
+      continue;
+    }
     if (!valid.isParameter(name)) {
       throw InputError(where + ": unknown parameter \"" + here + "\". Valid names in \"" +
                        (path.empty() ? valid.name() : path) + "\" are:\n" + listValid(valid));
@@ -85,6 +91,7 @@ void validateLevel(Teuchos::ParameterList& user, const Teuchos::ParameterList& v
   for (auto it = valid.begin(); it != valid.end(); ++it) {
     const std::string& name = valid.name(it);
     const auto& entry = valid.entry(it);
+    if (name == kAnyName) continue;  // a template, not a list to create
     if (entry.isList()) {
       if (depth > 0)
         validateLevel(user.sublist(name, false, entry.docString()), valid.sublist(name), where,
@@ -174,7 +181,7 @@ void applyOverride(Teuchos::ParameterList& user, const Teuchos::ParameterList& v
   const Teuchos::ParameterList* validLevel = &valid;
   Teuchos::ParameterList* userLevel = &user;
   for (size_t i = 0; i + 1 < names.size(); ++i) {
-    const bool anyName = validLevel->numParams() == 1 && validLevel->isSublist(kAnyName);
+    const bool anyName = !validLevel->isSublist(names[i]) && validLevel->isSublist(kAnyName);
     const std::string validName = anyName ? kAnyName : names[i];
     if (!validLevel->isSublist(validName))
       throw InputError(context + ": no sublist \"" + names[i] + "\"; valid names are:\n" + listValid(*validLevel));

@@ -22,6 +22,12 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 /// feasible step is then ~0 and the expansion's projection lands on the boundary exactly.
 constexpr double kActiveTolerance = 1e-12;
 
+/// Entry i of a vector view; 0 for an absent ellipse row (index -1).
+template <class View>
+double at(const View& v, int i) {
+  return i >= 0 ? v(i, 0) : 0.0;
+}
+
 bool boundActive(double x, double lower) {
   return x - lower <= kActiveTolerance * (std::abs(lower) + std::abs(x) + std::numeric_limits<double>::min());
 }
@@ -105,8 +111,8 @@ std::array<double, 2> SeparableSet::effectiveAxes(size_t k) const {
   // (a node whose slip bound is round-off is out of contact).
   const double floor = 1e-10 * std::max(std::abs(center_[k][0]), std::abs(center_[k][1]));
   std::array<double, 2> a = semiAxes_[k];
-  for (double& ai : a)
-    if (ai <= floor) ai = 0.0;
+  for (int j = 0; j < 2; ++j)
+    if (a[j] <= floor || ellipseIndex_[k][j] < 0) a[j] = 0.0;  // an absent row is a zero axis
   return a;
 }
 
@@ -131,9 +137,9 @@ void SeparableSet::project(Vector& x) const {
   for (size_t k = 0; k < boundIndex_.size(); ++k) v(boundIndex_[k], 0) = std::max(v(boundIndex_[k], 0), lower_[k]);
   for (size_t k = 0; k < ellipseIndex_.size(); ++k) {
     const auto [i, j] = ellipseIndex_[k];
-    const auto y = projectOntoEllipse({v(i, 0) - center_[k][0], v(j, 0) - center_[k][1]}, effectiveAxes(k));
-    v(i, 0) = center_[k][0] + y[0];
-    v(j, 0) = center_[k][1] + y[1];
+    const auto y = projectOntoEllipse({at(v, i) - center_[k][0], at(v, j) - center_[k][1]}, effectiveAxes(k));
+    if (i >= 0) v(i, 0) = center_[k][0] + y[0];
+    if (j >= 0) v(j, 0) = center_[k][1] + y[1];
   }
 }
 
@@ -144,7 +150,7 @@ bool SeparableSet::contains(const Vector& x, double tolerance) const {
     if (v(boundIndex_[k], 0) < lower_[k] - tolerance * std::max(1.0, std::abs(lower_[k]))) ok = 0;
   for (size_t k = 0; k < ellipseIndex_.size() && ok; ++k) {
     const auto [i, j] = ellipseIndex_[k];
-    const std::array<double, 2> y{v(i, 0) - center_[k][0], v(j, 0) - center_[k][1]};
+    const std::array<double, 2> y{at(v, i) - center_[k][0], at(v, j) - center_[k][1]};
     const auto p = projectOntoEllipse(y, effectiveAxes(k));
     const double scale = std::max({1.0, semiAxes_[k][0], semiAxes_[k][1]});
     if (std::hypot(y[0] - p[0], y[1] - p[1]) > tolerance * scale) ok = 0;
@@ -165,8 +171,8 @@ double SeparableSet::maxFeasibleStep(const Vector& x, const Vector& p) const {
   for (size_t k = 0; k < ellipseIndex_.size(); ++k) {
     const auto [i, j] = ellipseIndex_[k];
     const auto a = effectiveAxes(k);
-    const double y[2] = {xv(i, 0) - center_[k][0], xv(j, 0) - center_[k][1]};
-    const double d[2] = {pv(i, 0), pv(j, 0)};
+    const double y[2] = {at(xv, i) - center_[k][0], at(xv, j) - center_[k][1]};
+    const double d[2] = {at(pv, i), at(pv, j)};
     if (!(a[0] > 0.0) || !(a[1] > 0.0)) {
       // Degenerate: no motion across a zero axis; along the other axis an interval.
       for (int ax = 0; ax < 2; ++ax) {
@@ -222,13 +228,14 @@ void SeparableSet::splitGradient(const Vector& x, const Vector& g, Vector& phi, 
   for (size_t k = 0; k < ellipseIndex_.size(); ++k) {
     const auto [i, j] = ellipseIndex_[k];
     const auto a = effectiveAxes(k);
-    const std::array<double, 2> y{xv(i, 0) - center_[k][0], xv(j, 0) - center_[k][1]};
-    const double gi = gv(i, 0), gj = gv(j, 0);
+    const std::array<double, 2> y{at(xv, i) - center_[k][0], at(xv, j) - center_[k][1]};
+    const double gi = at(gv, i), gj = at(gv, j);
     if (!(a[0] > 0.0) || !(a[1] > 0.0)) {
       // Degenerate ellipse: fixed along zero axes; an interval along a positive one.
       const int idx[2] = {i, j};
       const double gg[2] = {gi, gj};
       for (int ax = 0; ax < 2; ++ax) {
+        if (idx[ax] < 0) continue;  // an absent row
         if (!(a[ax] > 0.0)) {
           fv(idx[ax], 0) = 0.0;
           bv(idx[ax], 0) = 0.0;

@@ -16,6 +16,7 @@ namespace tribos::stack {
 feti::ConstraintSpec constraintSpec(const Scene& scene) {
   feti::ConstraintSpec spec;
   spec.dirichletNodeSets = scene.dirichletNodeSets;
+  spec.displacementConditions = scene.displacementConditions;
   if (scene.contact.hasContact()) {
     spec.slaveSideSet = scene.contact.slaveSideSet;
     spec.masterSideSet = scene.contact.masterSideSet;

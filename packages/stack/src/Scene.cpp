@@ -141,6 +141,48 @@ void readLoads(const ParameterList& list, const std::string& source, bool paperD
     }
   }
 }
+/// "xyz", "x", "yz", ...: each of x, y, z at most once, at least one.
+std::array<bool, 3> componentsFrom(const std::string& text, const std::string& where) {
+  std::array<bool, 3> chosen{false, false, false};
+  for (char ch : text) {
+    const auto at = std::string("xyz").find(ch);
+    core::requireInput(at != std::string::npos && !chosen[at],
+                       where + "/Components: \"" + text + "\" must list each of x, y, z at most once (e.g. \"x\", "
+                               "\"yz\", \"xyz\")");
+    chosen[at] = true;
+  }
+  core::requireInput(chosen[0] || chosen[1] || chosen[2], where + "/Components: empty (give e.g. \"x\" or \"xyz\")");
+  return chosen;
+}
+
+void readBoundary(const ParameterList& list, const std::string& source, bool paperDefaults, Scene& scene) {
+  auto checkSet = [&](const std::string& name, const std::string& where) {
+    try {
+      scene.mesh.nodeSet(name);
+    } catch (const InputError& e) {
+      throw InputError(where + ": " + e.what());
+    }
+  };
+  for (const auto& name : list.get<Teuchos::Array<std::string>>("Dirichlet Node Sets")) {
+    checkSet(name, source + ": Boundary/Dirichlet Node Sets");
+    scene.dirichletNodeSets.push_back(name);
+  }
+  for (auto it = list.begin(); it != list.end(); ++it) {
+    if (!list.entry(it).isList()) continue;
+    const std::string where = source + ": Boundary/" + list.name(it);
+    const ParameterList& sub = list.sublist(list.name(it));
+    feti::DisplacementCondition condition;
+    condition.name = list.name(it);
+    condition.nodeSet = getOr(sub, "Node Set", std::string());
+    core::requireInput(!condition.nodeSet.empty(), where + ": \"Node Set\" is required");
+    checkSet(condition.nodeSet, where + "/Node Set");
+    condition.components = componentsFrom(getOr(sub, "Components", std::string("xyz")), where);
+    if (sub.isParameter("Displacement")) condition.value = vector3(sub, "Displacement", where);
+    scene.displacementConditions.push_back(condition);
+  }
+  if (paperDefaults && scene.dirichletNodeSets.empty() && scene.displacementConditions.empty())
+    scene.dirichletNodeSets = {"dirichlet_aluminium", "dirichlet_steel"};  // the paper's clamps
+}
 }  // namespace
 
 Scene buildScene(const ParameterList& tribos, const std::string& source) {
@@ -152,15 +194,7 @@ Scene buildScene(const ParameterList& tribos, const std::string& source) {
   readMaterials(tribos.sublist("Materials"), source, twoBricks, scene);
   readLoads(tribos.sublist("Loads"), source, twoBricks, scene);
 
-  for (const auto& name : tribos.sublist("Boundary").get<Teuchos::Array<std::string>>("Dirichlet Node Sets")) {
-    try {
-      scene.mesh.nodeSet(name);
-    } catch (const InputError& e) {
-      throw InputError(source + ": Boundary/Dirichlet Node Sets: " + e.what());
-    }
-    scene.dirichletNodeSets.push_back(name);
-  }
-
+  readBoundary(tribos.sublist("Boundary"), source, twoBricks, scene);
   const ParameterList& contact = tribos.sublist("Contact");
   scene.contact.frictionModel = contact.get<std::string>("Friction Model");
   scene.contact.F1 = contact.get<double>("F1");

@@ -65,10 +65,18 @@ void loadParameters(ParameterList& pl) {
 }
 
 void boundaryParameters(ParameterList& pl) {
-  pl.set("Dirichlet Node Sets",
-         Teuchos::Array<std::string>(
-             Teuchos::tuple<std::string>("dirichlet_aluminium", "dirichlet_steel")),
-         "node sets with zero displacement (enforced by multipliers: T-FETI)");
+  pl.set("Dirichlet Node Sets", Teuchos::Array<std::string>(),
+         "node sets with zero displacement in all components (enforced by multipliers: T-FETI); Two Bricks "
+         "clamps the paper's dirichlet_aluminium and dirichlet_steel when Boundary is empty");
+  ParameterList& condition = pl.sublist("*", false,
+                                        "one sublist per displacement condition, any name: u_c = value on the "
+                                        "chosen components c of a node set (symmetry planes, plane strain, "
+                                        "prescribed displacements)");
+  condition.set("Node Set", std::string(""), "the node set (required)");
+  condition.set("Components", std::string("xyz"),
+                "the prescribed components, any of x, y, z once each (e.g. \"x\" for a symmetry plane x = const)");
+  condition.set("Displacement", Teuchos::Array<double>(3, 0.0),
+                "{ux, uy, uz} [length]: the values of the prescribed components (the others are ignored)");
 }
 
 void contactParameters(ParameterList& pl) {
@@ -79,8 +87,11 @@ void contactParameters(ParameterList& pl) {
       Teuchos::tuple<std::string>("None", "Tresca", "Coulomb", "Bonded"), &pl);
   pl.set("F1", 0.3, "friction coefficient along t1 (isotropic when F1 = F2), >= 0", atLeast<double>(0.0));
   pl.set("F2", 0.3, "friction coefficient along t2, >= 0", atLeast<double>(0.0));
-  pl.set("Slave Side Set", std::string("contact_aluminium"), "contact surface of the slave body");
-  pl.set("Master Side Set", std::string("contact_steel"), "contact surface of the master body");
+  pl.set("Slave Side Set", std::string(""),
+         "contact surface of the slave body (its nodes are projected on the master surface); empty with an "
+         "empty Master Side Set: no contact (the paper's pair: contact_aluminium)");
+  pl.set("Master Side Set", std::string(""),
+         "contact surface of the master body (the paper's: contact_steel)");
   pl.set("Slip Bound", 0.0, "Tresca: the given slip bound g as a nodal force [force], >= 0", atLeast<double>(0.0));
   Teuchos::setStringToIntegralParameter<int>(
       "Fixed Point", "Inexact",
@@ -92,8 +103,10 @@ void contactParameters(ParameterList& pl) {
          "{x, y, z}: the first tangential direction t1 (F1 acts along it), projected on each node's "
          "tangent plane");
   pl.set("Search Distance", 1e-6,
-         "node-to-node pairing: a slave node pairs with the nearest master node within this distance "
-         "[length]; the initial gap d is their distance along the normal",
+         "contact search: a slave node is projected on the nearest master face within this distance [length] "
+         "(set it above the largest initial gap that may close); a slave node with no master face that near "
+         "gets no contact rows (it cannot touch). The initial gap d is the signed distance along the master "
+         "normal (negative: initial overlap)",
          atLeast<double>(0.0));
 }
 
@@ -169,8 +182,10 @@ Teuchos::RCP<const Teuchos::ParameterList> sceneValidParameters() {
     loadParameters(pl->sublist("Loads", false,
                                "loads; Two Bricks defaults to the paper's tractions on load_end and "
                                "load_top when this list is empty"));
-    boundaryParameters(pl->sublist("Boundary", false, "Dirichlet boundary"));
-    contactParameters(pl->sublist("Contact", false, "contact pair and friction law"));
+    boundaryParameters(pl->sublist("Boundary", false, "displacement conditions"));
+    contactParameters(pl->sublist("Contact", false,
+                                  "contact pair and friction law; without side sets the scene has no contact and "
+                                  "is solved by linear T-FETI"));
     solverParameters(pl->sublist("Solver", false, "SMALSE-M outer loop"));
     fetiParameters(pl->sublist("FETI", false, "T-FETI operators and the linear (projected CG) solver"));
     parallelParameters(pl->sublist("Parallel", false, "hybrid MPI + threads"));

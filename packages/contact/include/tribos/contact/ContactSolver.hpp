@@ -41,11 +41,12 @@ enum class ContactStatus : int { NoContact = 0, Stick = 1, Slip = 2 };
 /// Normalised residuals of the KKT conditions of the discrete problem (ALGORITHMS.md 7).
 struct KktReport {
   double equilibrium = 0.0;       ///< max ||K_s u_s - f_s + B_s^T lambda_s||_inf / ||f||_inf
-  double equality = 0.0;          ///< ||B_E u|| / ||u|| (gluing, Dirichlet)
+  double equality = 0.0;          ///< ||B_E u - c_E|| / ||u|| (gluing, prescribed displacements)
   double nonPenetration = 0.0;    ///< max(N u - c, 0) / ||u||_inf
   double complementarity = 0.0;   ///< |lambda_nu^T (N u - c)| / (||lambda_nu|| ||u||_inf)
   double normalSign = 0.0;        ///< max(-lambda_nu, 0) / ||lambda_nu||_inf
   double frictionAdmissibility = 0.0;  ///< max(||F^-1 lambda_t|| - g, 0) / ||lambda_nu||_inf
+                                       ///< (|lambda_t| itself along a zero coefficient F_j)
   double slipRule = 0.0;          ///< max over slip nodes of 1 - cos(F^-1 lambda_t, F v)
   double stickRule = 0.0;         ///< max over stick nodes of ||v|| / ||u||_inf
 };
@@ -66,6 +67,7 @@ struct ContactResult {
   int fixedPointIterations = 0;   ///< updates of g (Coulomb)
   double fixedPointChange = 0.0;  ///< ||g_{k+1} - g_k|| / ||g_k|| at the end
   KktReport kkt;
+  double kktTolerance = 0.0;      ///< every KKT residual must be <= this for "converged"
   std::array<int, 3> statusCounts{0, 0, 0};  ///< no contact, stick, slip (global)
   double energy = 0.0;            ///< 1/2 u^T K u - f^T u (global)
   std::vector<std::vector<double>> displacement;  ///< u_s of the owned subdomains

@@ -19,6 +19,8 @@ namespace tribos::qp {
 class SeparableSet {
  public:
   void addBound(int localIndex, double lower);
+  /// An index -1 marks an absent row: the block is then the interval |x_i - c_i| <= a_i
+  /// (friction along one tangential direction only, e.g. in a plane-strain slice).
   void addEllipse(std::array<int, 2> localIndex, std::array<double, 2> center, std::array<double, 2> semiAxes);
   /// Changes the semi-axes of ellipse k (the slip bound update of the Coulomb fixed point).
   void setSemiAxes(int k, std::array<double, 2> semiAxes);

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "tribos/feti/ConstraintMatrix.hpp"
 #include "tribos/fem/SubdomainSystem.hpp"
 #include "tribos/mesh/Decomposition.hpp"
 #include "tribos/mesh/Mesh.hpp"
@@ -33,7 +34,8 @@ struct Scene {
   mesh::Decomposition decomposition;
   std::vector<fem::Material> materials;    ///< per element block
   fem::Loads loads;
-  std::vector<std::string> dirichletNodeSets;
+  std::vector<std::string> dirichletNodeSets;  ///< all components zero
+  std::vector<feti::DisplacementCondition> displacementConditions;  ///< Boundary/<name> sublists
   ContactSettings contact;
   double meshSeconds = 0.0, decompositionSeconds = 0.0;
 };
