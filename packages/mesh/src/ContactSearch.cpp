@@ -231,6 +231,7 @@ ContactSearchResult searchContactPairs(const Mesh& mesh, const std::string& slav
     std::array<double, 3> bestWeights{};
     double best2 = searchDistance * searchDistance;
     tree.query(xs, best2, [&](LO face, double& bound2) {
+      ++result.facesTested;
       const auto& t = tree.triangle(face);
       const auto w = closestPointOnTriangle(xs, t[0], t[1], t[2]);
       Vec3 p{};

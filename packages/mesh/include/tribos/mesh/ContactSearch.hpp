@@ -43,6 +43,7 @@ struct ContactSearchResult {
   std::vector<LO> unpaired;        ///< slave nodes with no master face within the search distance
   LO overlapping = 0;              ///< pairs with a negative initial gap
   double largestOverlap = 0.0;     ///< max(-gap) over them (0 if none)
+  long long facesTested = 0;       ///< closest-point evaluations in all (the search cost)
 };
 
 /// Pairs every node of `slaveSideSet` with the master surface `masterSideSet` within
