@@ -390,14 +390,12 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
         // On the bound and sliding, or free to slide along a zero axis (F_j = 0, g = 0): the
         // frictionless / degenerate-ellipse limits are slip, never 0/0 "stick".
         status = ContactStatus::Slip;
-        if (!state.degenerate && vNorm > tau * uScale) {
-          // Slip rule: lambda_t maximises lambda_t^T v over the ellipse, i.e.
-          // diag(1/a) lambda_t is parallel to diag(a) v, in the same sense.
-          const double y1 = lt[0] / std::max(state.axes[0], tinyForce), y2 = lt[1] / std::max(state.axes[1], tinyForce);
-          const double w1 = state.axes[0] * v[0], w2 = state.axes[1] * v[1];
-          const double cosine = (y1 * w1 + y2 * w2) / (std::hypot(y1, y2) * std::hypot(w1, w2));
-          slipRule = std::max(slipRule, 1.0 - cosine);
-        }
+        // Slip rule (maximal dissipation): lambda_t maximises lambda_t^T v over the ellipse,
+        // max = ||diag(a) v||; the deficit is in force x displacement units, like the
+        // complementarity residual (a direction test alone is noise where v is tiny).
+        const double dissipation = lt[0] * v[0] + lt[1] * v[1];
+        const double best = std::hypot(state.axes[0] * v[0], state.axes[1] * v[1]);
+        slipRule = std::max(slipRule, (best - dissipation) / (lScale * uScale));
       } else if (status == ContactStatus::Stick) {
         stickRule = std::max(stickRule, vNorm / uScale);
       }

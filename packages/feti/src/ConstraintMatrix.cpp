@@ -15,6 +15,7 @@
 
 #include "tribos/core/Errors.hpp"
 #include "tribos/mesh/ContactSearch.hpp"
+#include "tribos/mesh/MortarCoupling.hpp"
 
 namespace tribos::feti {
 
@@ -156,28 +157,41 @@ ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decom
                          spec.slaveSideSet + "\", master \"" + spec.masterSideSet + "\")");
   if (!spec.slaveSideSet.empty()) {
     const auto search = mesh::searchContactPairs(mesh, spec.slaveSideSet, spec.masterSideSet, spec.searchDistance);
+    core::requireInput(spec.discretization == "Mortar" || spec.discretization == "Node To Surface",
+                       "Contact/Discretization: \"" + spec.discretization +
+                           "\" is not one of \"Mortar\", \"Node To Surface\"");
+    std::vector<mesh::MortarRow> masterSides;
+    if (spec.discretization == "Mortar") {
+      const mesh::MasterSurface master(mesh, spec.masterSideSet);
+      masterSides = mesh::dualMortarRows(mesh, spec.slaveSideSet, master, search, spec.searchDistance);
+    } else {
+      for (const auto& pair : search.pairs) masterSides.push_back(mesh::nodeToSurfaceRow(pair));
+    }
     B.unpairedSlaveNodes = static_cast<GO>(search.unpaired.size());
     B.overlappingPairs = search.overlapping;
     B.largestOverlap = search.largestOverlap;
     const int numDirections = spec.tangentialRows ? 3 : 1;
     rows.reserve(numDirections * search.pairs.size());
 
-    for (const auto& pair : search.pairs) {
+    for (size_t p = 0; p < search.pairs.size(); ++p) {
+      const auto& pair = search.pairs[p];
+      const auto& masterSide = masterSides[p];
       ContactNode node;
       node.slaveNode = pair.slaveNode;
       node.masterNode = pair.nearestMasterNode();
-      node.masterNodes = pair.masterNodes;
-      node.masterWeights = pair.weights;
+      node.masterNodes = masterSide.masterNodes;
+      node.masterWeights = masterSide.weights;
+      node.mortar = !masterSide.nodeToSurface;
       node.normal = pair.normal;
-      node.gap = pair.gap;
+      node.gap = masterSide.gap;
       node.t1 = tangent(spec.t1Direction, node.normal);
       node.t2 = cross(node.normal, node.t1);  // right-handed (nu, t1, t2)
       // The nodes of the row with their weights: +1 on the slave, -w_i on master vertex i.
       // Each node's weight is spread evenly over its copies (1/k each): the row is then
       // orthogonal to every gluing row, which is orthogonal to the mean of the copies.
       std::vector<std::pair<LO, double>> sides{{pair.slaveNode, 1.0}};
-      for (int v = 0; v < 3; ++v)
-        if (pair.weights[v] > 0.0) sides.push_back({pair.masterNodes[v], -pair.weights[v]});
+      for (size_t v = 0; v < masterSide.masterNodes.size(); ++v)
+        sides.push_back({masterSide.masterNodes[v], -masterSide.weights[v]});
       const Vec3* directions[3] = {&node.normal, &node.t1, &node.t2};
       const int contactIndex = static_cast<int>(B.contact.size());
       std::vector<Row> nodeRows;

@@ -46,9 +46,9 @@ struct Box {
 /// [lo, hi) are split at their median centroid along the widest axis; the box of the
 /// range is kept at its middle position. Queries visit ranges nearest-first and skip
 /// those farther than the best distance so far.
-class TriangleTree {
+class TriangleTreeImpl {
  public:
-  explicit TriangleTree(std::vector<std::array<Vec3, 3>> triangles)
+  explicit TriangleTreeImpl(std::vector<std::array<Vec3, 3>> triangles)
       : triangles_(std::move(triangles)), order_(triangles_.size()), boxes_(triangles_.size()) {
     std::iota(order_.begin(), order_.end(), LO{0});
     build(0, order_.size());
@@ -193,24 +193,68 @@ std::array<double, 3> closestPointOnTriangle(const Vec3& x, const Vec3& a, const
   return {1.0 - v - w, v, w};
 }
 
+class MasterSurface::Tree : public TriangleTreeImpl {
+  using TriangleTreeImpl::TriangleTreeImpl;
+};
+
+MasterSurface::MasterSurface(const Mesh& mesh, const std::string& masterSideSet) : name_(masterSideSet) {
+  const SideSet& set = mesh.sideSet(masterSideSet);
+  std::vector<std::array<Vec3, 3>> triangles(set.elements.size());
+  faceNodes_.resize(set.elements.size());
+  for (size_t f = 0; f < triangles.size(); ++f)
+    for (int v = 0; v < 3; ++v) {
+      faceNodes_[f][v] = mesh.tets[set.elements[f]][kTetFaceVertices[set.sides[f]][v]];
+      triangles[f][v] = mesh.coords[faceNodes_[f][v]];
+    }
+  tree_ = std::make_unique<Tree>(std::move(triangles));
+  nodalNormal_ = unitNodalNormals(mesh, set);
+}
+
+MasterSurface::~MasterSurface() = default;
+
+MasterSurface::Projection MasterSurface::project(const Vec3& x, double radius, long long* facesTested) const {
+  Projection best;
+  double best2 = radius * radius;
+  tree_->query(x, best2, [&](LO face, double& bound2) {
+    if (facesTested) ++*facesTested;
+    const auto& t = tree_->triangle(face);
+    const auto w = closestPointOnTriangle(x, t[0], t[1], t[2]);
+    Vec3 p{};
+    for (int d = 0; d < 3; ++d) p[d] = w[0] * t[0][d] + w[1] * t[1][d] + w[2] * t[2][d];
+    const Vec3 diff = minus(p, x);
+    const double d2 = dot(diff, diff);
+    if (d2 < bound2 || (d2 == bound2 && (best.face < 0 || face < best.face))) {
+      best.face = face;
+      best.weights = w;
+      best.point = p;
+      bound2 = d2;
+    }
+  });
+  if (best.face >= 0) {
+    best.nodes = faceNodes_[best.face];
+    best.distance = std::sqrt(best2);
+  }
+  return best;
+}
+
+Vec3 MasterSurface::normalAt(const Projection& p) const {
+  Vec3 n{0.0, 0.0, 0.0};
+  for (int v = 0; v < 3; ++v)
+    for (int d = 0; d < 3; ++d) n[d] += p.weights[v] * nodalNormal_[p.nodes[v]][d];
+  const double length = norm(n);
+  if (length > 0.0)
+    for (double& c : n) c /= length;
+  return n;
+}
+
 ContactSearchResult searchContactPairs(const Mesh& mesh, const std::string& slaveSideSet,
                                        const std::string& masterSideSet, double searchDistance) {
   core::requireInput(std::isfinite(searchDistance) && searchDistance >= 0.0,
                      "Contact/Search Distance must be finite and >= 0, got " + str(searchDistance));
   const SideSet& slaveSet = mesh.sideSet(slaveSideSet);
-  const SideSet& masterSet = mesh.sideSet(masterSideSet);
   const auto slaves = sideSetNodes(mesh, slaveSet);
-  const auto masterNodes = sideSetNodes(mesh, masterSet);
-
-  std::vector<std::array<Vec3, 3>> triangles(masterSet.elements.size());
-  std::vector<std::array<LO, 3>> faceNodes(masterSet.elements.size());
-  for (size_t f = 0; f < triangles.size(); ++f)
-    for (int v = 0; v < 3; ++v) {
-      faceNodes[f][v] = mesh.tets[masterSet.elements[f]][kTetFaceVertices[masterSet.sides[f]][v]];
-      triangles[f][v] = mesh.coords[faceNodes[f][v]];
-    }
-  const TriangleTree tree(std::move(triangles));
-  const auto masterNormal = unitNodalNormals(mesh, masterSet);
+  const auto masterNodes = sideSetNodes(mesh, mesh.sideSet(masterSideSet));
+  const MasterSurface master(mesh, masterSideSet);
   const auto slaveNormal = unitNodalNormals(mesh, slaveSet);
   const double zeroGap = 1e-12 * coordinateScale(mesh);
 
@@ -227,54 +271,32 @@ ContactSearchResult searchContactPairs(const Mesh& mesh, const std::string& slav
                            std::to_string(slave + 1) + " at " + str(xs) +
                            " have a zero summed normal (degenerate or folded surface)");
     // Nearest face within the search distance; ties go to the lower face index.
-    LO bestFace = -1;
-    std::array<double, 3> bestWeights{};
-    double best2 = searchDistance * searchDistance;
-    tree.query(xs, best2, [&](LO face, double& bound2) {
-      ++result.facesTested;
-      const auto& t = tree.triangle(face);
-      const auto w = closestPointOnTriangle(xs, t[0], t[1], t[2]);
-      Vec3 p{};
-      for (int d = 0; d < 3; ++d) p[d] = w[0] * t[0][d] + w[1] * t[1][d] + w[2] * t[2][d];
-      const Vec3 diff = minus(p, xs);
-      const double d2 = dot(diff, diff);
-      if (d2 < bound2 || (d2 == bound2 && (bestFace < 0 || face < bestFace))) {
-        bestFace = face;
-        bestWeights = w;
-        bound2 = d2;
-      }
-    });
-    if (bestFace < 0) {
+    const auto projection = master.project(xs, searchDistance, &result.facesTested);
+    if (projection.face < 0) {
       result.unpaired.push_back(slave);
       continue;
     }
     ContactPair pair;
     pair.slaveNode = slave;
-    pair.masterFace = bestFace;
-    pair.masterNodes = faceNodes[bestFace];
-    pair.weights = bestWeights;
-    // nu = -(interpolated master normal), normalised (header: the smoothed normal).
-    Vec3 n{0.0, 0.0, 0.0}, p{0.0, 0.0, 0.0};
-    for (int v = 0; v < 3; ++v)
-      for (int d = 0; d < 3; ++d) {
-        n[d] -= pair.weights[v] * masterNormal[pair.masterNodes[v]][d];
-        p[d] += pair.weights[v] * mesh.coords[pair.masterNodes[v]][d];
-      }
-    const double length = norm(n);
-    core::requireInput(length > 0.0, "contact: the master surface \"" + masterSideSet + "\" is folded at " + str(p) +
-                                         " (its nodal normals cancel), the projection of slave node " +
-                                         std::to_string(slave + 1));
-    for (double& c : n) c /= length;
+    pair.masterFace = projection.face;
+    pair.masterNodes = projection.nodes;
+    pair.weights = projection.weights;
+    // nu = -(interpolated master normal) (header: the smoothed normal).
+    Vec3 n = master.normalAt(projection);
+    core::requireInput(norm(n) > 0.0, "contact: the master surface \"" + masterSideSet + "\" is folded at " +
+                                          str(projection.point) + " (its nodal normals cancel), the projection of slave node " +
+                                          std::to_string(slave + 1));
+    for (double& c : n) c = -c;
     // The master surface must face the slave surface there (else the sets are swapped, or
     // the slave node found the back of a thin master body).
     core::requireInput(dot(n, slaveNormal[slave]) > 0.0,
                        "contact: at slave node " + std::to_string(slave + 1) + " at " + str(xs) + " of side set \"" +
                            slaveSideSet + "\" the master surface \"" + masterSideSet + "\" (face " +
-                           std::to_string(bestFace + 1) + ", projection " + str(p) +
+                           std::to_string(projection.face + 1) + ", projection " + str(projection.point) +
                            ") faces away from the slave surface; check the side sets and Contact/Search Distance");
     pair.normal = n;
-    pair.distance = std::sqrt(best2);
-    pair.gap = dot(minus(p, xs), n);
+    pair.distance = projection.distance;
+    pair.gap = dot(minus(projection.point, xs), n);
     if (std::abs(pair.gap) <= zeroGap) pair.gap = 0.0;
     if (pair.gap < 0.0) {
       ++result.overlapping;

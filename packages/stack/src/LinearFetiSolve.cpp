@@ -24,6 +24,7 @@ feti::ConstraintSpec constraintSpec(const Scene& scene) {
   spec.tangentialRows = scene.contact.frictionModel != "None";
   spec.t1Direction = scene.contact.t1Direction;
   spec.searchDistance = scene.contact.searchDistance;
+  spec.discretization = scene.contact.discretization;
   return spec;
 }
 

@@ -203,6 +203,7 @@ Scene buildScene(const ParameterList& tribos, const std::string& source) {
   scene.contact.masterSideSet = contact.get<std::string>("Master Side Set");
   scene.contact.t1Direction = vector3(contact, "T1 Direction", source + ": Contact");
   scene.contact.searchDistance = contact.get<double>("Search Distance");
+  scene.contact.discretization = contact.get<std::string>("Discretization");
   core::requireInput(scene.contact.slaveSideSet.empty() == scene.contact.masterSideSet.empty(),
                      source + ": Contact: give both \"Slave Side Set\" and \"Master Side Set\", or "
                               "neither (no contact)");

@@ -102,6 +102,12 @@ void contactParameters(ParameterList& pl) {
   pl.set("T1 Direction", Teuchos::Array<double>(Teuchos::tuple<double>(1.0, 0.0, 0.0)),
          "{x, y, z}: the first tangential direction t1 (F1 acts along it), projected on each node's "
          "tangent plane");
+  Teuchos::setStringToIntegralParameter<int>(
+      "Discretization", "Mortar",
+      "contact rows of a slave node: \"Mortar\" (dual mortar weights of the master nodes, integrated over the "
+      "slave surface: no pressure oscillation on non-matching meshes; node-to-node on matching ones) or "
+      "\"Node To Surface\" (the master displacement interpolated at the node's projection)",
+      Teuchos::tuple<std::string>("Mortar", "Node To Surface"), &pl);
   pl.set("Search Distance", 1e-6,
          "contact search: a slave node is projected on the nearest master face within this distance [length] "
          "(set it above the largest initial gap that may close); a slave node with no master face that near "

@@ -47,7 +47,8 @@ struct KktReport {
   double normalSign = 0.0;        ///< max(-lambda_nu, 0) / ||lambda_nu||_inf
   double frictionAdmissibility = 0.0;  ///< max(||F^-1 lambda_t|| - g, 0) / ||lambda_nu||_inf
                                        ///< (|lambda_t| itself along a zero coefficient F_j)
-  double slipRule = 0.0;          ///< max over slip nodes of 1 - cos(F^-1 lambda_t, F v)
+  double slipRule = 0.0;          ///< max over slip nodes of (max over the friction ellipse of
+                                  ///< lambda_t^T v - lambda_t^T v) / (||lambda_nu||_inf ||u||_inf)
   double stickRule = 0.0;         ///< max over stick nodes of ||v|| / ||u||_inf
 };
 

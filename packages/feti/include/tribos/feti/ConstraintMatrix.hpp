@@ -9,10 +9,11 @@
 ///    c = x, y or z; "Dirichlet Node Sets" prescribe all three to 0) every copy gets a unit
 ///    row for that component with the value in c, and that component gets no gluing rows —
 ///    the paper's count, and B stays orthonormal;
-///  - contact (node-to-surface, mesh/ContactSearch.hpp): rows N_r, T1_r, T2_r acting on
-///    (mean of the slave copies - sum_i w_i mean of the copies of master vertex i) projected
-///    on nu, t1, t2, with w the barycentric weights of the slave node's projection on the
-///    master surface (the paper's transfer mapping chi; node-to-node on matching meshes),
+///  - contact (mesh/ContactSearch.hpp, mesh/MortarCoupling.hpp): rows N_r, T1_r, T2_r acting
+///    on (mean of the slave copies - sum_i w_i mean of the copies of master node i)
+///    projected on nu, t1, t2, with w the dual mortar weights of the slave node or the
+///    barycentric weights of its projection on the master surface (the paper's transfer
+///    mapping chi; node-to-node on matching meshes),
 ///    scaled to unit norm; orthogonal to the gluing rows by construction. Prescribed
 ///    components are dropped from a contact row and their known contribution moved into c
 ///    (so the row stays orthogonal to the displacement rows); a row with nothing left (both
@@ -51,14 +52,18 @@ struct ConstraintSpec {
   /// A slave node is projected on the master surface within this distance (the mesh's
   /// units); a slave node farther from every master face gets no contact rows.
   double searchDistance = 1e-6;
+  /// "Mortar" (dual mortar weights, mesh/MortarCoupling.hpp; node-to-node on matching
+  /// meshes) or "Node To Surface" (the barycentric weights of the slave node's projection).
+  std::string discretization = "Mortar";
 };
 
 /// One slave contact node r with its projection and frame (DESIGN.md conventions).
 struct ContactNode {
   LO slaveNode = -1;                       ///< global mesh node id
   LO masterNode = -1;                      ///< the master vertex with the largest weight
-  std::array<LO, 3> masterNodes{};         ///< vertices of the master face of the projection
-  std::array<double, 3> masterWeights{};   ///< their barycentric weights (sum 1)
+  std::vector<LO> masterNodes;             ///< the master nodes of the rows (ascending)
+  std::vector<double> masterWeights;       ///< their weights (sum 1; barycentric or dual mortar)
+  bool mortar = false;                     ///< weights from the dual mortar integrals
   std::array<double, 3> normal{}, t1{}, t2{};  ///< orthonormal frame, normal from slave to master
   double gap = 0.0;                        ///< d_r: signed distance along normal (< 0: initial overlap)
   GO normalRow = -1;                       ///< row of N_r; the present tangential rows follow it

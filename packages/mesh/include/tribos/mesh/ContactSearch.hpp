@@ -18,6 +18,7 @@
 /// On matching meshes every slave node lies on a master vertex: weights (1, 0, 0), the
 /// pairing is node-to-node.
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,37 @@ struct ContactSearchResult {
   LO overlapping = 0;              ///< pairs with a negative initial gap
   double largestOverlap = 0.0;     ///< max(-gap) over them (0 if none)
   long long facesTested = 0;       ///< closest-point evaluations in all (the search cost)
+};
+
+/// The master surface of a contact pair with its search tree: the closest point of the
+/// surface to any point (the contact search and the mortar integration both ask it).
+class MasterSurface {
+ public:
+  MasterSurface(const Mesh& mesh, const std::string& masterSideSet);
+  ~MasterSurface();
+  MasterSurface(const MasterSurface&) = delete;
+  MasterSurface& operator=(const MasterSurface&) = delete;
+
+  struct Projection {
+    LO face = -1;                      ///< -1: no face within the radius
+    std::array<LO, 3> nodes{};
+    std::array<double, 3> weights{};   ///< barycentric weights of the closest point
+    std::array<double, 3> point{};
+    double distance = 0.0;
+  };
+  /// The closest point within `radius` (ties: the lower face index). `facesTested` counts
+  /// the closest-point evaluations.
+  Projection project(const std::array<double, 3>& x, double radius, long long* facesTested = nullptr) const;
+  /// Unit smoothed normal (outward of the master body) interpolated at a projection.
+  std::array<double, 3> normalAt(const Projection& p) const;
+  const std::string& name() const { return name_; }
+
+ private:
+  class Tree;
+  std::string name_;
+  std::unique_ptr<Tree> tree_;
+  std::vector<std::array<LO, 3>> faceNodes_;
+  std::vector<std::array<double, 3>> nodalNormal_;  ///< unit, per global node (zero off the set)
 };
 
 /// Pairs every node of `slaveSideSet` with the master surface `masterSideSet` within

@@ -25,6 +25,7 @@ struct ContactSettings {
   std::string slaveSideSet, masterSideSet;
   std::array<double, 3> t1Direction{1.0, 0.0, 0.0};
   double searchDistance = 1e-6;
+  std::string discretization = "Mortar";  ///< Mortar | Node To Surface
   bool hasContact() const { return !slaveSideSet.empty(); }
 };
 

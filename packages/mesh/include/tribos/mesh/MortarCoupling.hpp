@@ -1,0 +1,56 @@
+#pragma once
+/// \file MortarCoupling.hpp
+/// Dual mortar coupling of the slave nodes to the master surface (Wohlmuth's biorthogonal
+/// multipliers), the default contact discretisation for non-matching meshes.
+///
+/// Why: the node-to-surface rows (ContactSearch.hpp: the slave node against the master
+/// displacement interpolated at its projection) do not pass the contact patch test on
+/// non-matching meshes; measured on the Hertz scenes here, the nodal pressure oscillates by
+/// +-6 % (line contact) and +-15 % (point contact) around Hertz's and does not settle under
+/// refinement. The mortar rows weigh the master nodes by integrals over the slave surface,
+/// which removes that oscillation while keeping one row per slave node and direction:
+///   row of slave node i:  u_i - sum_j w_ij u_j,   w_ij = M_ij / D_i,
+///   D_i  = int_Gamma_s phi_i,        (the slave node's tributary area)
+///   M_ij = int_Gamma_s psi_i (phi_j o chi),
+/// with phi_i the slave surface's P1 hat function, psi_i = 4 phi_i - 1 on each slave
+/// triangle its dual (int psi_i phi_k = delta_ik int phi_k), phi_j the master hat functions
+/// evaluated at the projection chi of the slave point on the master surface. Since
+/// sum_j phi_j = 1, sum_j M_ij = int psi_i = D_i: the weights sum to one, as the
+/// node-to-surface weights do; some may be negative. The initial gap is weighted the same
+/// way: d_i = (int psi_i (chi(x) - x) dGamma / D_i) . nu_i.
+///
+/// The integrals are evaluated by quadrature on the slave triangles (each cut into
+/// kSubdivisions^2 sub-triangles, 3-point rule exact for quadratics on each), projecting
+/// every quadrature point on the master surface — element-based integration, without
+/// clipping the slave and master triangles against each other. Exact when a slave triangle
+/// lies inside one master triangle (matching meshes: w_ij = delta_ij to round-off, snapped to
+/// exactly node-to-node); otherwise the kinks of phi_j inside a slave triangle are resolved
+/// to the sub-triangle size.
+///
+/// A slave node whose support is only partly over the master surface (some quadrature
+/// points find no master face within the search distance, e.g. at the edge of the master
+/// surface) keeps its node-to-surface row: the dual weights need the whole support.
+#include <string>
+#include <vector>
+
+#include "tribos/mesh/ContactSearch.hpp"
+
+namespace tribos::mesh {
+
+/// The master side of one slave node's rows.
+struct MortarRow {
+  std::vector<LO> masterNodes;   ///< ascending
+  std::vector<double> weights;   ///< w_ij, sum 1
+  double gap = 0.0;              ///< d_i along the pair's normal (< 0: initial overlap)
+  bool nodeToSurface = false;    ///< the node kept its node-to-surface row (header)
+};
+
+/// One row per pair of `search` (same order). `master` must be built on the master set
+/// of the search; `searchDistance` as there.
+std::vector<MortarRow> dualMortarRows(const Mesh& mesh, const std::string& slaveSideSet, const MasterSurface& master,
+                                      const ContactSearchResult& search, double searchDistance);
+
+/// The node-to-surface row of a pair (its projection's vertices and weights, zeros dropped).
+MortarRow nodeToSurfaceRow(const ContactPair& pair);
+
+}  // namespace tribos::mesh
