@@ -1,0 +1,118 @@
+// Per-component displacement conditions (Boundary/<name>: Node Set, Components,
+// Displacement) on a scene without contact, solved by linear T-FETI: a box held only by
+// three symmetry planes reproduces the exact uniform-strain solution under a pressure and
+// under a prescribed end displacement (linear fields lie in the P1 space, so the only error
+// is the solver's); contradicting conditions and malformed Components are input errors
+// naming what is wrong. ctest runs this on 1 and 2 ranks.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "BoxMesh.hpp"
+#include "BoxScene.hpp"
+#include "tribos/core/Errors.hpp"
+
+namespace {
+using namespace tribos;
+using test::displacementCondition;
+using test::with;
+using test::worldRank;
+
+constexpr double kE = 1000.0, kNu = 0.25;
+
+/// Box [0,1] x [0,1] x [0,3], 2 x 2 x 6 cells, 4 METIS subdomains, E = 1000, nu = 0.25,
+/// symmetry planes u_x = 0 on x0, u_y = 0 on y0, u_z = 0 on z0 (nothing else holds it: the
+/// lateral faces and the top are free to move, so the strain is uniform).
+mesh::Mesh box() {
+  auto m = test::boxMesh({0.0, 0.0, 0.0}, {1.0, 1.0, 3.0}, {2, 2, 6}, "box");
+  m.validate("test");
+  return m;
+}
+
+std::vector<std::string> symmetryScene() {
+  std::vector<std::string> o = {"Mesh/Subdomains=4", "Materials/box/Young Modulus=1000", "Materials/box/Poisson Ratio=0.25",
+                                "Solver/Tolerance=1e-13", "Solver/Verbose=false"};
+  o = with(o, displacementCondition("symmetry_x", "box_x0", "x"));
+  o = with(o, displacementCondition("symmetry_y", "box_y0", "y"));
+  return with(o, displacementCondition("symmetry_z", "box_z0", "z"));
+}
+
+/// max over nodes and components |u - exact| / max |exact|.
+double relativeError(const test::SolvedBoxScene& s, double ex, double ey, double ez) {
+  double diff = 0.0, norm = 0.0;
+  const auto& u = s.displacement();
+  for (LO n = 0; n < s.scene.mesh.numNodes(); ++n) {
+    const auto& x = s.scene.mesh.coords[n];
+    const double exact[3] = {ex * x[0], ey * x[1], ez * x[2]};
+    for (int c = 0; c < 3; ++c) {
+      diff = std::max(diff, std::abs(u[n][c] - exact[c]));
+      norm = std::max(norm, std::abs(exact[c]));
+    }
+  }
+  return diff / norm;
+}
+
+void expectInputError(const std::vector<std::string>& overrides, bool atConstraints,
+                      const std::vector<std::string>& mentions) {
+  test::ExodusScene input(box(), with(symmetryScene(), overrides));
+  try {
+    const auto scene = input.build();
+    if (atConstraints) feti::buildConstraintMatrix(scene.mesh, scene.decomposition, stack::constraintSpec(scene), 1);
+    ADD_FAILURE() << "no input error";
+  } catch (const core::InputError& e) {
+    for (const auto& m : mentions) EXPECT_NE(std::string(e.what()).find(m), std::string::npos) << e.what();
+  }
+}
+}  // namespace
+
+TEST(displacementConditions, pressureOnABoxOnSymmetryPlanesGivesTheUniformStrain) {
+  // p = 2 on the top: sigma_zz = -p, so u = (nu p/E x, nu p/E y, -p/E z).
+  const double p = 2.0;
+  const auto s = test::solveBoxScene(box(), with(symmetryScene(), {"Loads/top/Side Set=box_z1",
+                                                                   "Loads/top/Traction={0, 0, -2}"}));
+  EXPECT_FALSE(s.scene.contact.hasContact());
+  EXPECT_TRUE(s.linear.converged);
+  if (worldRank() != 0) return;
+  const double error = relativeError(s, kNu * p / kE, kNu * p / kE, -p / kE);
+  std::printf("pressure: max |u - exact| / max |exact| = %.3e (%d CG iterations)\n", error, s.linear.iterations);
+  EXPECT_LE(error, 1e-10);
+  EXPECT_LE(s.linear.maxCopyJump, 1e-10 * 3.0 * p / kE);
+}
+
+TEST(displacementConditions, prescribedEndDisplacementGivesTheUniformStrain) {
+  // u_z = -0.03 on the top (z = 3), no load: strain -0.01 along z, u = (0.01 nu x,
+  // 0.01 nu y, -0.01 z). The top's lateral components stay free.
+  const auto s = test::solveBoxScene(box(), with(symmetryScene(), displacementCondition("pressed", "box_z1", "z",
+                                                                                        "{0, 0, -0.03}")));
+  // The x, y values given with Components "z" are ignored: the same scene with {5, 5, -0.03}.
+  const auto t = test::solveBoxScene(box(), with(symmetryScene(), displacementCondition("pressed", "box_z1", "z",
+                                                                                        "{5, 5, -0.03}")));
+  EXPECT_TRUE(s.linear.converged);
+  EXPECT_TRUE(t.linear.converged);
+  if (worldRank() != 0) return;
+  const double error = relativeError(s, kNu * 0.01, kNu * 0.01, -0.01);
+  std::printf("prescribed displacement: max |u - exact| / max |exact| = %.3e (%d CG iterations)\n", error,
+              s.linear.iterations);
+  EXPECT_LE(error, 1e-10);
+  EXPECT_LE(relativeError(t, kNu * 0.01, kNu * 0.01, -0.01), 1e-10);
+}
+
+TEST(displacementConditions, contradictingConditionsAndBadComponentsAreInputErrors) {
+  // The same node set, component x, values 0 and 1: the message names both conditions.
+  expectInputError(with(displacementCondition("left_at_zero", "box_x0", "x", "{0, 0, 0}"),
+                        displacementCondition("left_at_one", "box_x0", "x", "{1, 0, 0}")),
+                   true, {"left_at_zero", "left_at_one", "u_x"});
+  // Equal values on the same component are no contradiction.
+  {
+    test::ExodusScene input(box(), with(symmetryScene(), displacementCondition("again_x", "box_x0", "x")));
+    const auto scene = input.build();
+    EXPECT_NO_THROW(feti::buildConstraintMatrix(scene.mesh, scene.decomposition, stack::constraintSpec(scene), 1));
+  }
+  // Components must list each of x, y, z at most once: the message names the parameter.
+  expectInputError(displacementCondition("twice", "box_x1", "xx"), false, {"Boundary/twice/Components", "\"xx\""});
+  expectInputError(displacementCondition("unknown", "box_x1", "w"), false, {"Boundary/unknown/Components", "\"w\""});
+  expectInputError(displacementCondition("empty", "box_x1", ""), false, {"Boundary/empty/Components"});
+  // A node set that does not exist is named too.
+  expectInputError(displacementCondition("nowhere", "no_such_set", "x"), false, {"Boundary/nowhere", "no_such_set"});
+}

@@ -1,0 +1,219 @@
+// A contact patch test: two stacked boxes of different materials pressed together by a
+// uniform pressure p, held only by symmetry planes, frictionless. The exact solution is a
+// uniform strain in each body (sigma_zz = -p in both; the bodies slide freely against each
+// other as their lateral expansions differ) with a uniform contact pressure p. On matching
+// interface meshes the discrete problem contains it (linear fields, node-to-node rows), so
+// T-FETI + SMALSE-M must reproduce it to round-off. On non-matching meshes (4x4 against
+// 5x5 cells) node-to-surface rows transfer the slave's nodal forces to the master with the
+// interpolation weights, which are not the master's consistent nodal forces of a uniform
+// pressure: the discrete solution deviates from the uniform one. The test reports that
+// deviation (VALIDATION.md) and bounds it; the total force and its direction stay exact.
+// ctest runs this on 1 and 2 ranks.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "BoxMesh.hpp"
+#include "BoxScene.hpp"
+#include "tribos/fem/SubdomainSystem.hpp"
+#include "tribos/stack/GlobalFields.hpp"
+
+namespace {
+using namespace tribos;
+using test::displacementCondition;
+using test::with;
+using test::worldRank;
+
+constexpr double kP = 10.0;                 // pressure on the top of the upper body
+constexpr double kE1 = 70000.0, kNu1 = 0.33;   // lower body (slave)
+constexpr double kE2 = 210000.0, kNu2 = 0.3;   // upper body (master)
+constexpr double kArea = 4.0;               // 2 x 2 footprint
+
+/// Lower body [0,2]^2 x [0,1] with 4x4x2 cells, upper body [0,2]^2 x [1,2] with upperCells.
+mesh::Mesh patchMesh(std::array<int, 3> upperCells) {
+  auto m = test::mergeMeshes(test::boxMesh({0, 0, 0}, {2, 2, 1}, {4, 4, 2}, "lower"),
+                             test::boxMesh({0, 0, 1}, {2, 2, 1}, upperCells, "upper"));
+  m.validate("test");
+  return m;
+}
+
+std::vector<std::string> patchScene() {
+  std::vector<std::string> o = {
+      "Mesh/Subdomains=4",
+      "Materials/lower/Young Modulus=70000", "Materials/lower/Poisson Ratio=0.33",
+      "Materials/upper/Young Modulus=210000", "Materials/upper/Poisson Ratio=0.3",
+      "Loads/pressure/Side Set=upper_z1", "Loads/pressure/Traction={0, 0, -10}",
+      "Contact/Friction Model=None", "Contact/Slave Side Set=lower_z1", "Contact/Master Side Set=upper_z0",
+      "Contact/Search Distance=1e-6",
+      "Solver/Tolerance=1e-12", "Solver/Verbose=false"};
+  o = with(o, displacementCondition("lower_symmetry_x", "lower_x0", "x"));
+  o = with(o, displacementCondition("upper_symmetry_x", "upper_x0", "x"));
+  o = with(o, displacementCondition("lower_symmetry_y", "lower_y0", "y"));
+  o = with(o, displacementCondition("upper_symmetry_y", "upper_y0", "y"));
+  return with(o, displacementCondition("lower_support", "lower_z0", "z"));
+}
+
+/// The uniform-strain solution: lower u = (nu1 p/E1 x, nu1 p/E1 y, -p/E1 z); upper
+/// u = (nu2 p/E2 x, nu2 p/E2 y, -p/E1 - p/E2 (z - 1)) (u_z continuous at z = 1).
+std::array<double, 3> exact(const std::array<double, 3>& x, bool upper) {
+  if (!upper) return {kNu1 * kP / kE1 * x[0], kNu1 * kP / kE1 * x[1], -kP / kE1 * x[2]};
+  return {kNu2 * kP / kE2 * x[0], kNu2 * kP / kE2 * x[1], -kP / kE1 - kP / kE2 * (x[2] - 1.0)};
+}
+
+/// Per body: max |u - exact| / max |exact| over its nodes.
+std::array<double, 2> displacementErrors(const test::SolvedBoxScene& s) {
+  const auto& m = s.scene.mesh;
+  std::vector<int> body(m.numNodes(), -1);
+  for (LO e = 0; e < m.numElements(); ++e)
+    for (LO n : m.tets[e]) body[n] = m.blockOf(e);
+  std::array<double, 2> diff{0, 0}, norm{0, 0};
+  for (LO n = 0; n < m.numNodes(); ++n) {
+    const int b = body[n];
+    const auto u0 = exact(m.coords[n], b == 1);
+    for (int c = 0; c < 3; ++c) {
+      diff[b] = std::max(diff[b], std::abs(s.displacement()[n][c] - u0[c]));
+      norm[b] = std::max(norm[b], std::abs(u0[c]));
+    }
+  }
+  return {diff[0] / norm[0], diff[1] / norm[1]};
+}
+
+struct PressureStats {
+  double minDev = INFINITY, maxDev = -INFINITY, meanAbsDev = 0.0, maxAbsDev = 0.0;
+  int nodes = 0;
+};
+
+/// Relative deviation (pressure - p) / p over the slave nodes.
+PressureStats pressureStats(const test::SolvedBoxScene& s) {
+  PressureStats st;
+  for (LO n : s.scene.mesh.nodeSet("lower_z1").nodes) {
+    const double dev = (s.contact.contactPressure[n] - kP) / kP;
+    st.minDev = std::min(st.minDev, dev);
+    st.maxDev = std::max(st.maxDev, dev);
+    st.meanAbsDev += std::abs(dev);
+    st.maxAbsDev = std::max(st.maxAbsDev, std::abs(dev));
+    ++st.nodes;
+  }
+  st.meanAbsDev /= st.nodes;
+  return st;
+}
+
+/// The discrete equations node by node, with the undecomposed stiffness (independent of
+/// T-FETI): K u - f is the contact force each node receives — -F_r nu at slave node r and
+/// sum_r w_r(m) F_r nu at master vertex m, F_r the reported normal force (of the slave on
+/// the master) — and zero at every other node, except in prescribed components (reactions).
+/// And every slave node, all in contact, sits on the interpolated master surface:
+/// (u_s - sum_i w_i u_m_i) . nu = d = 0. Returns the largest mismatch of each, relative to
+/// p * area and to max |u|.
+std::array<double, 2> nodeToSurfaceResiduals(const test::SolvedBoxScene& s) {
+  const auto& m = s.scene.mesh;
+  const auto global = fem::assembleGlobal(m, s.scene.materials, s.scene.loads);
+  const size_t n3 = 3 * static_cast<size_t>(m.numNodes());
+  std::vector<double> u(n3), Ku(n3), expected(n3, 0.0);
+  double uMax = 0.0;
+  for (LO n = 0; n < m.numNodes(); ++n)
+    for (int c = 0; c < 3; ++c) {
+      u[3 * n + c] = s.displacement()[n][c];
+      uMax = std::max(uMax, std::abs(u[3 * n + c]));
+    }
+  global.K.apply(u.data(), Ku.data());
+  std::vector<char> prescribed(n3, 0);
+  for (const auto& cond : s.scene.displacementConditions)
+    for (LO n : m.nodeSet(cond.nodeSet).nodes)
+      for (int c = 0; c < 3; ++c)
+        if (cond.components[c]) prescribed[3 * n + c] = 1;
+  double gapMismatch = 0.0;
+  for (const auto& node : s.B.contact) {
+    const double F = s.contact.contactNormal[node.slaveNode];
+    double jump = 0.0;
+    for (int c = 0; c < 3; ++c) {
+      expected[3 * node.slaveNode + c] -= F * node.normal[c];
+      jump += u[3 * node.slaveNode + c] * node.normal[c];
+      for (int v = 0; v < 3; ++v) {
+        expected[3 * node.masterNodes[v] + c] += node.masterWeights[v] * F * node.normal[c];
+        jump -= node.masterWeights[v] * u[3 * node.masterNodes[v] + c] * node.normal[c];
+      }
+    }
+    gapMismatch = std::max(gapMismatch, std::abs(jump - node.gap));
+  }
+  double forceMismatch = 0.0;
+  for (size_t i = 0; i < n3; ++i)
+    if (!prescribed[i]) forceMismatch = std::max(forceMismatch, std::abs(Ku[i] - global.f[i] - expected[i]));
+  return {forceMismatch / (kP * kArea), gapMismatch / uMax};
+}
+
+void expectConvergedWithExactResultants(const test::SolvedBoxScene& s) {
+  const auto& r = s.contact.contact;
+  EXPECT_TRUE(r.converged) << r.message;
+  if (worldRank() != 0) return;
+  EXPECT_EQ(s.B.contact.size(), 25u);          // every slave node paired
+  EXPECT_EQ(s.B.unpairedSlaveNodes, 0);
+  EXPECT_EQ(r.statusCounts[0], 0);             // all in contact
+  EXPECT_EQ(r.statusCounts[2], 25);            // frictionless: every contact node slides
+  // The upper body carries p over the area to the lower one: sum of the normal forces.
+  EXPECT_NEAR(s.contact.totalNormalForce, kP * kArea, 1e-8 * kP * kArea);
+  EXPECT_NEAR(s.contact.totalContactForce[2], kP * kArea, 1e-8 * kP * kArea);
+  // Normals are exactly z on the flat surfaces: no force in x or y.
+  EXPECT_NEAR(s.contact.totalContactForce[0], 0.0, 1e-12 * kP * kArea);
+  EXPECT_NEAR(s.contact.totalContactForce[1], 0.0, 1e-12 * kP * kArea);
+  // The reported forces and displacements solve the node-to-surface equations.
+  const auto residuals = nodeToSurfaceResiduals(s);
+  std::printf("node-to-surface equations: force mismatch %.2e (of p * area), gap mismatch %.2e (of max |u|)\n",
+              residuals[0], residuals[1]);
+  EXPECT_LE(residuals[0], 1e-8);
+  EXPECT_LE(residuals[1], 1e-8);
+}
+}  // namespace
+
+TEST(nonmatchingPatch, matchingMeshesReproduceTheUniformSolution) {
+  // Both footprints 4x4 (the upper body 3 cells high against the lower's 2).
+  const auto s = test::solveBoxScene(patchMesh({4, 4, 3}), patchScene());
+  expectConvergedWithExactResultants(s);
+  if (worldRank() != 0) return;
+  const auto errors = displacementErrors(s);
+  const auto st = pressureStats(s);
+  std::printf("matching: displacement error lower %.3e, upper %.3e; contact pressure deviation from p: min %.3e, "
+              "max %.3e, mean |.| %.3e\n",
+              errors[0], errors[1], st.minDev, st.maxDev, st.meanAbsDev);
+  EXPECT_LE(errors[0], 1e-10);
+  EXPECT_LE(errors[1], 1e-10);
+  EXPECT_LE(st.maxAbsDev, 1e-10);  // p at every node, edges and corners included
+  // u_z linear in z across both bodies: in particular -p/E1 on the interface and
+  // -p/E1 - p/E2 on the top.
+  for (LO n : s.scene.mesh.nodeSet("upper_z1").nodes)
+    EXPECT_NEAR(s.displacement()[n][2], -kP / kE1 - kP / kE2, 1e-10 * kP / kE1);
+}
+
+TEST(nonmatchingPatch, nonMatchingMeshesKeepTheResultantAndReportThePressureDeviation) {
+  // 4x4 slave cells against 5x5 master cells (the upper body 3 cells high).
+  const auto s = test::solveBoxScene(patchMesh({5, 5, 3}), patchScene());
+  expectConvergedWithExactResultants(s);
+  if (worldRank() != 0) return;
+  const auto errors = displacementErrors(s);
+  const auto st = pressureStats(s);
+  std::printf("non-matching 4x4 / 5x5: displacement error lower %.3e, upper %.3e; contact pressure deviation from "
+              "p: min %+.3e, max %+.3e, mean |.| %.3e\n",
+              errors[0], errors[1], st.minDev, st.maxDev, st.meanAbsDev);
+  // Pressure p on average: the total force is exact and the tributary areas add up to the
+  // footprint, so sum_i A_i (pressure_i - p) = 0.
+  double weighted = 0.0;
+  const auto area = stack::tributaryArea(s.scene.mesh, "lower_z1");
+  for (LO n : s.scene.mesh.nodeSet("lower_z1").nodes) weighted += area[n] * (s.contact.contactPressure[n] - kP);
+  EXPECT_NEAR(weighted, 0.0, 1e-8 * kP * kArea);
+  // The deviation is the method's, not the solver's (the node-to-surface equations hold to
+  // 1e-13 above): node-to-surface rows fail this patch test (Taylor & Papadopoulos 1991).
+  // Measured (1 and 2 ranks alike): pressure deviation from p between -19.6 % (the corner at
+  // (2, 2)) and +7.9 %, mean |.| 6.3 %, lower at the edges and corners, higher inside; the
+  // displacement error, largest in u_z at the interface (1.5e-5 against p/E1 = 1.4e-4), is
+  // 10.5 % of max |u| in the lower body and 7.9 % in the upper one. The bounds below leave
+  // about a third on top of these (the problem is deterministic: the same numbers on 1 and
+  // 2 ranks), so they catch a change that makes the transfer clearly worse; a wrong weight
+  // or normal in the rows themselves breaks the equations above.
+  EXPECT_GT(st.maxAbsDev, 1e-3);  // not exact: if this fails, the method became exact here, tighten the bounds
+  EXPECT_LE(st.maxAbsDev, 0.25);
+  EXPECT_LE(st.meanAbsDev, 0.085);
+  EXPECT_LE(errors[0], 0.14);
+  EXPECT_LE(errors[1], 0.11);
+}

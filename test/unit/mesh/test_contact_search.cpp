@@ -1,0 +1,375 @@
+// Node-to-surface contact search (mesh/ContactSearch.hpp): the closest point on a triangle
+// against a brute-force sample, and the pairing of two stacked boxes (test/common/BoxMesh):
+// matching meshes pair node to node, non-matching ones project every slave node onto the
+// master plane with convex weights, nodes beyond the search distance are unpaired, overlap
+// is a negative gap, and the number of closest-point evaluations per slave node stays
+// bounded as the master surface grows (no quadratic search).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include "BoxMesh.hpp"
+#include "tribos/core/Errors.hpp"
+#include "tribos/mesh/ContactSearch.hpp"
+
+using namespace tribos;
+
+namespace {
+using Vec3 = std::array<double, 3>;
+
+Vec3 add(const Vec3& a, const Vec3& b, double s = 1.0) { return {a[0] + s * b[0], a[1] + s * b[1], a[2] + s * b[2]}; }
+Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+Vec3 unit(const Vec3& a) {
+  const double l = std::sqrt(dot(a, a));
+  return {a[0] / l, a[1] / l, a[2] / l};
+}
+double distance(const Vec3& a, const Vec3& b) { return std::sqrt(dot(sub(a, b), sub(a, b))); }
+Vec3 point(const std::array<double, 3>& w, const Vec3& a, const Vec3& b, const Vec3& c) {
+  return {w[0] * a[0] + w[1] * b[0] + w[2] * c[0], w[0] * a[1] + w[1] * b[1] + w[2] * c[1],
+          w[0] * a[2] + w[1] * b[2] + w[2] * c[2]};
+}
+
+/// Smallest distance from x to a barycentric grid of n(n+1)/2 points of the triangle
+/// (edges and vertices included): an upper bound on the true distance, within h/2 of it.
+double bruteForceDistance(const Vec3& x, const Vec3& a, const Vec3& b, const Vec3& c, int n) {
+  double best = INFINITY;
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; i + j <= n; ++j) {
+      const double u = double(i) / n, v = double(j) / n;
+      best = std::min(best, distance(x, point({1.0 - u - v, u, v}, a, b, c)));
+    }
+  return best;
+}
+
+// A tilted, scalene triangle (no axis or symmetry makes a wrong region look right).
+const Vec3 kA{0.1, 0.2, 0.3}, kB{2.0, 0.4, -0.1}, kC{0.5, 1.7, 0.6};
+
+void expectConvex(const std::array<double, 3>& w) {
+  for (double wi : w) EXPECT_GE(wi, 0.0);
+  EXPECT_NEAR(w[0] + w[1] + w[2], 1.0, 1e-15);
+}
+
+/// Two boxes stacked along z: "lower" (the slave body, its top lower_z1) below "upper" (the
+/// master, its bottom upper_z0), footprints starting at (0, 0).
+mesh::Mesh stacked(std::array<double, 2> lowerSize, std::array<int, 2> lowerCells, std::array<double, 2> upperSize,
+                   std::array<int, 2> upperCells, double upperBottom = 1.0) {
+  const auto lower = test::boxMesh({0.0, 0.0, 0.0}, {lowerSize[0], lowerSize[1], 1.0}, {lowerCells[0], lowerCells[1], 1}, "lower");
+  const auto upper = test::boxMesh({0.0, 0.0, upperBottom}, {upperSize[0], upperSize[1], 1.0},
+                                   {upperCells[0], upperCells[1], 1}, "upper");
+  auto m = test::mergeMeshes(lower, upper);
+  m.validate("test");
+  return m;
+}
+
+mesh::ContactSearchResult search(const mesh::Mesh& m, double searchDistance) {
+  return mesh::searchContactPairs(m, "lower_z1", "upper_z0", searchDistance);
+}
+
+/// The projection of a pair: the weighted master vertices.
+Vec3 projection(const mesh::Mesh& m, const mesh::ContactPair& p) {
+  return point(p.weights, m.coords[p.masterNodes[0]], m.coords[p.masterNodes[1]], m.coords[p.masterNodes[2]]);
+}
+
+/// The master face of a pair really is face `masterFace` of the master side set, its
+/// vertices in side-set order, and the pair's slave node is a node of the slave side set.
+void expectConsistentPair(const mesh::Mesh& m, const mesh::ContactPair& p) {
+  const auto& master = m.sideSet("upper_z0");
+  ASSERT_GE(p.masterFace, 0);
+  ASSERT_LT(static_cast<size_t>(p.masterFace), master.elements.size());
+  for (int v = 0; v < 3; ++v)
+    EXPECT_EQ(p.masterNodes[v], m.tets[master.elements[p.masterFace]][mesh::kTetFaceVertices[master.sides[p.masterFace]][v]]);
+  const auto slaves = mesh::sideSetNodes(m, m.sideSet("lower_z1"));
+  EXPECT_TRUE(std::binary_search(slaves.begin(), slaves.end(), p.slaveNode));
+  EXPECT_EQ(p.nearestMasterNode(), p.masterNodes[std::max_element(p.weights.begin(), p.weights.end()) - p.weights.begin()]);
+}
+}  // namespace
+
+TEST(ContactSearch, closestPointInEveryVoronoiRegion) {
+  const Vec3 normal = unit(cross(sub(kB, kA), sub(kC, kA)));
+  // Outward in-plane directions: away from the opposite vertex, perpendicular to the edge.
+  auto outward = [&](const Vec3& p, const Vec3& q) { return unit(cross(sub(q, p), normal)); };
+  const Vec3 outAB = outward(kA, kB), outBC = outward(kB, kC), outCA = outward(kC, kA);
+  // The sign of cross(edge, normal) depends on the orientation: make it point away from the third vertex.
+  auto away = [&](Vec3 d, const Vec3& onEdge, const Vec3& opposite) {
+    if (dot(d, sub(opposite, onEdge)) > 0.0) d = {-d[0], -d[1], -d[2]};
+    return d;
+  };
+  const Vec3 nAB = away(outAB, kA, kC), nBC = away(outBC, kB, kA), nCA = away(outCA, kC, kB);
+  const Vec3 vertices[3] = {kA, kB, kC};
+  for (double height : {0.0, 0.7, -0.4}) {  // in the plane, above it, below it
+    SCOPED_TRACE("height " + std::to_string(height));
+    const Vec3 lift{height * normal[0], height * normal[1], height * normal[2]};
+    // Vertex regions: beyond the vertex, outside both adjacent edges' slabs.
+    const Vec3 beyond[3] = {add(nAB, nCA), add(nAB, nBC), add(nBC, nCA)};
+    for (int v = 0; v < 3; ++v) {
+      const Vec3 x = add(add(vertices[v], beyond[v], 0.3), lift);
+      const auto w = mesh::closestPointOnTriangle(x, kA, kB, kC);
+      for (int i = 0; i < 3; ++i) EXPECT_EQ(w[i], i == v ? 1.0 : 0.0) << "vertex " << v;
+      EXPECT_LE(distance(x, point(w, kA, kB, kC)), bruteForceDistance(x, kA, kB, kC, 200) + 1e-14);
+    }
+    // Edge regions: out from a point a quarter along the edge; the opposite weight is an
+    // exact 0 and the other two give that point.
+    const int edge[3][3] = {{0, 1, 2}, {1, 2, 0}, {2, 0, 1}};  // (p, q, opposite)
+    const Vec3 out[3] = {nAB, nBC, nCA};
+    for (int e = 0; e < 3; ++e) {
+      const Vec3& p = vertices[edge[e][0]];
+      const Vec3& q = vertices[edge[e][1]];
+      const Vec3 onEdge = add(p, sub(q, p), 0.25);
+      const Vec3 x = add(add(onEdge, out[e], 0.5), lift);
+      const auto w = mesh::closestPointOnTriangle(x, kA, kB, kC);
+      EXPECT_EQ(w[edge[e][2]], 0.0) << "edge " << e;
+      EXPECT_NEAR(w[edge[e][0]], 0.75, 1e-14) << "edge " << e;
+      EXPECT_NEAR(w[edge[e][1]], 0.25, 1e-14) << "edge " << e;
+      expectConvex(w);
+      EXPECT_LE(distance(point(w, kA, kB, kC), onEdge), 1e-14);
+      EXPECT_LE(distance(x, point(w, kA, kB, kC)), bruteForceDistance(x, kA, kB, kC, 200) + 1e-14);
+    }
+    // Interior: the foot of the perpendicular, at the chosen weights.
+    const std::array<double, 3> inside{0.2, 0.5, 0.3};
+    const Vec3 x = add(point(inside, kA, kB, kC), lift);
+    const auto w = mesh::closestPointOnTriangle(x, kA, kB, kC);
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(w[i], inside[i], 1e-14);
+    expectConvex(w);
+    EXPECT_NEAR(distance(x, point(w, kA, kB, kC)), std::abs(height), 1e-14);
+  }
+}
+
+TEST(ContactSearch, closestPointIsTheClosestForRandomPoints) {
+  // Points all around the triangle: the returned point is no farther than any point of a
+  // fine sample of the triangle, and no nearer than the sample allows (h/2 with h the grid
+  // spacing along the longest edge, ~0.011 here).
+  std::mt19937 rng(12345);
+  std::uniform_real_distribution<double> coordinate(-1.5, 3.0);
+  const int n = 200;
+  const double h = 2.0 / n;  // longest edge < 2
+  for (int k = 0; k < 300; ++k) {
+    const Vec3 x{coordinate(rng), coordinate(rng) - 0.5, coordinate(rng) - 0.8};
+    const auto w = mesh::closestPointOnTriangle(x, kA, kB, kC);
+    expectConvex(w);
+    const double found = distance(x, point(w, kA, kB, kC));
+    const double sampled = bruteForceDistance(x, kA, kB, kC, n);
+    EXPECT_LE(found, sampled + 1e-13) << "point " << k;
+    EXPECT_GE(found, sampled - h) << "point " << k;
+  }
+}
+
+TEST(ContactSearch, matchingMeshesPairNodeToNode) {
+  const auto m = stacked({2.0, 2.0}, {4, 4}, {2.0, 2.0}, {4, 4});
+  const auto r = search(m, 1e-6);
+  const auto slaves = mesh::sideSetNodes(m, m.sideSet("lower_z1"));
+  ASSERT_EQ(slaves.size(), 25u);
+  ASSERT_EQ(r.pairs.size(), 25u);
+  EXPECT_TRUE(r.unpaired.empty());
+  EXPECT_EQ(r.overlapping, 0);
+  EXPECT_EQ(r.largestOverlap, 0.0);
+  for (size_t i = 0; i < r.pairs.size(); ++i) {
+    const auto& p = r.pairs[i];
+    EXPECT_EQ(p.slaveNode, slaves[i]);  // ascending slave node
+    expectConsistentPair(m, p);
+    // A unit weight vector on the coincident master node.
+    int ones = 0;
+    for (double w : p.weights) {
+      EXPECT_TRUE(w == 0.0 || w == 1.0) << w;
+      ones += w == 1.0;
+    }
+    EXPECT_EQ(ones, 1);
+    EXPECT_EQ(m.coords[p.nearestMasterNode()], m.coords[p.slaveNode]);
+    EXPECT_GE(p.nearestMasterNode(), 5 * 5 * 2);  // an upper-body node (the lower box has 5 x 5 x 2 nodes)
+    EXPECT_EQ(p.gap, 0.0);
+    EXPECT_EQ(p.distance, 0.0);
+    // From the lower (slave) body into the upper (master) one.
+    EXPECT_EQ(p.normal[0], 0.0);
+    EXPECT_EQ(p.normal[1], 0.0);
+    EXPECT_EQ(p.normal[2], 1.0);
+  }
+}
+
+TEST(ContactSearch, nonMatchingProjectionsLieOnTheMasterPlane) {
+  // 4x4 slave cells against 5x5 master cells on the same 2x2 footprint.
+  const auto m = stacked({2.0, 2.0}, {4, 4}, {2.0, 2.0}, {5, 5});
+  const auto r = search(m, 1e-6);
+  ASSERT_EQ(r.pairs.size(), 25u);
+  EXPECT_TRUE(r.unpaired.empty());
+  EXPECT_EQ(r.overlapping, 0);
+  int unitWeights = 0;
+  for (const auto& p : r.pairs) {
+    SCOPED_TRACE("slave node " + std::to_string(p.slaveNode));
+    expectConsistentPair(m, p);
+    expectConvex(p.weights);
+    const auto& xs = m.coords[p.slaveNode];
+    const auto xp = projection(m, p);
+    // The interpolated master point is the slave node itself: same x, y on the plane z = 1.
+    EXPECT_NEAR(xp[0], xs[0], 1e-15);
+    EXPECT_NEAR(xp[1], xs[1], 1e-15);
+    EXPECT_NEAR(xp[2], 1.0, 1e-15);
+    EXPECT_EQ(p.gap, 0.0);
+    EXPECT_LE(p.distance, 1e-15);
+    EXPECT_NEAR(p.normal[0], 0.0, 1e-15);
+    EXPECT_NEAR(p.normal[1], 0.0, 1e-15);
+    EXPECT_NEAR(p.normal[2], 1.0, 1e-15);
+    unitWeights += std::count(p.weights.begin(), p.weights.end(), 1.0);
+  }
+  // Slave x, y in {0, .5, 1, 1.5, 2}, master in {0, .4, .8, 1.2, 1.6, 2}: only the four
+  // corners coincide with master vertices.
+  EXPECT_EQ(unitWeights, 4);
+}
+
+TEST(ContactSearch, projectionsOnMasterEdgesAndVertices) {
+  // 4x4 slave cells (h = 1/2) against 2x2 master cells (h = 1), all coordinates binary
+  // fractions, so the arithmetic is exact: the 9 slave nodes with x, y in {0, 1, 2} sit on
+  // master vertices, the other 16 on master edges — the grid lines, and the cell centres on
+  // the cells' diagonals — at their midpoints. None is interior to a master face.
+  const auto m = stacked({2.0, 2.0}, {4, 4}, {2.0, 2.0}, {2, 2});
+  const auto r = search(m, 1e-6);
+  ASSERT_EQ(r.pairs.size(), 25u);
+  int onVertex = 0, onEdge = 0;
+  for (const auto& p : r.pairs) {
+    SCOPED_TRACE("slave node " + std::to_string(p.slaveNode));
+    expectConsistentPair(m, p);
+    const auto& xs = m.coords[p.slaveNode];
+    const bool gridX = xs[0] == std::floor(xs[0]), gridY = xs[1] == std::floor(xs[1]);
+    const int nonzero = static_cast<int>(std::count_if(p.weights.begin(), p.weights.end(), [](double w) { return w != 0.0; }));
+    if (gridX && gridY) {
+      ++onVertex;
+      EXPECT_EQ(nonzero, 1);
+      EXPECT_EQ(m.coords[p.nearestMasterNode()][0], xs[0]);
+      EXPECT_EQ(m.coords[p.nearestMasterNode()][1], xs[1]);
+    } else {
+      ++onEdge;
+      EXPECT_EQ(nonzero, 2);
+      for (double w : p.weights) EXPECT_TRUE(w == 0.0 || w == 0.5) << w;
+    }
+    const auto xp = projection(m, p);
+    EXPECT_EQ(xp[0], xs[0]);
+    EXPECT_EQ(xp[1], xs[1]);
+    EXPECT_EQ(xp[2], 1.0);
+    EXPECT_EQ(p.gap, 0.0);
+  }
+  EXPECT_EQ(onVertex, 9);
+  EXPECT_EQ(onEdge, 16);
+}
+
+TEST(ContactSearch, slaveNodesBeyondTheSearchDistanceAreUnpaired) {
+  // The slave top is 3 long, the master bottom 2: slave nodes at x = 2.5 are 0.5 from the
+  // master's edge x = 2, those at x = 3 are 1 from it.
+  const auto m = stacked({3.0, 2.0}, {6, 4}, {2.0, 2.0}, {2, 2});
+  const auto slaves = mesh::sideSetNodes(m, m.sideSet("lower_z1"));
+  ASSERT_EQ(slaves.size(), 35u);
+  auto beyond = [&](double x0) {
+    std::vector<LO> nodes;
+    for (LO n : slaves)
+      if (m.coords[n][0] > x0) nodes.push_back(n);
+    return nodes;
+  };
+  {
+    const auto r = search(m, 0.25);
+    EXPECT_EQ(r.unpaired, beyond(2.0));  // x = 2.5 and 3: 10 nodes, ascending
+    EXPECT_EQ(r.unpaired.size(), 10u);
+    EXPECT_EQ(r.pairs.size(), 25u);
+    for (const auto& p : r.pairs) EXPECT_LE(m.coords[p.slaveNode][0], 2.0);
+  }
+  {
+    // Within 0.75 the nodes at x = 2.5 pair with the master edge x = 2, 0.5 away along x:
+    // a distance of 0.5 but a zero gap along the normal (0, 0, 1).
+    const auto r = search(m, 0.75);
+    EXPECT_EQ(r.unpaired, beyond(2.5));
+    EXPECT_EQ(r.pairs.size(), 30u);
+    int atEdge = 0;
+    for (const auto& p : r.pairs)
+      if (m.coords[p.slaveNode][0] == 2.5) {
+        ++atEdge;
+        EXPECT_EQ(p.distance, 0.5);
+        EXPECT_EQ(projection(m, p)[0], 2.0);
+        EXPECT_EQ(p.gap, 0.0);
+      }
+    EXPECT_EQ(atEdge, 5);
+  }
+  // Search distance 0 still pairs coincident surfaces; a negative one is an input error.
+  EXPECT_EQ(search(m, 0.0).pairs.size(), 25u);
+  EXPECT_THROW(search(m, -1.0), core::InputError);
+}
+
+TEST(ContactSearch, overlapGivesNegativeGapsAndIsCounted) {
+  // The master body lowered 1/8 into the slave body: every slave node is 1/8 inside it.
+  {
+    const auto m = stacked({2.0, 2.0}, {4, 4}, {2.0, 2.0}, {5, 5}, 0.875);
+    const auto r = search(m, 0.2);
+    ASSERT_EQ(r.pairs.size(), 25u);
+    EXPECT_EQ(r.overlapping, 25);
+    EXPECT_NEAR(r.largestOverlap, 0.125, 1e-15);  // (5x5 weights sum to 1 within an ulp)
+    for (const auto& p : r.pairs) {
+      EXPECT_NEAR(p.gap, -0.125, 1e-15);
+      EXPECT_NEAR(p.distance, 0.125, 1e-15);
+      EXPECT_NEAR(p.normal[2], 1.0, 1e-15);
+    }
+    // Closer than the overlap: nothing within reach.
+    EXPECT_EQ(search(m, 0.1).unpaired.size(), 25u);
+  }
+  // Lifted by 1/4: an open gap, positive, not counted as overlap.
+  {
+    const auto m = stacked({2.0, 2.0}, {4, 4}, {2.0, 2.0}, {5, 5}, 1.25);
+    const auto r = search(m, 0.3);
+    ASSERT_EQ(r.pairs.size(), 25u);
+    EXPECT_EQ(r.overlapping, 0);
+    EXPECT_EQ(r.largestOverlap, 0.0);
+    for (const auto& p : r.pairs) EXPECT_NEAR(p.gap, 0.25, 1e-15);
+  }
+  // Partly overlapping: the master bottom tilted so that it dips below z = 1 over half the
+  // footprint. Move the master's bottom nodes to z = 1 + (x - 1) / 8 (x in [0, 2]).
+  {
+    auto m = stacked({2.0, 2.0}, {4, 4}, {2.0, 2.0}, {4, 4});
+    for (LO n : m.nodeSet("upper_z0").nodes) m.coords[n][2] = 1.0 + (m.coords[n][0] - 1.0) / 8.0;
+    const auto r = search(m, 0.5);
+    ASSERT_EQ(r.pairs.size(), 25u);
+    int negative = 0;
+    double largest = 0.0;
+    for (const auto& p : r.pairs) {
+      const double x = m.coords[p.slaveNode][0];
+      if (x < 1.0) {
+        EXPECT_LT(p.gap, 0.0) << "x = " << x;
+        ++negative;
+        largest = std::max(largest, -p.gap);
+      } else {
+        EXPECT_GE(p.gap, 0.0) << "x = " << x;
+      }
+      // Along the tilted master normal: gap = signed distance to the plane z = 1 + (x-1)/8.
+      const double expected = ((1.0 + (x - 1.0) / 8.0) - 1.0) / std::sqrt(1.0 + 1.0 / 64.0);
+      EXPECT_NEAR(p.gap, expected, 1e-14) << "x = " << x;
+    }
+    EXPECT_EQ(negative, 10);
+    EXPECT_EQ(r.overlapping, 10);
+    EXPECT_NEAR(r.largestOverlap, largest, 0.0);
+    EXPECT_NEAR(r.largestOverlap, 0.125 / std::sqrt(1.0 + 1.0 / 64.0), 1e-14);
+  }
+}
+
+TEST(ContactSearch, searchCostPerSlaveNodeIsBounded) {
+  // Master surfaces of ~10^2, 10^3, 10^4 triangles (2 n^2 for n x n cells) against a
+  // non-matching slave grid: the closest-point evaluations per slave node stay below a
+  // small constant. A search over all master faces would cost 2 n^2 per node (up to 10^4).
+  // A count, not a time. Two search distances: tiny, and half the footprint (the tree must
+  // prune by the best face found, not only by the search distance).
+  for (int n : {7, 22, 71}) {
+    const int slaveCells = n + 3;
+    const auto m = stacked({2.0, 2.0}, {slaveCells, slaveCells}, {2.0, 2.0}, {n, n});
+    const auto faces = m.sideSet("upper_z0").elements.size();
+    EXPECT_EQ(faces, static_cast<size_t>(2 * n * n));
+    for (double searchDistance : {1e-6, 1.0}) {
+      const auto r = search(m, searchDistance);
+      const double slaves = static_cast<double>((slaveCells + 1) * (slaveCells + 1));
+      ASSERT_EQ(r.pairs.size(), static_cast<size_t>(slaves));
+      const double perNode = r.facesTested / slaves;
+      std::printf("master faces %6zu, slave nodes %5.0f, search distance %g: %.2f closest-point evaluations per slave node\n",
+                  faces, slaves, searchDistance, perNode);
+      EXPECT_GE(perNode, 1.0);  // every paired node evaluated at least its own face
+      EXPECT_LT(perNode, 40.0) << faces << " master faces";
+    }
+  }
+}
