@@ -131,7 +131,7 @@ std::array<double, 2> nodeToSurfaceResiduals(const test::SolvedBoxScene& s) {
     for (int c = 0; c < 3; ++c) {
       expected[3 * node.slaveNode + c] -= F * node.normal[c];
       jump += u[3 * node.slaveNode + c] * node.normal[c];
-      for (int v = 0; v < 3; ++v) {
+      for (size_t v = 0; v < node.masterNodes.size(); ++v) {
         expected[3 * node.masterNodes[v] + c] += node.masterWeights[v] * F * node.normal[c];
         jump -= node.masterWeights[v] * u[3 * node.masterNodes[v] + c] * node.normal[c];
       }
@@ -186,22 +186,45 @@ TEST(nonmatchingPatch, matchingMeshesReproduceTheUniformSolution) {
     EXPECT_NEAR(s.displacement()[n][2], -kP / kE1 - kP / kE2, 1e-10 * kP / kE1);
 }
 
-TEST(nonmatchingPatch, nonMatchingMeshesKeepTheResultantAndReportThePressureDeviation) {
-  // 4x4 slave cells against 5x5 master cells (the upper body 3 cells high).
-  const auto s = test::solveBoxScene(patchMesh({5, 5, 3}), patchScene());
+namespace {
+/// Solves the 4x4 (slave) against 5x5 (master) patch with the given contact discretisation;
+/// checks the resultants and the mean pressure; returns the pressure statistics and the
+/// displacement errors (rank 0).
+std::pair<PressureStats, std::array<double, 2>> nonMatchingPatch(const std::string& discretization) {
+  const auto s = test::solveBoxScene(patchMesh({5, 5, 3}), with(patchScene(), {"Contact/Discretization=" + discretization}));
   expectConvergedWithExactResultants(s);
-  if (worldRank() != 0) return;
+  if (worldRank() != 0) return {};
   const auto errors = displacementErrors(s);
   const auto st = pressureStats(s);
-  std::printf("non-matching 4x4 / 5x5: displacement error lower %.3e, upper %.3e; contact pressure deviation from "
-              "p: min %+.3e, max %+.3e, mean |.| %.3e\n",
-              errors[0], errors[1], st.minDev, st.maxDev, st.meanAbsDev);
+  std::printf("non-matching 4x4 / 5x5, %s: displacement error lower %.3e, upper %.3e; contact pressure deviation "
+              "from p: min %+.3e, max %+.3e, mean |.| %.3e\n",
+              discretization.c_str(), errors[0], errors[1], st.minDev, st.maxDev, st.meanAbsDev);
   // Pressure p on average: the total force is exact and the tributary areas add up to the
   // footprint, so sum_i A_i (pressure_i - p) = 0.
   double weighted = 0.0;
   const auto area = stack::tributaryArea(s.scene.mesh, "lower_z1");
   for (LO n : s.scene.mesh.nodeSet("lower_z1").nodes) weighted += area[n] * (s.contact.contactPressure[n] - kP);
   EXPECT_NEAR(weighted, 0.0, 1e-8 * kP * kArea);
+  return {st, errors};
+}
+}  // namespace
+
+TEST(nonmatchingPatch, mortarRowsPassThePatchTestOnNonMatchingMeshes) {
+  // The dual mortar rows (the default) transfer a uniform pressure as uniform: exact up to the
+  // quadrature of the master hat functions' kinks inside the slave triangles
+  // (mesh/MortarCoupling.hpp). Measured (1 and 2 ranks alike): pressure deviation between
+  // -4.0e-4 and +8.8e-4 of p, displacement error 2.5e-4 (lower) and 1.6e-4 (upper) of max |u|
+  // — against 20 % and 10 % with node-to-surface rows (below).
+  const auto [st, errors] = nonMatchingPatch("Mortar");
+  if (worldRank() != 0) return;
+  EXPECT_LE(st.maxAbsDev, 2e-3);
+  EXPECT_LE(errors[0], 1e-3);
+  EXPECT_LE(errors[1], 1e-3);
+}
+
+TEST(nonmatchingPatch, nodeToSurfaceRowsKeepTheResultantAndReportThePressureDeviation) {
+  const auto [st, errors] = nonMatchingPatch("Node To Surface");
+  if (worldRank() != 0) return;
   // The deviation is the method's, not the solver's (the node-to-surface equations hold to
   // 1e-13 above): node-to-surface rows fail this patch test (Taylor & Papadopoulos 1991).
   // Measured (1 and 2 ranks alike): pressure deviation from p between -19.6 % (the corner at

@@ -80,8 +80,20 @@ MortarRow nodeToSurfaceRow(const ContactPair& pair) {
   return row;
 }
 
+bool projectsOnMasterVertices(const ContactSearchResult& search) {
+  for (const auto& pair : search.pairs)
+    if (std::count(pair.weights.begin(), pair.weights.end(), 1.0) != 1) return false;
+  return !search.pairs.empty();
+}
+
 std::vector<MortarRow> dualMortarRows(const Mesh& mesh, const std::string& slaveSideSet, const MasterSurface& master,
                                       const ContactSearchResult& search, double searchDistance) {
+  if (projectsOnMasterVertices(search)) {
+    // Node-matching interface (header): node-to-node rows, whatever the triangles.
+    std::vector<MortarRow> rows;
+    for (const auto& pair : search.pairs) rows.push_back(nodeToSurfaceRow(pair));
+    return rows;
+  }
   std::vector<int> pairOf(mesh.numNodes(), -1);
   for (size_t p = 0; p < search.pairs.size(); ++p) pairOf[search.pairs[p].slaveNode] = static_cast<int>(p);
   std::vector<NodeIntegrals> integrals(search.pairs.size());

@@ -73,8 +73,9 @@ feti::DisplacementCondition condition(const std::string& set, const std::string&
 
 /// The patch test's conditions: symmetry planes (u_x = 0 on both x0 faces, u_y = 0 on both
 /// y0 faces, u_z = 0 under the lower body), frictionless (normal rows only).
-feti::ConstraintSpec patchSpec() {
+feti::ConstraintSpec patchSpec(const std::string& discretization = "Node To Surface") {
   feti::ConstraintSpec spec;
+  spec.discretization = discretization;
   spec.displacementConditions = {condition("lower_x0", "x"), condition("upper_x0", "x"), condition("lower_y0", "y"),
                                  condition("upper_y0", "y"), condition("lower_z0", "z")};
   spec.slaveSideSet = "lower_z1";
@@ -91,8 +92,9 @@ feti::ConstraintSpec patchSpec() {
 /// only the slave entries; at (2, 2) both sides are prescribed along nu, so the normal row
 /// vanishes and the node's tangential rows go with it; T1 (along x) vanishes on the x = 0
 /// edge (u_x prescribed on both sides), T2 (along y) on the y = 0 edge.
-feti::ConstraintSpec droppingSpec() {
+feti::ConstraintSpec droppingSpec(const std::string& discretization = "Node To Surface") {
   feti::ConstraintSpec spec;
+  spec.discretization = discretization;
   spec.displacementConditions = {condition("lower_x0", "x"),
                                  condition("upper_x0", "x"),
                                  condition("lower_y0", "y"),
@@ -193,7 +195,9 @@ Orthogonality contactOrthogonality(const feti::ConstraintMatrix& B) {
 }
 
 TEST(ConstraintMatrixNonmatching, contactRowsAreUnitAndOrthogonalToGluingAndDirichletRows) {
-  for (const auto& [specName, spec] : {std::make_pair("patch", patchSpec()), std::make_pair("dropping", droppingSpec())})
+  for (const auto& [specName, spec] :
+       {std::make_pair("patch", patchSpec()), std::make_pair("dropping", droppingSpec()),
+        std::make_pair("patch, mortar", patchSpec("Mortar")), std::make_pair("dropping, mortar", droppingSpec("Mortar"))})
     for (int metis : {0, 6}) {
       SCOPED_TRACE(std::string(specName) + (metis ? " / METIS 6" : " / plane partition"));
       const auto m = stackedBoxes({5, 5, 3});
@@ -280,7 +284,7 @@ TEST(ConstraintMatrixNonmatching, contactRowsMeasureTheInterpolatedGap) {
     int gaps = 0;
     for (const auto& node : b.B.contact) {
       std::array<double, 3> jump = u[node.slaveNode];
-      for (int v = 0; v < 3; ++v)
+      for (size_t v = 0; v < node.masterNodes.size(); ++v)
         for (int k = 0; k < 3; ++k) jump[k] -= node.masterWeights[v] * u[node.masterNodes[v]][k];
       const std::array<double, 3>* dirs[3] = {&node.normal, &node.t1, &node.t2};
       for (int d = 0; d < 3; ++d) {
@@ -327,14 +331,14 @@ TEST(ConstraintMatrixNonmatching, contactRowsSharingMasterNodesAreNotOrthogonal)
     for (size_t j = i + 1; j < nodes.size(); ++j) {
       double expected = 0.0;
       bool share = false;
-      for (int v = 0; v < 3; ++v)
-        for (int w = 0; w < 3; ++w)
+      for (size_t v = 0; v < nodes[i].masterNodes.size(); ++v)
+        for (size_t w = 0; w < nodes[j].masterNodes.size(); ++w)
           if (nodes[i].masterNodes[v] == nodes[j].masterNodes[w] && nodes[i].masterWeights[v] > 1e-12 &&
               nodes[j].masterWeights[w] > 1e-12) {
             share = true;
           }
-      for (int v = 0; v < 3; ++v)
-        for (int w = 0; w < 3; ++w)
+      for (size_t v = 0; v < nodes[i].masterNodes.size(); ++v)
+        for (size_t w = 0; w < nodes[j].masterNodes.size(); ++w)
           if (nodes[i].masterNodes[v] == nodes[j].masterNodes[w])
             expected += nodes[i].masterWeights[v] * nodes[j].masterWeights[w] / b.copies[nodes[i].masterNodes[v]];
       expected *= nodes[i].rowScale * nodes[j].rowScale;
@@ -359,9 +363,11 @@ TEST(ConstraintMatrixNonmatching, contactBlockOfBBtIsWellConditioned) {
   // which is >= 1/2 when k_s <= k_m (e.g. one subdomain per body: sum w^2 <= 1). The plane
   // partition gives slave nodes up to 4 copies against masters with 1: the bound drops,
   // the measured value is reported.
+  for (const char* discretization : {"Node To Surface", "Mortar"})
   for (const double* split : {kNoSplit, kPlaneSplit}) {
+    SCOPED_TRACE(discretization);
     const auto m = stackedBoxes({5, 5, 3});
-    const auto b = build(m, planePartition(m, split), patchSpec());
+    const auto b = build(m, planePartition(m, split), patchSpec(discretization));
     const auto rows = rowsOf(b.B);
     const auto& nodes = b.B.contact;
     ASSERT_EQ(nodes.size(), 25u);
@@ -374,7 +380,7 @@ TEST(ConstraintMatrixNonmatching, contactBlockOfBBtIsWellConditioned) {
       }
       trace += C[i][i];
       double w2 = 0.0;
-      for (int v = 0; v < 3; ++v) w2 += nodes[i].masterWeights[v] * nodes[i].masterWeights[v] / b.copies[nodes[i].masterNodes[v]];
+      for (size_t v = 0; v < nodes[i].masterNodes.size(); ++v) w2 += nodes[i].masterWeights[v] * nodes[i].masterWeights[v] / b.copies[nodes[i].masterNodes[v]];
       bound = std::min(bound, 1.0 / (1.0 + b.copies[nodes[i].slaveNode] * w2));
     }
     const auto lambda = symmetricEigenvalues(C);
@@ -383,9 +389,9 @@ TEST(ConstraintMatrixNonmatching, contactBlockOfBBtIsWellConditioned) {
     for (double l : lambda) sum += l, sum2 += l * l;
     EXPECT_NEAR(sum, trace, 1e-12);
     EXPECT_NEAR(sum2, frobenius2, 1e-12);
-    std::printf("%s: contact-normal block of B B^T (%zu x %zu): lambda_min %.4f, lambda_max %.4f, condition %.3f, "
+    std::printf("%s, %s: contact-normal block of B B^T (%zu x %zu): lambda_min %.4f, lambda_max %.4f, condition %.3f, "
                 "bound on lambda_min %.4f\n",
-                split == kNoSplit ? "one subdomain per body" : "plane partition (1, 2, 4 copies)", nodes.size(),
+                discretization, split == kNoSplit ? "one subdomain per body" : "plane partition (1, 2, 4 copies)", nodes.size(),
                 nodes.size(), lambda.front(), lambda.back(), lambda.back() / lambda.front(), bound);
     EXPECT_GE(lambda.front(), bound - 1e-14);
     if (split == kNoSplit) EXPECT_GE(bound, 0.5);

@@ -27,6 +27,11 @@
 /// exactly node-to-node); otherwise the kinks of phi_j inside a slave triangle are resolved
 /// to the sub-triangle size.
 ///
+/// An interface where every slave node projects onto a master vertex (matching nodes, also
+/// across a gap) keeps the node-to-node rows: the paper's discretisation, also where the two
+/// sides' triangles are cut along different diagonals (the two-brick generator alternates
+/// them), where the mortar rows would spread over the neighbouring master nodes.
+///
 /// A slave node whose support is only partly over the master surface (some quadrature
 /// points find no master face within the search distance, e.g. at the edge of the master
 /// surface) keeps its node-to-surface row: the dual weights need the whole support.
@@ -49,6 +54,9 @@ struct MortarRow {
 /// of the search; `searchDistance` as there.
 std::vector<MortarRow> dualMortarRows(const Mesh& mesh, const std::string& slaveSideSet, const MasterSurface& master,
                                       const ContactSearchResult& search, double searchDistance);
+
+/// True if every pair's projection is a master vertex (weights a unit vector).
+bool projectsOnMasterVertices(const ContactSearchResult& search);
 
 /// The node-to-surface row of a pair (its projection's vertices and weights, zeros dropped).
 MortarRow nodeToSurfaceRow(const ContactPair& pair);
