@@ -280,7 +280,8 @@ void requireRestrainedBodies(const mesh::Mesh& mesh, const mesh::Decomposition& 
                         " free of every Dirichlet and contact row, so the problem has no unique solution";
   for (const auto& m : motions) message += "\n  " + m.description;
   message +=
-      "\nHold each of these bodies: clamp a node set of it (Boundary/Dirichlet Node Sets), add friction to "
+      "\nHold each of these bodies: clamp a node set of it (Boundary/Dirichlet Node Sets), prescribe the free "
+      "components on a node set (Boundary/<name>: Node Set, Components, e.g. a symmetry plane), add friction to "
       "its contact (Contact/Friction Model other than \"None\": a frictionless contact holds it only along "
       "the normals), or give it a contact surface against a held body (Contact/Slave Side Set, Master Side Set).";
   throw core::InputError(message);
