@@ -259,6 +259,7 @@ ContactSearchResult searchContactPairs(const Mesh& mesh, const std::string& slav
   const double zeroGap = 1e-12 * coordinateScale(mesh);
 
   ContactSearchResult result;
+  std::string firstFacingAway;
   for (LO slave : slaves) {
     const Vec3& xs = mesh.coords[slave];
     if (std::binary_search(masterNodes.begin(), masterNodes.end(), slave))
@@ -287,13 +288,16 @@ ContactSearchResult searchContactPairs(const Mesh& mesh, const std::string& slav
                                           str(projection.point) + " (its nodal normals cancel), the projection of slave node " +
                                           std::to_string(slave + 1));
     for (double& c : n) c = -c;
-    // The master surface must face the slave surface there (else the sets are swapped, or
-    // the slave node found the back of a thin master body).
-    core::requireInput(dot(n, slaveNormal[slave]) > 0.0,
-                       "contact: at slave node " + std::to_string(slave + 1) + " at " + str(xs) + " of side set \"" +
-                           slaveSideSet + "\" the master surface \"" + masterSideSet + "\" (face " +
-                           std::to_string(projection.face + 1) + ", projection " + str(projection.point) +
-                           ") faces away from the slave surface; check the side sets and Contact/Search Distance");
+    // Where the master surface faces away from the slave surface the node cannot touch it
+    // (it found the back or the side of the master body): no rows, like a node out of reach.
+    if (!(dot(n, slaveNormal[slave]) > 0.0)) {
+      result.unpaired.push_back(slave);
+      ++result.facingAway;
+      if (result.facingAway == 1) firstFacingAway = "slave node " + std::to_string(slave + 1) + " at " + str(xs) +
+                                                    " projects on face " + std::to_string(projection.face + 1) +
+                                                    " at " + str(projection.point);
+      continue;
+    }
     pair.normal = n;
     pair.distance = projection.distance;
     pair.gap = dot(minus(projection.point, xs), n);
@@ -304,6 +308,11 @@ ContactSearchResult searchContactPairs(const Mesh& mesh, const std::string& slav
     }
     result.pairs.push_back(pair);
   }
+  // Every reachable node facing away: the sets are swapped or name the wrong surfaces.
+  core::requireInput(!result.pairs.empty() || result.facingAway == 0,
+                     "contact: the master surface \"" + masterSideSet + "\" faces away from the slave surface \"" +
+                         slaveSideSet + "\" wherever it is within Contact/Search Distance (e.g. " + firstFacingAway +
+                         "); check the side sets (outer faces of the two bodies, facing each other)");
   return result;
 }
 

@@ -373,3 +373,35 @@ TEST(ContactSearch, searchCostPerSlaveNodeIsBounded) {
     }
   }
 }
+
+TEST(ContactSearch, masterFacesFacingAwayCannotBeTouched) {
+  // The master surface named as the upper box's top (upper_z1, facing +z, away from the lower
+  // box's top): every slave node within reach finds only faces that face away, so the sets
+  // are wrong — an input error naming both sets.
+  const auto m = stacked({2.0, 2.0}, {4, 4}, {2.0, 2.0}, {2, 2});
+  try {
+    mesh::searchContactPairs(m, "lower_z1", "upper_z1", 5.0);
+    ADD_FAILURE() << "no error";
+  } catch (const core::InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("upper_z1"), std::string::npos) << what;
+    EXPECT_NE(what.find("lower_z1"), std::string::npos) << what;
+    EXPECT_NE(what.find("faces away"), std::string::npos) << what;
+  }
+  // Some nodes facing away, others not: the slave set is the lower box's top and its side
+  // x = 0 together. The side's nodes below the top edge (normal -x) see the master bottom
+  // (normal into the upper box +z) edge-on: they cannot touch it and get no rows, the rest pair.
+  auto m2 = stacked({2.0, 2.0}, {4, 4}, {2.0, 2.0}, {2, 2});
+  mesh::SideSet both = m2.sideSet("lower_z1");
+  both.name = "lower_top_and_side";
+  both.id = 1000;
+  const auto& side = m2.sideSet("lower_x0");
+  both.elements.insert(both.elements.end(), side.elements.begin(), side.elements.end());
+  both.sides.insert(both.sides.end(), side.sides.begin(), side.sides.end());
+  m2.sideSets.push_back(both);
+  const auto r = mesh::searchContactPairs(m2, "lower_top_and_side", "upper_z0", 2.0);
+  EXPECT_EQ(r.facingAway, 5);  // x = 0, z = 0: 5 nodes along y
+  EXPECT_EQ(r.unpaired.size(), 5u);
+  for (LO n : r.unpaired) EXPECT_EQ(m2.coords[n][2], 0.0);
+  EXPECT_EQ(r.pairs.size(), 25u);  // the top's 25 nodes (its x = 0 edge included)
+}

@@ -41,7 +41,9 @@ struct ContactPair {
 
 struct ContactSearchResult {
   std::vector<ContactPair> pairs;  ///< ascending slave node
-  std::vector<LO> unpaired;        ///< slave nodes with no master face within the search distance
+  std::vector<LO> unpaired;        ///< slave nodes with no master face within the search distance,
+                                   ///< or whose nearest master face faces away (cannot touch)
+  LO facingAway = 0;               ///< of these, the ones facing away
   LO overlapping = 0;              ///< pairs with a negative initial gap
   double largestOverlap = 0.0;     ///< max(-gap) over them (0 if none)
   long long facesTested = 0;       ///< closest-point evaluations in all (the search cost)
@@ -82,7 +84,7 @@ class MasterSurface {
 /// `searchDistance` (>= 0, the mesh's units; a slave node farther from every master face
 /// cannot touch and is listed in `unpaired`). Throws core::InputError naming the set and
 /// node when the surfaces share a node, a surface is folded (zero summed normal at a node),
-/// or the master surface at a projection faces away from the slave surface.
+/// or the master surface faces away from the slave surface at every reachable slave node.
 ContactSearchResult searchContactPairs(const Mesh& mesh, const std::string& slaveSideSet,
                                        const std::string& masterSideSet, double searchDistance);
 
