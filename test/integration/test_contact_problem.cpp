@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <set>
 
 #include "ContactScene.hpp"
 #include "tribos/fem/SubdomainSystem.hpp"
@@ -129,15 +131,68 @@ TEST(contactProblem, trescaAndFrictionlessAreSpecialCases) {
   const std::vector<std::string> cell = {"Mesh/Subdomains Per Brick=2x1x1", "Mesh/H Over h=3", "Solver/Tolerance=1e-8"};
   const auto none = solveContactScene(with(cell, {"Contact/Friction Model=None"}));
   expectKkt(none.result.contact);
-  // Tresca with a zero slip bound is frictionless.
-  const auto tresca0 = solveContactScene(with(cell, {"Contact/Friction Model=Tresca", "Contact/Slip Bound=0"}));
-  expectKkt(tresca0.result.contact);
+  // (Zero coefficients and a zero slip bound: zeroFrictionIsFrictionless.)
   const auto tresca = solveContactScene(with(cell, {"Contact/Friction Model=Tresca", "Contact/Slip Bound=50"}));
   expectKkt(tresca.result.contact);
   if (worldRank() != 0) return;
-  EXPECT_LE(relativeMaxDifference(none.result.displacement.value, tresca0.result.displacement.value), 1e-6);
   // Frictionless: no tangential force; every node in contact slides.
   EXPECT_EQ(none.result.contact.statusCounts[1], 0);
+}
+
+TEST(contactProblem, zeroFrictionIsFrictionless) {
+  // The friction set of a node is the ellipse with semi-axes F1 g, F2 g (g = lambda_nu for
+  // Coulomb, the given slip bound for Tresca). With F1 = F2 = 0 or g = 0 it is the point 0:
+  // the tangential rows carry no force and the problem is the frictionless one, node for
+  // node "slip" where in contact (a zero coefficient lets the node slide), never "stick".
+  // Measured (Solver/Tolerance 1e-10): max |u - u_None| / max |u_None| = 2.1e-10 (1 rank),
+  // 1.5e-10 (2 and 4 ranks) for each of Coulomb F = 0, Tresca g = 0, Tresca F = 0; statuses
+  // (no contact, stick, slip) = (9, 0, 15) in all four; with F1 = 0.3, F2 = 0: (8, 0, 16).
+  const std::vector<std::string> cell = {"Mesh/Subdomains Per Brick=2x1x1", "Mesh/H Over h=3", "Solver/Tolerance=1e-10"};
+  const auto none = solveContactScene(with(cell, {"Contact/Friction Model=None"}));
+  EXPECT_TRUE(none.result.contact.converged) << none.result.contact.message;
+  expectKkt(none.result.contact);
+  for (const auto& zero : std::vector<std::vector<std::string>>{
+           {"Contact/Friction Model=Coulomb", "Contact/F1=0", "Contact/F2=0"},
+           {"Contact/Friction Model=Tresca", "Contact/Slip Bound=0"},  // F1 = F2 = 0.3 (defaults)
+           {"Contact/Friction Model=Tresca", "Contact/F1=0", "Contact/F2=0", "Contact/Slip Bound=1"}}) {
+    SCOPED_TRACE(zero[0] + ", " + zero[1] + (zero.size() > 2 ? ", " + zero[2] : ""));
+    const auto s = solveContactScene(with(cell, zero));
+    const auto& r = s.result.contact;
+    EXPECT_TRUE(r.converged) << r.message;
+    for (const auto& node : r.nodes) {  // this rank's contact nodes: no tangential force
+      EXPECT_EQ(node.force[1], 0.0) << "node " << node.slaveNode;
+      EXPECT_EQ(node.force[2], 0.0) << "node " << node.slaveNode;
+    }
+    if (worldRank() != 0) continue;
+    const double difference = relativeMaxDifference(none.result.displacement.value, s.result.displacement.value);
+    EXPECT_LE(difference, 1e-7);
+    EXPECT_EQ(r.statusCounts, none.result.contact.statusCounts);
+    EXPECT_EQ(r.statusCounts[1], 0);
+    EXPECT_GT(r.statusCounts[2], 0);
+    int differentStatus = 0;
+    for (size_t n = 0; n < s.result.contactStatus.size(); ++n)
+      differentStatus += s.result.contactStatus[n] != none.result.contactStatus[n];
+    EXPECT_EQ(differentStatus, 0);
+    std::printf("%s: max |u - u_None| / max |u_None| = %.2e; status (no contact, stick, slip) = (%d, %d, %d), "
+                "%d nodes differ from None's\n",
+                (zero[0] + ", " + zero[1]).c_str(), difference, r.statusCounts[0], r.statusCounts[1],
+                r.statusCounts[2], differentStatus);
+  }
+
+  // Orthotropic with F2 = 0: the ellipse degenerates to the segment |lambda_t1| <= F1 g along
+  // t1; every node in contact can slide along t2, so it is "slip" (the classification rule),
+  // and the KKT conditions hold.
+  const auto segment = solveContactScene(with(cell, {"Contact/Friction Model=Coulomb", "Contact/F1=0.3", "Contact/F2=0"}));
+  const auto& r = segment.result.contact;
+  expectKkt(r);
+  EXPECT_LE(r.kkt.stickRule, kKktTolerance);
+  for (const auto& node : r.nodes) EXPECT_EQ(node.force[2], 0.0) << "node " << node.slaveNode;
+  if (worldRank() != 0) return;
+  EXPECT_EQ(r.statusCounts[1], 0);
+  EXPECT_GT(r.statusCounts[2], 0);
+  EXPECT_EQ(r.statusCounts[0] + r.statusCounts[2], static_cast<int>(segment.B.contact.size()));
+  std::printf("Coulomb F1 = 0.3, F2 = 0: status (no contact, stick, slip) = (%d, %d, %d)\n", r.statusCounts[0],
+              r.statusCounts[1], r.statusCounts[2]);
 }
 
 TEST(contactProblem, allThreeZonesAppearWithLargerFriction) {
@@ -166,27 +221,51 @@ TEST(contactProblem, allRanksAgreeWithOneRank) {
   EXPECT_EQ(alone.result.contact.statusCounts, distributed.result.contact.statusCounts);
 }
 
+namespace {
+/// (u_slave - sum_i w_i u_master_i) . nu at a contact node: the non-penetration row reads
+/// this <= gap (nu from slave to master).
+double normalJump(const feti::ContactNode& node, const std::vector<std::array<double, 3>>& u) {
+  double jump = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    jump += u[node.slaveNode][c] * node.normal[c];
+    for (size_t v = 0; v < node.masterNodes.size(); ++v)
+      jump -= node.masterWeights[v] * u[node.masterNodes[v]][c] * node.normal[c];
+  }
+  return jump;
+}
+
+/// max |u| over the nodes of body (element block) b.
+double maxDisplacementOfBody(const mesh::Mesh& mesh, int b, const std::vector<std::array<double, 3>>& u) {
+  const auto& block = mesh.blocks[b];
+  double m = 0.0;
+  for (LO e = block.first; e < block.first + block.count; ++e)
+    for (LO n : mesh.tets[e])
+      for (int c = 0; c < 3; ++c) m = std::max(m, std::abs(u[n][c]));
+  return m;
+}
+}  // namespace
+
 TEST(contactProblem, initialGapsAreRespected) {
-  // A gap wider than the deformation: no contact, so the solution is that of the two bodies
-  // without contact (linear T-FETI, an independent code path).
-  const std::vector<std::string> cell = {"Mesh/Subdomains Per Brick=2x1x1", "Mesh/H Over h=3", "Solver/Tolerance=1e-9",
-                                         "Contact/Search Distance=0.02"};
-  const auto open = solveContactScene(with(cell, {"Mesh/Initial Gap=0.01"}));
-  expectKkt(open.result.contact);
-  // A narrow gap: contact closes over part of the surface and non-penetration holds with d > 0.
-  const auto narrow = solveContactScene(with(cell, {"Mesh/Initial Gap=0.001"}));
-  expectKkt(narrow.result.contact);
-  if (worldRank() != 0) return;
-  EXPECT_EQ(open.result.contact.statusCounts[0], static_cast<int>(open.B.contact.size()));
-  EXPECT_EQ(open.result.totalNormalForce, 0.0);
-  for (const auto& c : open.B.contact) EXPECT_NEAR(c.gap, 0.01, 1e-12);
-  EXPECT_GT(narrow.result.contact.statusCounts[2], 0);
-  EXPECT_GT(narrow.result.totalNormalForce, 0.0);
+  // A gap wider than the deformation, every slave node paired (search distance 0.5 > d =
+  // 0.1): the contact rows are there but never active, so the solution is that of the two
+  // bodies without contact (linear T-FETI, an independent code path), for Coulomb and
+  // frictionless contact alike. Measured: the linear solution's largest normal jump is 6.2e-3
+  // against d = 0.1; max |u - u_linear| / max |u_linear| = 4.1e-9 (Coulomb) and 5.6e-9 (None)
+  // on 1 rank, 4.2e-9 / 4.5e-9 on 2, 4.0e-9 / 3.4e-9 on 4; the difference is all in the
+  // aluminium brick, which should not move: its max |u| is the same fraction of the steel
+  // brick's (1 rank figures below). That is the solver's stopping error,
+  // not a force (the total normal force is exactly 0): it scales with Solver/Tolerance —
+  // 4.5e-8 / 6.2e-8 at 1e-9, 3.9e-10 / 4.0e-10 at 1e-11, 4.8e-11 / 3.2e-11 at 1e-12 — so at
+  // 1e-10 the aluminium brick is at rest to 1e-8 of the steel brick's displacement, not 1e-12.
+  const std::vector<std::string> cell = {"Mesh/Subdomains Per Brick=2x1x1", "Mesh/H Over h=3",
+                                         "Solver/Tolerance=1e-10", "Contact/Search Distance=0.5"};
+  constexpr double kGap = 0.1;
+  const std::string gap = "Mesh/Initial Gap=0.1";
 
   // Reference for the open gap: the same mesh, no contact pair, linear T-FETI.
   Teuchos::ParameterList params("Tribos");
   const auto valid = stack::sceneValidParameters();
-  for (const auto& o : with(cell, {"Mesh/Initial Gap=0.01", "Contact/Friction Model=None", "Contact/Slave Side Set=",
+  for (const auto& o : with(cell, {gap, "Contact/Friction Model=None", "Contact/Slave Side Set=",
                                    "Contact/Master Side Set="}))
     core::applyOverride(params, *valid, o);
   core::validateAndSetDefaults(params, *valid, "test");
@@ -194,6 +273,70 @@ TEST(contactProblem, initialGapsAreRespected) {
   std::vector<fem::SubdomainSystem> systems;
   stack::assembleOwnedSubdomains(scene, MPI_COMM_SELF, systems);
   const auto B = feti::buildConstraintMatrix(scene.mesh, scene.decomposition, stack::constraintSpec(scene), 1);
-  const auto linear = stack::solveLinearFeti(scene, std::move(systems), B, params.sublist("FETI"), 1e-11, MPI_COMM_SELF);
-  EXPECT_LE(relativeMaxDifference(linear.displacement, open.result.displacement.value), 1e-6);
+  const auto linear = stack::solveLinearFeti(scene, std::move(systems), B, params.sublist("FETI"), 1e-12, MPI_COMM_SELF);
+  ASSERT_TRUE(linear.converged);
+
+  for (const auto& model : std::vector<std::vector<std::string>>{
+           {"Contact/Friction Model=Coulomb", "Contact/F1=0.3", "Contact/F2=0.3"}, {"Contact/Friction Model=None"}}) {
+    SCOPED_TRACE(model[0]);
+    const auto open = solveContactScene(with(with(cell, {gap}), model));
+    const auto& r = open.result.contact;
+    EXPECT_TRUE(r.converged) << r.message;  // every KKT residual <= max(100 eps, 1e-8) = 1e-8
+    if (worldRank() != 0) continue;
+    // Every slave node that is not clamped is paired, at the distance d.
+    const auto& m = open.scene.mesh;
+    std::set<LO> slaveNodes;
+    const auto& slaveSide = m.sideSet("contact_aluminium");
+    for (size_t i = 0; i < slaveSide.elements.size(); ++i)
+      for (int v : mesh::kTetFaceVertices[slaveSide.sides[i]]) slaveNodes.insert(m.tets[slaveSide.elements[i]][v]);
+    for (const auto& name : open.scene.dirichletNodeSets)
+      for (LO n : m.nodeSet(name).nodes) slaveNodes.erase(n);
+    EXPECT_EQ(open.B.unpairedSlaveNodes, 0);
+    EXPECT_EQ(open.B.contact.size(), slaveNodes.size());
+    for (const auto& c : open.B.contact) EXPECT_NEAR(c.gap, kGap, 1e-12);
+    // The linear solution never closes the gap: it is the solution of the contact problem.
+    double largestJump = -INFINITY;
+    for (const auto& c : open.B.contact) largestJump = std::max(largestJump, normalJump(c, linear.displacement));
+    EXPECT_LT(largestJump, kGap);
+    // Nothing touches.
+    EXPECT_EQ(r.statusCounts[0], static_cast<int>(open.B.contact.size()));
+    EXPECT_EQ(r.statusCounts[1], 0);
+    EXPECT_EQ(r.statusCounts[2], 0);
+    EXPECT_EQ(open.result.totalNormalForce, 0.0);
+    const double difference = relativeMaxDifference(linear.displacement, open.result.displacement.value);
+    EXPECT_LE(difference, 1e-8);
+    // The aluminium brick (body 0: clamped, unloaded, untouched) stays at rest.
+    const double aluminium = maxDisplacementOfBody(m, 0, open.result.displacement.value);
+    const double steel = maxDisplacementOfBody(m, 1, open.result.displacement.value);
+    EXPECT_LE(aluminium, 1e-8 * steel);
+    std::printf("open gap, %s: largest normal jump of the linear solution %.4e (gap %.1f); max |u - u_linear| / "
+                "max |u_linear| = %.2e; max |u| aluminium / steel = %.2e\n",
+                model[0].c_str(), largestJump, kGap, difference, aluminium / steel);
+  }
+
+  // Tresca's given slip bound acts on the contact surface whether or not it touches (the
+  // classical given-friction problem: j(v) = sum_r g |v_t,r|): across the open gap every
+  // paired node carries a tangential force on the friction ellipse, ||F^-1 lambda_t|| = g,
+  // and no normal force, so the status says "no contact". This is not the contact-free
+  // solution (measured: max |u - u_linear| / max |u_linear| = 6.3e-3, the aluminium brick
+  // dragged along by 6.3e-3 of the steel brick's displacement).
+  const auto tresca = solveContactScene(with(with(cell, {gap}), {"Contact/Friction Model=Tresca", "Contact/Slip Bound=1"}));
+  EXPECT_TRUE(tresca.result.contact.converged) << tresca.result.contact.message;
+  for (const auto& node : tresca.result.contact.nodes) {  // this rank's contact nodes
+    EXPECT_EQ(node.force[0], 0.0);
+    EXPECT_EQ(node.status, contact::ContactStatus::NoContact);
+    EXPECT_NEAR(std::hypot(node.force[1] / 0.3, node.force[2] / 0.3), 1.0, 1e-8) << "node " << node.slaveNode;
+  }
+  if (worldRank() == 0) {
+    EXPECT_EQ(tresca.result.contact.statusCounts[0], static_cast<int>(tresca.B.contact.size()));
+    std::printf("open gap, Tresca g = 1: max |u - u_linear| / max |u_linear| = %.2e\n",
+                relativeMaxDifference(linear.displacement, tresca.result.displacement.value));
+  }
+
+  // A narrow gap: contact closes over part of the surface and non-penetration holds with d > 0.
+  const auto narrow = solveContactScene(with(cell, {"Mesh/Initial Gap=0.001"}));
+  expectKkt(narrow.result.contact);
+  if (worldRank() != 0) return;
+  EXPECT_GT(narrow.result.contact.statusCounts[2], 0);
+  EXPECT_GT(narrow.result.totalNormalForce, 0.0);
 }

@@ -1,0 +1,88 @@
+// What the driver checks around the solve: before it, that every rigid motion of every body
+// meets a row of B (a free one is an input error, exit 2, naming the body and the motion,
+// in dry runs too); after it, the console line with every KKT residual of the discrete
+// problem, the same numbers as the summary's.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+
+#include "RunCommand.hpp"
+#include "TestPaths.hpp"
+
+namespace {
+using tribos::test::quote;
+using tribos::test::runCommand;
+
+const std::string kDriver = TRIBOS_DRIVER;
+std::string input(const std::string& name) { return tribos::test::sourceDir() + "/input/" + name; }
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+}  // namespace
+
+TEST(tribosDriver, aFreeRigidMotionIsAnInputErrorBeforeTheSolve) {
+  // block_on_plate.xml: a block on a clamped plate, held by contact and friction only.
+  // Frictionless, nothing holds the block's sliding in x and y or its spin about z (the
+  // interface is the plane z = const): exit 2, naming the body and those three motions and
+  // nothing else, before any solver output.
+  const std::string scene = quote(input("block_on_plate.xml"));
+  for (const std::string mode : {"", " --dry-run"}) {
+    SCOPED_TRACE("mode:" + mode);
+    const auto run = runCommand(kDriver + " --input " + scene + " --set 'Contact/Friction Model=None'" + mode);
+    EXPECT_EQ(run.status, 2) << run.output;
+    EXPECT_TRUE(contains(run.output, "3 rigid motions are free")) << run.output;
+    for (const char* motion : {"body \"block\": translation x", "body \"block\": translation y",
+                               "body \"block\": rotation about z"})
+      EXPECT_TRUE(contains(run.output, motion)) << motion << "\n" << run.output;
+    EXPECT_FALSE(contains(run.output, "body \"plate\"")) << run.output;  // the clamped plate is held
+    EXPECT_FALSE(contains(run.output, "translation z")) << run.output;   // the normal rows hold these
+    EXPECT_FALSE(contains(run.output, "rotation about x")) << run.output;
+    EXPECT_FALSE(contains(run.output, "rotation about y")) << run.output;
+    EXPECT_FALSE(contains(run.output, "SMALSE-M")) << run.output;
+    EXPECT_FALSE(contains(run.output, "outer")) << run.output;
+  }
+  // With the scene's Coulomb friction (F = 0.3) the tangential rows hold the block: it solves.
+  const auto run = runCommand(kDriver + " --input " + scene + " --set Solver/Verbose=false");
+  EXPECT_EQ(run.status, 0) << run.output;
+  EXPECT_FALSE(contains(run.output, "rigid motion")) << run.output;
+}
+
+TEST(tribosDriver, theConsolePrintsEveryKktResidual) {
+  // A normal run of the paper's scene: the console's KKT line names every residual, each
+  // printed value is the summary's (cout's 6 significant digits) and within the printed
+  // tolerance (the run converged).
+  const auto dir = std::filesystem::temp_directory_path() / ("tribos_driver_checks_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const auto summaryPath = dir / "summary.json";
+  const auto run = runCommand(kDriver + " --input " + quote(input("two_bricks.xml")) + " --set Solver/Verbose=false" +
+                              " --summary " + quote(summaryPath.string()));
+  ASSERT_EQ(run.status, 0) << run.output;
+  const nlohmann::json summary = nlohmann::json::parse(std::ifstream(summaryPath));
+  std::filesystem::remove_all(dir);
+  const auto& kkt = summary.at("kkt");
+
+  std::smatch line;
+  ASSERT_TRUE(std::regex_search(run.output, line, std::regex("KKT \\(each <= ([^ ]+) for \"converged\"\\): ([^\n]*)")))
+      << run.output;
+  const double tolerance = std::stod(line[1]);
+  EXPECT_NEAR(tolerance, kkt.at("tolerance").get<double>(), 1e-5 * tolerance);
+  const std::string residuals = line[2];
+  const std::pair<const char*, const char*> printedAs[] = {
+      {"equilibrium", "equilibrium"},         {"gluing/Dirichlet", "gluing_dirichlet"},
+      {"penetration", "non_penetration"},     {"complementarity", "complementarity"},
+      {"normal sign", "normal_sign"},         {"friction", "friction_admissibility"},
+      {"slip rule", "slip_rule"},             {"stick rule", "stick_rule"}};
+  for (const auto& [label, key] : printedAs) {
+    SCOPED_TRACE(label);
+    std::smatch value;
+    ASSERT_TRUE(std::regex_search(residuals, value, std::regex(std::string("(^|, )") + label + " ([^ ,]+)")))
+        << residuals;
+    const double printed = std::stod(value[2]), stored = kkt.at(key).get<double>();
+    EXPECT_NEAR(printed, stored, 1e-5 * std::abs(stored)) << residuals;
+    EXPECT_GE(printed, 0.0);
+    EXPECT_LE(printed, tolerance);
+  }
+}
