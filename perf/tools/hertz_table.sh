@@ -3,7 +3,8 @@
 # input/hertz_sphere.xml, frictionless and Coulomb F = 0.2, one Markdown row per run:
 # element size at the contact, nodes, peak nodal pressure against Hertz's p0, the edge of
 # the contact zone against b or a, SMALSE-M outer iterations, F applications, solve time.
-# Usage: perf/tools/hertz_table.sh [extra --set arguments...]   (from a built tree)
+# Usage: perf/tools/hertz_table.sh [extra --set arguments...]   (from a built tree; each run is
+# stopped after TRIBOS_RUN_TIMEOUT seconds, default 900: its row then says "False")
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 driver=build/bin/tribos
@@ -14,11 +15,12 @@ echo "|---|---|---|---|---|---|---|---|---|---|---|"
 for scene in cylinder:0.2 cylinder:0.1 cylinder:0.05 sphere:0.3 sphere:0.15 sphere:0.075; do
   kind=${scene%%:*} hc=${scene##*:}
   for friction in None Coulomb; do
-    "$driver" --input input/hertz_$kind.xml --set "Mesh/File=meshes/hertz_${kind}_h$hc.exo" \
+    rm -f "$out/s.json" "$out/r.exo"
+    timeout "${TRIBOS_RUN_TIMEOUT:-900}" "$driver" --input input/hertz_$kind.xml --set "Mesh/File=meshes/hertz_${kind}_h$hc.exo" \
       --set "Contact/Friction Model=$friction" --set Solver/Verbose=false \
       --output "$out/r.exo" --summary "$out/s.json" "$@" > /dev/null || true
     python3 doc/tools/hertz_compare.py "$kind" "$out/r.exo" > "$out/compare.txt" || true
-    python3 - "$kind" "$hc" "$friction" "$out/s.json" "$out/compare.txt" <<'PY'
+    [ -f "$out/s.json" ] && python3 - "$kind" "$hc" "$friction" "$out/s.json" "$out/compare.txt" <<'PY'
 import json, re, sys
 kind, hc, friction, summary, compare = sys.argv[1:]
 j = json.load(open(summary))
@@ -36,5 +38,6 @@ print("| %s | %s | %d | %s | %s | %s | %s | %d | %d | %.1f | %s |" % (
     kind, hc, j["n_nodes"], friction, peak.group(1) if peak else "-", edge, hertz, j["outer_iterations"],
     j["pfp_applications"], j["times"]["solve_s"], j["converged"]))
 PY
+    [ -f "$out/s.json" ] || echo "| $kind | $hc | - | $friction | stopped after ${TRIBOS_RUN_TIMEOUT:-900} s | | | | | | False |"
   done
 done
