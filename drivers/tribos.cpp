@@ -166,7 +166,8 @@ int run(int argc, char** argv, int rank) {
               << B.removedRedundantRows << " redundant rows), n_rigid = " << report.nRigid << "\n"
               << (scene.contact.hasContact()
                       ? "  contact: " + std::to_string(B.contact.size()) + " slave nodes paired, " +
-                            std::to_string(B.unpairedSlaveNodes) + " beyond Contact/Search Distance (no rows), " +
+                            std::to_string(B.unpairedSlaveNodes) +
+                            " out of reach (no master face facing them within Contact/Search Distance: no rows), " +
                             std::to_string(B.overlappingPairs) + " with initial overlap" +
                             (B.overlappingPairs > 0 ? " (largest " + std::to_string(B.largestOverlap) + ")" : "") + "\n"
                       : std::string("  contact: none (linear T-FETI)\n"))
