@@ -206,13 +206,18 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
   };
 
   // (3) Solve: one SMALSE-M run (None, Tresca, inexact Coulomb) or a sequence (exact Coulomb).
+  // The reported products with A include those of the earlier SMALSE-M runs (exact variant).
+  auto withEarlierRuns = [&](qp::SmalseProgress p) {
+    p.operatorApplications += applicationsBefore;
+    return p;
+  };
   qp::SmalseSettings settings = smalseSettings;
   if (friction.progress)
     settings.monitor = [&](const qp::SmalseProgress& p) {
-      qp::SmalseProgress total = p;
-      total.operatorApplications += applicationsBefore;
-      friction.progress(total, result.fixedPointChange);
+      friction.progress(withEarlierRuns(p), result.fixedPointChange);
     };
+  if (smalseSettings.innerMonitor)
+    settings.innerMonitor = [&](const qp::SmalseProgress& p) { smalseSettings.innerMonitor(withEarlierRuns(p)); };
   const qp::SmalseM smalse(settings);
   try {
     if (friction.model == "Coulomb" && friction.fixedPoint == "Inexact") {

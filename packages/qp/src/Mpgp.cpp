@@ -2,6 +2,7 @@
 
 #include <Tpetra_Vector.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 namespace tribos::qp {
@@ -45,6 +46,9 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
       break;
     }
     if (counters.iterations >= settings_.maxIterations) break;
+    // Every rank reaches this point at the same iteration: the callback stays collective-safe.
+    const int every = std::max(settings_.progressEvery, 1);
+    if (settings_.progress && counters.iterations > 0 && counters.iterations % every == 0) settings_.progress(counters);
     ++counters.iterations;
 
     // Proportional iterate: the chopped gradient is small against the reduced free one.

@@ -67,10 +67,21 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
   double M = s.M0 * counters.normA;
   const double eta = s.eta * normC, eps = s.tolerance * normC;
   PenalisedOperator Arho(A, Q, rho, map);
-  const Mpgp mpgp(s.mpgp);
   Vector betaT(map), b(map), g(map), Qmu(map);  // betaT = G^T beta (the multiplier as a dual vector)
   betaT.putScalar(0.0);
   double previousL = 0.0, previousGmu = 0.0;
+  // The outer iteration in progress, the last inner ||G mu|| and the inner stopping bound,
+  // for the progress of long inner solves.
+  int outer = 0;
+  double innerGmu = 0.0, innerBound = 0.0;
+  MpgpSettings mpgpSettings = s.mpgp;
+  if (s.innerMonitor)
+    mpgpSettings.progress = [&](const MpgpCounters& inner) {
+      s.innerMonitor({outer, inner.iterations, inner.projectedGradientNorm / normC, counters.normA * innerGmu / normC,
+                      M / counters.normA, counters.operatorApplications + inner.operatorApplications,
+                      innerBound / normC});
+    };
+  const Mpgp mpgp(mpgpSettings);
   auto equalityNorm = [&](const Vector& x) {
     Q.applyQ(x, Qmu);
     return Qmu.norm2();
@@ -94,12 +105,14 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
     // Step 1: mu^k ~ argmin L_rho(mu, beta^k) over Omega with ||g^P|| <= min(M_k ||G mu||, eta)
     // (or the final accuracy reached).
     b.update(1.0, c, -1.0, betaT, 0.0);
+    outer = k + 1;
     // The inner bound never drops below a tenth of the final accuracy: M_k may shrink
     // without limit when the slip bound moves (the Lagrangian is then not monotone), and
     // an inner target under round-off would never be met.
     const auto inner = mpgp.solve(Arho, b, omega, normArho, mu, g, [&](double gp, const Vector& x) {
-      const double gmu = equalityNorm(x);
-      return gp <= std::max(std::min(M * gmu, eta), s.innerFloor * eps) || smalseConverged(gp, gmu, x);
+      innerGmu = equalityNorm(x);
+      innerBound = std::max(std::min(M * innerGmu, eta), s.innerFloor * eps);
+      return gp <= innerBound || smalseConverged(gp, innerGmu, x);
     });
     counters.outerIterations = k + 1;
     counters.innerIterations += inner.iterations;
@@ -129,10 +142,12 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
       Arho.setRho(rho);
     }
     previousGmu = gmu;
-    if (s.monitor)
-      s.monitor({k + 1, inner.iterations, gp / normC, normA * gmu / normC, M / normA, counters.operatorApplications});
     // Coulomb: the slip bound update (inexact successive approximations) may veto the stop.
     const bool veto = hook ? hook(k, mu, gp / normC, normA * gmu / normC, M / normA) : false;
+    // After the hook, so that a progress line reports what the hook did in this iteration
+    // (the slip-bound change), not what it did in the previous one.
+    if (s.monitor)
+      s.monitor({k + 1, inner.iterations, gp / normC, normA * gmu / normC, M / normA, counters.operatorApplications});
     if (done && !veto) {
       counters.converged = true;
       break;

@@ -183,3 +183,46 @@ TEST(Mpgp, stopsAtTheStartOrWhenIterationsRunOut) {
   EXPECT_EQ(c.operatorApplications, 1);  // the gradient at the start
   EXPECT_EQ(op.applications - before, 1);
 }
+
+TEST(Mpgp, progressIsCalledEveryKIterationsWithTheCountersSoFar) {
+  const int n = 10;
+  const Dense A = test::randomSpd(n, 1000.0, 78);
+  std::mt19937 gen(78);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<double> b(n);
+  for (double& v : b) v = 3.0 * u(gen);
+  const auto blocks = test::randomBlocks(n, gen);
+  auto map = test::makeMap(n, test::selfComm());
+  const auto omega = blocks.build(*map);
+  test::DenseOperator op(A);
+  qp::Vector bv(map), x(map), g(map);
+  test::scatter(b, bv);
+  qp::MpgpSettings settings;
+  settings.progressEvery = 3;
+  std::vector<qp::MpgpCounters> seen;
+  settings.progress = [&](const qp::MpgpCounters& c) { seen.push_back(c); };
+  const long long before = op.applications;
+  double lastGp = 0.0;
+  const auto c = qp::Mpgp(settings).solve(op, bv, omega, 1001.0, x, g, [&](double gp, const qp::Vector&) {
+    lastGp = gp;
+    return gp <= 1e-12;
+  });
+  ASSERT_TRUE(c.converged);
+  ASSERT_GE(c.iterations, 6) << "the test needs a few calls";
+  // After iterations 3, 6, ... that did not end the solve; the counters are those so far.
+  EXPECT_EQ(static_cast<int>(seen.size()), (c.iterations - 1) / 3);
+  for (size_t k = 0; k < seen.size(); ++k) {
+    EXPECT_EQ(seen[k].iterations, 3 * static_cast<int>(k + 1));
+    EXPECT_EQ(seen[k].iterations, seen[k].cgSteps + seen[k].expansionSteps + seen[k].proportioningSteps);
+    EXPECT_GT(seen[k].projectedGradientNorm, 1e-12);
+    if (k > 0) EXPECT_GT(seen[k].operatorApplications, seen[k - 1].operatorApplications);
+    EXPECT_LE(seen[k].operatorApplications, op.applications - before);
+  }
+  // Without a callback the iterates are the same (the callback only reads).
+  qp::Vector x2(map), g2(map);
+  const auto c2 = qp::Mpgp().solve(op, bv, omega, 1001.0, x2, g2, [](double gp, const qp::Vector&) {
+    return gp <= 1e-12;
+  });
+  EXPECT_EQ(c2.iterations, c.iterations);
+  EXPECT_EQ(test::maxDifference(test::gather(x2), test::gather(x)), 0.0);
+}

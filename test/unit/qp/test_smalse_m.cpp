@@ -229,6 +229,62 @@ TEST(SmalseM, hookMovingTheSemiAxesConvergesToAFixedPoint) {
   EXPECT_GT(pressed, 16);
 }
 
+TEST(SmalseM, monitorsSeeEveryOuterIterationAndTheInnerProgressInBetween) {
+  // The monitor once per outer iteration, after the hook (it sees what the hook did); the
+  // inner monitor every mpgp.progressEvery MPGP iterations, within the outer iteration in
+  // progress, with the products with A counted over the whole solve.
+  std::mt19937 gen(31);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const int n = 12;
+  const Dense M = test::randomSpd(n, 300.0, 31);
+  std::vector<double> b(n);
+  for (double& v : b) v = u(gen);
+  test::BlockSet blocks;
+  for (int i = 0; i < n; i += 2) {
+    blocks.boundIndex.push_back(i);
+    blocks.lower.push_back(0.1 * u(gen));
+  }
+  std::vector<double> x0(n, 0.0);
+  blocks.project(x0);
+  const auto qp = test::makeEqualityQp(M, randomRowsVanishingAt(x0, gen), b);
+  auto settings = paperSettings();
+  settings.mpgp.progressEvery = 2;
+  std::vector<qp::SmalseProgress> outer, inner;
+  int hookCalls = 0;
+  settings.monitor = [&](const qp::SmalseProgress& p) {
+    EXPECT_EQ(hookCalls, p.outerIteration);  // the hook of this iteration has run
+    outer.push_back(p);
+  };
+  settings.innerMonitor = [&](const qp::SmalseProgress& p) { inner.push_back(p); };
+  auto map = test::makeMap(n, test::selfComm());
+  auto omega = blocks.build(*map);
+  test::DenseOperator op(qp.A);
+  test::DenseProjector projector(qp.Q);
+  qp::Vector cv(map), mu(map);
+  test::scatter(qp.c, cv);
+  const auto counters = qp::SmalseM(settings).solve(op, projector, cv, omega, mu,
+                                                    [&](int, const qp::Vector&, double, double, double) {
+                                                      ++hookCalls;
+                                                      return false;
+                                                    });
+  ASSERT_TRUE(counters.converged);
+  ASSERT_EQ(static_cast<int>(outer.size()), counters.outerIterations);
+  for (size_t k = 0; k < outer.size(); ++k) EXPECT_EQ(outer[k].outerIteration, static_cast<int>(k + 1));
+  EXPECT_EQ(outer.back().operatorApplications, counters.operatorApplications);
+  ASSERT_FALSE(inner.empty()) << "no inner solve took more than 2 MPGP iterations";
+  for (const auto& p : inner) {
+    ASSERT_GE(p.outerIteration, 1);
+    ASSERT_LE(p.outerIteration, counters.outerIterations);
+    const auto& done = outer[p.outerIteration - 1];
+    EXPECT_EQ(p.innerIterations % 2, 0);
+    EXPECT_LT(p.innerIterations, done.innerIterations);
+    EXPECT_LT(p.operatorApplications, done.operatorApplications);
+    EXPECT_GT(p.projectedGradient, 0.0);
+    EXPECT_GT(p.innerTarget, 0.0);
+    if (p.outerIteration > 1) EXPECT_GT(p.operatorApplications, outer[p.outerIteration - 2].operatorApplications);
+  }
+}
+
 TEST(SmalseM, zeroRightHandSide) {
   const int n = 6;
   const Dense M = test::randomSpd(n, 10.0, 5);

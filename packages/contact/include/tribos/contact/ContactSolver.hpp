@@ -31,8 +31,10 @@ struct FrictionSettings {
   /// Divergence: the fixed-point change grew in this many consecutive updates (after the
   /// first few) -> stop and report "fixed point diverges".
   int divergenceWindow = 8;
-  /// Called on every rank after each outer iteration with the progress and the last
-  /// fixed-point change (Coulomb; 0 otherwise); may be empty.
+  /// Called on every rank after each outer iteration with the progress and the relative
+  /// slip-bound change ||g_{k+1} - g_k|| / ||g_k|| (Coulomb: of this iteration's update when
+  /// inexact, of the last Tresca solve when exact; infinite after an update from g = 0; 0
+  /// without Coulomb); may be empty.
   std::function<void(const qp::SmalseProgress&, double)> progress;
 };
 

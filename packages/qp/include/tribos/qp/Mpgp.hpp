@@ -16,6 +16,8 @@ class ParameterList;
 
 namespace tribos::qp {
 
+struct MpgpCounters;
+
 struct MpgpSettings {
   double stepScale = 1.9;   ///< alpha_bar = stepScale / ||A||, in (0, 2)
   double gamma = 1.0;       ///< Gamma > 0: proportioning test ||beta||^2 <= Gamma^2 phi~^T phi
@@ -23,6 +25,12 @@ struct MpgpSettings {
   /// Expansion steps: try the exact minimiser along the free gradient (projected, with a
   /// monotonicity safeguard) before the fixed alpha_bar step (ALGORITHMS.md 5: adapted step).
   bool optimalExpansion = false;
+  /// Progress of long solves: called after every `progressEvery` iterations with the
+  /// counters so far (projectedGradientNorm: ||g^P|| of the current iterate). The iterations
+  /// are collective, so every rank that sets it calls it at the same iteration; it must do no
+  /// communication unless every rank sets it. May be empty.
+  std::function<void(const MpgpCounters&)> progress;
+  int progressEvery = 10;
 };
 
 struct MpgpCounters {

@@ -25,6 +25,7 @@ struct SmalseProgress {
   double equalityResidual = 0.0;    ///< ||A|| ||Q mu|| / ||c|| (the scale-free ||G mu||)
   double M = 0.0;                   ///< M_k relative to ||A||
   long long operatorApplications = 0;  ///< products with A so far
+  double innerTarget = 0.0;         ///< the inner stopping bound / ||c|| (innerMonitor only)
 };
 
 struct SmalseSettings {
@@ -46,8 +47,14 @@ struct SmalseSettings {
   double rhoGrowth = 1.0;      ///< > 1: rho *= rhoGrowth when ||G mu|| fell by less than rhoTargetRatio
   double rhoTargetRatio = 0.5;
   double innerFloor = 0.1;     ///< inner solves stop at ||g^P|| <= innerFloor eps ||c|| at the latest
-  /// Called on every rank after each outer iteration (before the hook); may be empty.
+  /// Called on every rank after each outer iteration (after the hook, so that it sees what
+  /// the hook changed; not when the hook throws); may be empty.
   std::function<void(const SmalseProgress&)> monitor;
+  /// Called during the inner solves, after every mpgp.progressEvery MPGP iterations, with the
+  /// outer iteration in progress and its MPGP iterations so far (M, ||G mu|| and the products
+  /// with A as they stand); collective-safe under the rule of MpgpSettings::progress, which it
+  /// replaces. May be empty.
+  std::function<void(const SmalseProgress&)> innerMonitor;
 };
 
 struct SmalseCounters {
