@@ -4,6 +4,8 @@
 #include <Teuchos_ParameterList.hpp>
 
 #include <cstdio>
+#include <functional>
+#include <memory>
 #include <sstream>
 
 #include "tribos/core/Timer.hpp"
@@ -62,6 +64,58 @@ std::string describeContactChain(const Teuchos::ParameterList& tribos) {
   return chain.str();
 }
 
+namespace {
+// Rank 0's view of the solve: the history for the summary, one line per outer iteration
+// and, inside a long inner solve, a line whenever `Progress Interval` seconds passed without
+// one (a user watching a 2-minute inner solve needs to see that it moves). Set on rank 0
+// only, so nothing in here may communicate.
+struct ProgressClock {
+  core::Stopwatch watch;  ///< from the set-up of the solver stack (factorisation included)
+  double lastLine = 0.0;
+};
+
+std::function<void(const qp::SmalseProgress&, double)> outerProgress(std::shared_ptr<ProgressClock> clock,
+                                                                     bool verbose,
+                                                                     std::vector<OuterIterationRecord>& history) {
+  return [clock, verbose, &history](const qp::SmalseProgress& p, double slipChange) {
+    const double now = clock->watch.seconds();
+    const int outer = static_cast<int>(history.size()) + 1;  // counted over every SMALSE-M run
+    history.push_back({outer, p.innerIterations, p.projectedGradient, p.equalityResidual, p.M, slipChange,
+                       p.operatorApplications, now});
+    if (!verbose) return;
+    std::printf("  outer %3d  inner %6d  |gP|/|Ph| %.3e  |Gmu|/|Ph| %.3e  M %.2e  dg %.3e  F %7lld  %.2f s\n",
+                outer, p.innerIterations, p.projectedGradient, p.equalityResidual, p.M, slipChange,
+                p.operatorApplications, now);
+    std::fflush(stdout);
+    clock->lastLine = now;
+  };
+}
+
+std::function<void(const qp::SmalseProgress&)> innerProgress(std::shared_ptr<ProgressClock> clock, double interval,
+                                                             const std::vector<OuterIterationRecord>& history) {
+  return [clock, interval, &history](const qp::SmalseProgress& p) {
+    const double now = clock->watch.seconds();
+    if (now - clock->lastLine < interval) return;
+    std::printf("  outer %3d  in progress: MPGP %6d  |gP|/|Ph| %.3e (inner target %.3e)  |Gmu|/|Ph| %.3e  "
+                "F %7lld  %.2f s\n",
+                static_cast<int>(history.size()) + 1, p.innerIterations, p.projectedGradient, p.innerTarget,
+                p.equalityResidual, p.operatorApplications, now);
+    std::fflush(stdout);
+    clock->lastLine = now;
+  };
+}
+
+void attachProgress(const Teuchos::ParameterList& solver, contact::FrictionSettings& friction,
+                    qp::SmalseSettings& smalse, std::vector<OuterIterationRecord>& history) {
+  const bool verbose = solver.get<bool>("Verbose");
+  auto clock = std::make_shared<ProgressClock>();
+  friction.progress = outerProgress(clock, verbose, history);
+  if (!verbose) return;
+  smalse.mpgp.progressEvery = 10;  // a clock read every 10 MPGP iterations costs nothing against F
+  smalse.innerMonitor = innerProgress(clock, solver.get<double>("Progress Interval"), history);
+}
+}  // namespace
+
 ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
                                      const feti::ConstraintMatrix& B, const Teuchos::ParameterList& tribos,
                                      MPI_Comm comm) {
@@ -73,16 +127,8 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
   settings.factorization = fetiList.get<std::string>("Factorization");
   settings.explicitF = fetiList.get<std::string>("Dual Operator") == "Explicit";
   auto friction = frictionSettings(tribos);
-  const auto smalse = smalseSettings(tribos);
-  if (tribos.sublist("Solver").get<bool>("Verbose") && rank == 0) {
-    core::Stopwatch clock;
-    friction.progress = [clock](const qp::SmalseProgress& p, double fixedPointChange) {
-      std::printf("  outer %3d  inner %6d  |gP|/|Ph| %.3e  |Gmu|/|Ph| %.3e  M %.2e  dg %.3e  F %7lld  %.2f s\n",
-                  p.outerIteration, p.innerIterations, p.projectedGradient, p.equalityResidual, p.M, fixedPointChange,
-                  p.operatorApplications, clock.seconds());
-      std::fflush(stdout);
-    };
-  }
+  auto smalse = smalseSettings(tribos);
+  if (rank == 0) attachProgress(tribos.sublist("Solver"), friction, smalse, out.history);
   out.chain = describeContactChain(tribos);
 
   const feti::TotalFeti feti(scene.mesh, scene.decomposition, std::move(owned), B,

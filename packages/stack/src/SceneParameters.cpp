@@ -141,6 +141,10 @@ void solverParameters(ParameterList& pl) {
          atLeast<double>(0.0));
   pl.set("Max Outer Iterations", 100, "cap on SMALSE-M outer iterations", atLeast<int>(1));
   pl.set("Verbose", true, "print the solver chain and one progress line per outer iteration (rank 0)");
+  pl.set("Progress Interval", 2.0,
+         "Verbose: inside a long inner solve, a progress line (MPGP iterations, ||g^P||, F applications, time) "
+         "whenever this many seconds passed without one [s]; 0: every 10 MPGP iterations",
+         atLeast<double>(0.0));
   ParameterList& smalse = pl.sublist("SMALSE-M", false, "augmented Lagrangian (paper Section 5)");
   smalse.set("eta", 1.0, "eta > 0, relative to ||P h||: cap of the inner stopping bound min(M ||G mu||, eta)",
              atLeast<double>(0.0));

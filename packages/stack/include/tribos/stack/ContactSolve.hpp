@@ -17,6 +17,18 @@ class ParameterList;
 
 namespace tribos::stack {
 
+/// One SMALSE-M outer iteration as the progress line shows it (the JSON summary's `history`).
+struct OuterIterationRecord {
+  int outer = 0;                 ///< outer iteration, counted over every SMALSE-M run
+  int inner = 0;                 ///< its MPGP iterations
+  double projectedGradient = 0.0;  ///< ||g^P|| / ||P h||
+  double equalityResidual = 0.0;   ///< ||G mu|| / ||P h|| (scale-free, SmalseSettings)
+  double M = 0.0;                  ///< M_k / ||PFP||
+  double slipBoundChange = 0.0;    ///< Coulomb: ||g_{k+1} - g_k|| / ||g_k|| (contact::FrictionSettings::progress)
+  long long pfpApplications = 0;   ///< applications of PFP so far (power method included)
+  double elapsedSeconds = 0.0;     ///< since the solver stack was set up (factorisation included)
+};
+
 struct ContactSolveResult {
   contact::ContactResult contact;   ///< counters, KKT, status counts (node list: this rank's)
   GlobalDisplacement displacement;  ///< rank 0
@@ -29,6 +41,7 @@ struct ContactSolveResult {
   double factorizationSeconds = 0.0, solveSeconds = 0.0;
   long long fApplications = 0;
   std::string chain;                ///< the solver chain that was built, for verbose output
+  std::vector<OuterIterationRecord> history;  ///< one per outer iteration (rank 0)
 };
 
 /// Solver settings from the validated "Tribos" list (exposed for tests and perf tools).
