@@ -18,9 +18,15 @@ Usage: [mpirun -np N] tribos --input SCENE.xml [options]
   --output FILE       write the results (mesh, element variable "subdomain") to Exodus II
   --list-parameters   print every valid parameter with its default and documentation
   --help              this text
+  --version           git revision and dependency versions
+  --kokkos-help       Kokkos's own options (--kokkos-threads=N, ...; accepted and passed on)
 
-Threads per rank: Parallel/Threads or OMP_NUM_THREADS. As root, mpirun needs
+Threads per rank: Parallel/Threads or OMP_NUM_THREADS. Idle OpenMP threads sleep
+(OMP_WAIT_POLICY=PASSIVE unless set otherwise). As root, mpirun needs
 --allow-run-as-root (and --oversubscribe beyond the core count).
+
+Progress (Solver/Verbose): one line per SMALSE-M outer iteration, and a line inside long
+inner solves every Solver/Progress Interval seconds (default 2).
 
 Exit status: 0 success, 1 internal error, 2 bad input (the message names the file or
 parameter), 3 the solver did not converge (results still written, flagged).
@@ -35,7 +41,7 @@ Examples:
 CommandLine parseCommandLine(int argc, char** argv) {
   CommandLine cl;
   auto value = [&](int& i, const std::string& flag) -> std::string {
-    if (i + 1 >= argc) throw core::InputError("command line: " + flag + " needs a value (see --help)");
+    if (i + 1 >= argc) throw CommandLineError("command line: " + flag + " needs a value");
     return argv[++i];
   };
   for (int i = 1; i < argc; ++i) {
@@ -50,13 +56,25 @@ CommandLine parseCommandLine(int argc, char** argv) {
     else if (flag == "--summary") cl.summary = get();
     else if (arg == "--dry-run") cl.dryRun = true;
     else if (arg == "--help" || arg == "-h") cl.help = true;
+    else if (arg == "--version") cl.version = true;
+    else if (arg == "--kokkos-help") cl.kokkosHelp = true;
     else if (arg == "--list-parameters") cl.listParameters = true;
     else if (arg.rfind("--kokkos", 0) == 0) continue;  // consumed by Kokkos
-    else throw core::InputError("command line: unknown argument \"" + arg + "\" (see --help)");
+    else throw CommandLineError("command line: unknown argument \"" + arg + "\"");
   }
-  if (!cl.help && !cl.listParameters && cl.input.empty())
-    throw core::InputError("command line: --input SCENE.xml is required (see --help)");
+  if (!cl.help && !cl.version && !cl.kokkosHelp && !cl.listParameters && cl.input.empty())
+    throw CommandLineError("command line: --input SCENE.xml is required");
   return cl;
+}
+
+std::vector<char*> kokkosArguments(int argc, char** argv) {
+  std::vector<char*> kept;
+  for (int i = 0; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (i == 0 || (arg != "--help" && arg != "-h" && arg != "--version")) kept.push_back(argv[i]);
+  }
+  kept.push_back(nullptr);  // argv[argc] is a null pointer by convention
+  return kept;
 }
 
 }  // namespace tribos::driver

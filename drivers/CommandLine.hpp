@@ -3,6 +3,8 @@
 #include <string>
 #include <vector>
 
+#include "tribos/core/Errors.hpp"
+
 namespace tribos::driver {
 
 struct CommandLine {
@@ -12,13 +14,28 @@ struct CommandLine {
   std::string summary;                ///< --summary summary.json
   bool dryRun = false;
   bool help = false;
+  bool version = false;
+  bool kokkosHelp = false;            ///< --kokkos-help: Kokkos printed its options at initialisation
   bool listParameters = false;
 };
 
-/// Parses argv; throws core::InputError naming the bad argument.
+/// A malformed command line (bad input: exit 2, with the usage).
+class CommandLineError : public core::InputError {
+ public:
+  using core::InputError::InputError;
+};
+
+/// Parses argv; throws CommandLineError naming the bad argument.
 CommandLine parseCommandLine(int argc, char** argv);
 
 /// The text of `tribos --help`.
 std::string usage();
+
+/// The arguments Kokkos should see: argv without --help and --version, which are Tribos's
+/// (Kokkos would print its own 40 lines of help for --help); --kokkos-help stays.
+std::vector<char*> kokkosArguments(int argc, char** argv);
+
+/// The text of `tribos --version`: git revision and the versions of the dependencies.
+std::string versionText();
 
 }  // namespace tribos::driver
