@@ -23,87 +23,35 @@ normal force), the coordinates and the slave node set (default "block_contact", 
 Positions are the undeformed coordinates (the contact surface of the slave body; Hertz's
 small-strain theory measures b and a in the undeformed configuration as well).
 
-Reads the netCDF file with `ncdump` (Debian: apt-get install netcdf-bin); standard library only.
+Reads the netCDF file with `ncdump` (Debian: apt-get install netcdf-bin) through exodus_read.py;
+standard library only.
 Exit status 0, or 2 for a file without the variables.
 """
 import argparse
 import math
-import re
+import os
 import signal
 import subprocess
 import sys
 
-# ---------------------------------------------------------------- netCDF (ncdump) reading
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import exodus_read  # noqa: E402  (the shared ncdump reader next to this script)
 
-
-def ncdump_header(path):
-    return subprocess.run(["ncdump", "-h", path], check=True, capture_output=True, text=True).stdout
-
-
-def ncdump_vars(path, names):
-    """The data of the named variables as {name: list of numbers or strings} (flattened)."""
-    text = subprocess.run(["ncdump", "-v", ",".join(names), path], check=True, capture_output=True,
-                          text=True).stdout
-    data = text.split("\ndata:\n", 1)[1]
-    out = {}
-    for name in names:
-        m = re.search(r"^\s*" + re.escape(name) + r"\s*=(.*?);\s*$", data, re.S | re.M)
-        if not m:
-            raise KeyError(name)
-        body = m.group(1)
-        if '"' in body:
-            out[name] = re.findall(r'"((?:[^"\\]|\\.)*)"', body)
-        else:
-            vals = []
-            for tok in body.replace("\n", " ").split(","):
-                tok = tok.strip()
-                if not tok:
-                    continue
-                vals.append(float("nan") if tok == "_" else float(tok))
-            out[name] = vals
-    return out
-
-
-def dimension(header, name):
-    m = re.search(r"^\s*" + re.escape(name) + r"\s*=\s*(?:UNLIMITED\s*;\s*//\s*\()?(\d+)", header, re.M)
-    return int(m.group(1)) if m else None
+# ---------------------------------------------------------------- reading the result
 
 
 def read_result(path, slave):
     """Coordinates, the last step's nodal contact variables and the slave node ids (0-based)."""
-    header = ncdump_header(path)
-    n = dimension(header, "num_nodes")
+    header = exodus_read.ncdump_header(path)
     for needed in ("name_nod_var", "ns_names"):
         if needed not in header:
             raise KeyError("no %s in the file (not a tribos result, or no node sets)" % needed)
-    names = ncdump_vars(path, ["name_nod_var", "ns_names"])
-    var_names = [s.strip() for s in names["name_nod_var"]]
-    ns_names = [s.strip() for s in names["ns_names"]]
-    want = {}
-    for v in ("contact_pressure", "contact_normal"):
-        if v not in var_names:
-            raise KeyError(v + " (the file has: " + ", ".join(var_names) + ")")
-        want[v] = var_names.index(v) + 1
-    if slave not in ns_names:
-        raise KeyError("node set " + slave + " (the file has: " + ", ".join(ns_names) + ")")
-    ns = ns_names.index(slave) + 1
-    separate = "vals_nod_var1" in header  # otherwise the combined vals_nod_var(time, var, node)
-    fields = ["coordx", "coordy", "coordz", "node_ns%d" % ns]
-    fields += ["vals_nod_var%d" % i for i in want.values()] if separate else ["vals_nod_var"]
-    d = ncdump_vars(path, fields)
-    res = {"x": d["coordx"], "y": d["coordy"], "z": d["coordz"],
-           "slave": sorted(int(i) - 1 for i in d["node_ns%d" % ns])}
-    nvar = len(var_names)
-    for v, i in want.items():
-        if separate:
-            vals = d["vals_nod_var%d" % i]
-            res[v] = vals[len(vals) - n:]                      # last time step
-        else:
-            vals = d["vals_nod_var"]
-            steps = len(vals) // (nvar * n)
-            off = ((steps - 1) * nvar + (i - 1)) * n
-            res[v] = vals[off:off + n]
-    res["steps"] = dimension(header, "time_step")
+    mesh = exodus_read.read_mesh(path, header)
+    if slave not in mesh["node_sets"]:
+        raise KeyError("node set " + slave + " (the file has: " + ", ".join(mesh["node_sets"]) + ")")
+    res = {"x": mesh["x"], "y": mesh["y"], "z": mesh["z"], "slave": sorted(mesh["node_sets"][slave])}
+    res.update(exodus_read.last_step_nodal(path, header, ["contact_pressure", "contact_normal"]))
+    res["steps"] = exodus_read.dimension(header, "time_step")
     return res
 
 # ---------------------------------------------------------------- Hertz

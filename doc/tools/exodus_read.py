@@ -1,0 +1,125 @@
+"""Reads Tribos's Exodus II results with `ncdump` (Debian: apt-get install netcdf-bin).
+
+Standard library only, so that the comparison tools run wherever ncdump does. Used by
+hertz_compare.py and plot_results.py. Exodus stores the mesh as netCDF variables:
+coordx/y/z, connect<b> (1-based node ids per element block), node_ns<s>, elem_ss<s> and
+side_ss<s> (1-based), names in name_nod_var, eb_names, ns_names, ss_names, and the nodal
+results either as vals_nod_var<i>(time, node) or as one vals_nod_var(time, var, node).
+"""
+import re
+import subprocess
+
+# Local vertices (0-based) of the faces of a 4-node tetrahedron, Exodus side = index + 1.
+TET_FACES = ((0, 1, 3), (1, 2, 3), (0, 3, 2), (0, 2, 1))
+
+
+def ncdump_header(path):
+    return subprocess.run(["ncdump", "-h", path], check=True, capture_output=True, text=True).stdout
+
+
+def ncdump_vars(path, names):
+    """The data of the named variables as {name: list of numbers or strings} (flattened)."""
+    text = subprocess.run(["ncdump", "-v", ",".join(names), path], check=True, capture_output=True,
+                          text=True).stdout
+    data = text.split("\ndata:\n", 1)[1]
+    out = {}
+    for name in names:
+        m = re.search(r"^\s*" + re.escape(name) + r"\s*=(.*?);\s*$", data, re.S | re.M)
+        if not m:
+            raise KeyError(name)
+        body = m.group(1)
+        if '"' in body:
+            out[name] = re.findall(r'"((?:[^"\\]|\\.)*)"', body)
+        else:
+            vals = []
+            for tok in body.replace("\n", " ").split(","):
+                tok = tok.strip()
+                if not tok:
+                    continue
+                vals.append(float("nan") if tok == "_" else float(tok))
+            out[name] = vals
+    return out
+
+
+def dimension(header, name):
+    m = re.search(r"^\s*" + re.escape(name) + r"\s*=\s*(?:UNLIMITED\s*;\s*//\s*\()?(\d+)", header, re.M)
+    return int(m.group(1)) if m else None
+
+
+def has_variable(header, name):
+    return re.search(r"\s" + re.escape(name) + r"\(", header) is not None
+
+
+def _names(path, header, variable):
+    return [s.strip() for s in ncdump_vars(path, [variable])[variable]] if has_variable(header, variable) else []
+
+
+def nodal_variable_names(path, header):
+    return _names(path, header, "name_nod_var")
+
+
+def last_step_nodal(path, header, wanted):
+    """{name: values} of the named nodal variables at the last time step (absent names: KeyError)."""
+    var_names = nodal_variable_names(path, header)
+    for v in wanted:
+        if v not in var_names:
+            raise KeyError(v + " (the file has: " + ", ".join(var_names) + ")")
+    n = dimension(header, "num_nodes")
+    separate = has_variable(header, "vals_nod_var1")  # else one vals_nod_var(time, var, node)
+    fields = ["vals_nod_var%d" % (var_names.index(v) + 1) for v in wanted] if separate else ["vals_nod_var"]
+    d = ncdump_vars(path, fields) if wanted else {}
+    out = {}
+    for v in wanted:
+        i = var_names.index(v) + 1
+        if separate:
+            vals = d["vals_nod_var%d" % i]
+            out[v] = vals[len(vals) - n:]
+        else:
+            vals = d["vals_nod_var"]
+            steps = len(vals) // (len(var_names) * n)
+            off = ((steps - 1) * len(var_names) + (i - 1)) * n
+            out[v] = vals[off:off + n]
+    return out
+
+
+def read_mesh(path, header=None):
+    """Coordinates, element blocks, node sets and side sets, 0-based:
+    {"x", "y", "z": lists; "blocks": [(name, [[n0, n1, n2, n3], ...])];
+     "node_sets": {name: [node]}; "side_sets": {name: [(element, side 0..3)]}}.
+    Elements are numbered over the blocks in file order (Exodus's implicit numbering)."""
+    header = header or ncdump_header(path)
+    nblocks = dimension(header, "num_el_blk") or 0
+    nns = dimension(header, "num_node_sets") or 0
+    nss = dimension(header, "num_side_sets") or 0
+    fields = ["coordx", "coordy", "coordz"] + ["connect%d" % (b + 1) for b in range(nblocks)]
+    fields += ["node_ns%d" % (s + 1) for s in range(nns) if has_variable(header, "node_ns%d" % (s + 1))]
+    for s in range(nss):
+        if has_variable(header, "elem_ss%d" % (s + 1)):
+            fields += ["elem_ss%d" % (s + 1), "side_ss%d" % (s + 1)]
+    d = ncdump_vars(path, fields)
+    block_names = _names(path, header, "eb_names") or ["block_%d" % (b + 1) for b in range(nblocks)]
+    ns_names = _names(path, header, "ns_names") or ["nodeset_%d" % (s + 1) for s in range(nns)]
+    ss_names = _names(path, header, "ss_names") or ["sideset_%d" % (s + 1) for s in range(nss)]
+    mesh = {"x": d["coordx"], "y": d["coordy"], "z": d["coordz"], "blocks": [], "node_sets": {}, "side_sets": {}}
+    for b in range(nblocks):
+        nodes_per = dimension(header, "num_nod_per_el%d" % (b + 1))
+        conn = [int(v) - 1 for v in d["connect%d" % (b + 1)]]
+        mesh["blocks"].append((block_names[b], [conn[i:i + nodes_per] for i in range(0, len(conn), nodes_per)]))
+    for s in range(nns):
+        mesh["node_sets"][ns_names[s]] = [int(v) - 1 for v in d.get("node_ns%d" % (s + 1), [])]
+    for s in range(nss):
+        elems = d.get("elem_ss%d" % (s + 1), [])
+        sides = d.get("side_ss%d" % (s + 1), [])
+        mesh["side_sets"][ss_names[s]] = [(int(e) - 1, int(k) - 1) for e, k in zip(elems, sides)]
+    return mesh
+
+
+def element_nodes(mesh):
+    """Connectivity of every element, over the blocks in order (the side sets' numbering)."""
+    return [element for _, elements in mesh["blocks"] for element in elements]
+
+
+def side_set_triangles(mesh, name):
+    """The faces of side set `name` as node triples (0-based, Exodus TETRA side order)."""
+    elements = element_nodes(mesh)
+    return [tuple(elements[e][v] for v in TET_FACES[side]) for e, side in mesh["side_sets"][name]]

@@ -1,0 +1,328 @@
+#!/usr/bin/env python3
+"""Pictures of a Tribos contact solve, from its Exodus result and its JSON summary.
+
+Usage:
+  python3 doc/tools/plot_results.py RESULT.exo SUMMARY.json OUTDIR [--slave SIDE_SET] [--scale S]
+
+  RESULT.exo    written by `tribos --output RESULT.exo`
+  SUMMARY.json  written by `tribos --summary SUMMARY.json` (its "history")
+  OUTDIR        created if missing; receives
+    contact_stress.png  normal and tangential contact stress on the slave surface, over its two
+                        in-plane coordinates, with the contact zone and the stick zone outlined
+                        (the paper's Figs. 2-3)
+    convergence.png     ||g^P||, ||G mu|| and the slip-bound change per SMALSE-M outer
+                        iteration, and the PFP applications and inner iterations
+    deformed.png        the boundary of the bodies warped by the displacements (magnified)
+
+  --slave NAME  the slave side set (default: the smallest side set holding every node with a
+                contact force, e.g. contact_aluminium in input/two_bricks.xml)
+  --scale S     displacement magnification of deformed.png (default: the largest displacement
+                drawn as 8 % of the model's size)
+
+Normal stress: the nodal variable contact_pressure (normal force per tributary area);
+tangential stress: |(contact_t1, contact_t2)| per tributary area (a third of the slave faces
+around the node), in the scene's units. Zones from contact_status (0 none, 1 stick, 2 slip):
+the lines are where the indicator of "in contact" and of "stick", interpolated linearly on the
+surface, crosses 1/2, i.e. half-way between nodes of different status.
+
+Needs python3-matplotlib (numpy comes with it) and ncdump (netcdf-bin) on Debian.
+Exit status: 0 written, 2 bad input (missing file, variable or side set), 77 matplotlib or
+ncdump missing (the CTest reports a skip).
+"""
+import argparse
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import exodus_read  # noqa: E402  (the shared ncdump reader next to this script)
+
+try:
+    import matplotlib
+    matplotlib.use("Agg")  # files only, no display needed
+    import matplotlib.pyplot as plt
+    import matplotlib.tri as mtri
+    import numpy as np
+    from matplotlib.collections import PolyCollection
+    from matplotlib.lines import Line2D
+    from matplotlib.ticker import MaxNLocator
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+except ImportError as missing:
+    print("plot_results.py: needs matplotlib and numpy (apt-get install python3-matplotlib): %s" % missing,
+          file=sys.stderr)
+    sys.exit(77)
+
+AXES = "xyz"
+STATUS_NAMES = ("no contact", "stick", "slip")
+
+# ---------------------------------------------------------------- data
+
+
+CONTACT_FIELDS = ("contact_normal", "contact_t1", "contact_t2", "contact_status", "contact_pressure")
+
+
+def read_result(path):
+    """Mesh, coordinates and the last step's nodal fields (the contact ones only if present)."""
+    header = exodus_read.ncdump_header(path)
+    mesh = exodus_read.read_mesh(path, header)
+    names = ["displ_x", "displ_y", "displ_z"]
+    if set(CONTACT_FIELDS) <= set(exodus_read.nodal_variable_names(path, header)):
+        names += CONTACT_FIELDS
+    fields = exodus_read.last_step_nodal(path, header, names)
+    coords = np.column_stack([mesh["x"], mesh["y"], mesh["z"]])
+    return mesh, coords, {k: np.asarray(v) for k, v in fields.items()}
+
+
+def slave_side_set(mesh, fields, requested):
+    """The named side set, or the smallest one that holds every node with a contact force."""
+    if requested:
+        if requested not in mesh["side_sets"]:
+            raise KeyError("side set " + requested + " (the file has: " + ", ".join(mesh["side_sets"]) + ")")
+        return requested
+    loaded = set(np.nonzero((np.abs(fields["contact_normal"]) > 0) | (fields["contact_status"] > 0))[0])
+    candidates = []
+    for name in mesh["side_sets"]:
+        nodes = {n for tri in exodus_read.side_set_triangles(mesh, name) for n in tri}
+        if loaded and loaded <= nodes:
+            candidates.append((len(nodes), name))
+    if not candidates:
+        raise KeyError("no side set holds the contact nodes (no contact force anywhere?); name it with --slave")
+    return min(candidates)[1]
+
+
+def in_plane_axes(points):
+    """The two coordinate axes of largest extent (the surface's or the model's plane)."""
+    extent = points.max(axis=0) - points.min(axis=0)
+    return sorted(np.argsort(extent)[1:])
+
+
+def tributary_area(coords, triangles):
+    area = np.zeros(len(coords))
+    for tri in triangles:
+        a, b, c = coords[list(tri)]
+        share = 0.5 * np.linalg.norm(np.cross(b - a, c - a)) / 3.0
+        area[list(tri)] += share
+    return area
+
+# ---------------------------------------------------------------- contact stress maps
+
+
+def outline_zones(ax, triangulation, status):
+    """Contact zone (solid) and stick zone (dashed) boundaries; returns legend handles."""
+    handles = []
+    for indicator, style, label in ((status > 0.5, "-", "contact zone"), (np.abs(status - 1.0) < 0.5, "--",
+                                                                           "stick zone")):
+        values = indicator.astype(float)
+        if values.min() < 0.5 < values.max():
+            ax.tricontour(triangulation, values, levels=[0.5], colors="k", linestyles=style, linewidths=1.4)
+        handles.append(Line2D([], [], color="k", linestyle=style, label=label + " boundary"))
+    return handles
+
+
+def zoom_to_contact(ax, u, v, status):
+    """Frame a small contact zone (less than half the surface each way, as in Hertz contact)
+    with a margin, so that it fills the picture."""
+    inside = status > 0.5
+    if not inside.any():
+        return
+    lo = np.array([u[inside].min(), v[inside].min()])
+    hi = np.array([u[inside].max(), v[inside].max()])
+    if np.any(hi - lo > 0.5 * np.array([np.ptp(u), np.ptp(v)])):
+        return
+    margin = 0.4 * max((hi - lo).max(), 1e-12)
+    ax.set_xlim(max(lo[0] - margin, u.min()), min(hi[0] + margin, u.max()))
+    ax.set_ylim(max(lo[1] - margin, v.min()), min(hi[1] + margin, v.max()))
+
+
+def plot_contact(mesh, coords, fields, slave, out):
+    triangles = exodus_read.side_set_triangles(mesh, slave)
+    nodes = sorted({n for tri in triangles for n in tri})
+    local = {n: i for i, n in enumerate(nodes)}
+    i, j = in_plane_axes(coords[nodes])
+    triangulation = mtri.Triangulation(coords[nodes, i], coords[nodes, j],
+                                       [[local[n] for n in tri] for tri in triangles])
+    area = tributary_area(coords, triangles)[nodes]
+    status = fields["contact_status"][nodes]
+    normal = fields["contact_pressure"][nodes]
+    tangential = np.hypot(fields["contact_t1"][nodes], fields["contact_t2"][nodes]) / np.where(area > 0, area, 1.0)
+    counts = [int(np.sum(np.rint(status) == s)) for s in range(3)]
+
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2), constrained_layout=True)
+    for ax, values, title in ((axes[0], normal, "normal contact stress"),
+                              (axes[1], tangential, "tangential contact stress |t|")):
+        top = values.max() if values.max() > 0 else 1.0
+        levels = MaxNLocator(nbins=20).tick_values(0.0, top)
+        filled = ax.tricontourf(triangulation, values, levels=levels, cmap="viridis")
+        fig.colorbar(filled, ax=ax, shrink=0.9, label="force / area")
+        handles = outline_zones(ax, triangulation, status)
+        ax.set_aspect("equal")
+        zoom_to_contact(ax, triangulation.x, triangulation.y, status)
+        ax.set_xlabel(AXES[i])
+        ax.set_ylabel(AXES[j])
+        ax.set_title("%s (max %.4g)" % (title, values.max()))
+    axes[1].legend(handles=handles, loc="upper right", fontsize=8, framealpha=0.8)
+    fig.suptitle("slave surface %s: %d no contact, %d stick, %d slip nodes" % (slave, *counts))
+    fig.savefig(out, dpi=110)
+    plt.close(fig)
+
+# ---------------------------------------------------------------- convergence history
+
+
+def plot_convergence(summary, out):
+    history = summary.get("history") or []
+    if not history:
+        return False
+    outer = [h["outer"] for h in history]
+    fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.2), constrained_layout=True)
+    series = (("projected_gradient", "||g^P|| / ||Ph||", "o-"), ("equality_residual", "||G mu|| / ||Ph||", "s-"),
+              ("slip_bound_change", "slip-bound change", "^-"))
+    for key, label, style in series:
+        # null: not finite (the first slip-bound update, from g = 0, is an infinite change)
+        values = [float("nan") if h[key] is None else h[key] for h in history]
+        if any(v > 0 for v in values):
+            left.semilogy(outer, [v if v > 0 else float("nan") for v in values], style, label=label, ms=4)
+    if "tolerance" in summary:
+        left.axhline(summary["tolerance"], color="gray", linestyle=":", label="tolerance epsilon")
+    left.set_xlabel("SMALSE-M outer iteration")
+    left.set_title("residuals")
+    left.legend(fontsize=8)
+    left.grid(True, which="both", alpha=0.3)
+    right.bar(outer, [h["inner"] for h in history], color="tab:blue", alpha=0.5, label="MPGP iterations")
+    right.set_xlabel("SMALSE-M outer iteration")
+    right.set_ylabel("MPGP iterations of the outer iteration")
+    twin = right.twinx()
+    twin.plot(outer, [h["pfp_applications"] for h in history], "k.-", label="PFP applications (cumulative)")
+    twin.set_ylabel("PFP applications so far")
+    right.set_title("cost (%.3g s in all)" % history[-1]["elapsed_s"])
+    lines = right.get_legend_handles_labels()
+    more = twin.get_legend_handles_labels()
+    right.legend(lines[0] + more[0], lines[1] + more[1], fontsize=8, loc="upper left")
+    state = "converged" if summary.get("converged") else "NOT converged"
+    fig.suptitle("%s: %d outer iterations, %s" % (os.path.basename(str(summary.get("input", ""))), len(history),
+                                                  state))
+    fig.savefig(out, dpi=110)
+    plt.close(fig)
+    return True
+
+# ---------------------------------------------------------------- deformed shape
+
+
+def boundary_faces(mesh):
+    """(face node triple, block index) of every tetrahedron face that belongs to one element."""
+    seen = {}
+    for b, (_, elements) in enumerate(mesh["blocks"]):
+        for element in elements:
+            for face in exodus_read.TET_FACES:
+                tri = tuple(element[v] for v in face)
+                key = tuple(sorted(tri))
+                seen[key] = None if key in seen else (tri, b)
+    return [v for v in seen.values() if v is not None]
+
+
+def magnification(coords, displacement, requested):
+    if requested:
+        return requested
+    largest = np.linalg.norm(displacement, axis=1).max()
+    if largest == 0:
+        return 1.0
+    raw = 0.08 * np.linalg.norm(coords.max(axis=0) - coords.min(axis=0)) / largest
+    step = 10 ** math.floor(math.log10(raw))
+    return max(m * step for m in (1, 2, 5) if m * step <= raw)  # a round number
+
+
+def plot_deformed(mesh, coords, fields, requested_scale, out):
+    displacement = np.column_stack([fields["displ_x"], fields["displ_y"], fields["displ_z"]])
+    scale = magnification(coords, displacement, requested_scale)
+    warped = coords + scale * displacement
+    faces = boundary_faces(mesh)
+    tris = np.array([f for f, _ in faces])
+    magnitude = np.linalg.norm(displacement, axis=1)
+    face_value = magnitude[tris].mean(axis=1)
+    norm = plt.Normalize(0.0, magnitude.max() if magnitude.max() > 0 else 1.0)
+    cmap = plt.get_cmap("viridis")
+
+    fig = plt.figure(figsize=(11, 4.6), constrained_layout=True)
+    ax3 = fig.add_subplot(1, 2, 1, projection="3d")
+    ax3.add_collection3d(Poly3DCollection(warped[tris], facecolors=cmap(norm(face_value)), edgecolors="k",
+                                          linewidths=0.1))
+    low, high = warped.min(axis=0), warped.max(axis=0)
+    ax3.set_xlim(low[0], high[0])
+    ax3.set_ylim(low[1], high[1])
+    ax3.set_zlim(low[2], high[2])
+    ax3.set_box_aspect(np.maximum(high - low, 1e-12 * np.ptp(coords)))
+    ax3.view_init(elev=22, azim=-60)
+    ax3.set_xlabel("x")
+    ax3.set_ylabel("y")
+    ax3.set_zlabel("z")
+    ax3.set_title("deformed boundary, displacements x %g" % scale)
+
+    # Side view along the axis of smallest extent: undeformed silhouette in grey, the faces
+    # that look at the viewer drawn far to near (painter's order).
+    ax2 = fig.add_subplot(1, 2, 2)
+    i, j = in_plane_axes(coords)
+    depth = 3 - i - j
+    normals = np.cross(warped[tris[:, 1]] - warped[tris[:, 0]], warped[tris[:, 2]] - warped[tris[:, 0]])
+    front = normals[:, depth] < 0  # the viewer looks along +depth from below its minimum
+    order = np.argsort(-warped[tris, depth].mean(axis=1))
+    ax2.add_collection(PolyCollection(coords[tris][:, :, [i, j]], facecolors="0.85", edgecolors="none"))
+    shown = [k for k in order if front[k]]
+    ax2.add_collection(PolyCollection(warped[tris[shown]][:, :, [i, j]], facecolors=cmap(norm(face_value[shown])),
+                                      edgecolors="k", linewidths=0.15))
+    both = np.vstack([coords, warped])
+    pad = 0.03 * np.ptp(both[:, [i, j]], axis=0)
+    ax2.set_xlim(both[:, i].min() - pad[0], both[:, i].max() + pad[0])
+    ax2.set_ylim(both[:, j].min() - pad[1], both[:, j].max() + pad[1])
+    ax2.set_aspect("equal")
+    ax2.set_xlabel(AXES[i])
+    ax2.set_ylabel(AXES[j])
+    ax2.set_title("seen along %s (grey: undeformed)" % AXES[depth])
+    fig.colorbar(plt.cm.ScalarMappable(norm=norm, cmap=cmap), ax=ax2, shrink=0.9, label="|u| (unscaled)")
+    fig.savefig(out, dpi=110)
+    plt.close(fig)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[1])
+    parser.add_argument("result")
+    parser.add_argument("summary")
+    parser.add_argument("outdir")
+    parser.add_argument("--slave", default="")
+    parser.add_argument("--scale", type=float, default=0.0)
+    args = parser.parse_args()
+    if shutil.which("ncdump") is None:
+        print("plot_results.py: needs ncdump to read Exodus (apt-get install netcdf-bin)", file=sys.stderr)
+        return 77
+    try:
+        if not os.path.isfile(args.result):
+            raise OSError("%s: no such file (write it with tribos --output)" % args.result)
+        with open(args.summary) as f:
+            summary = json.load(f)
+        mesh, coords, fields = read_result(args.result)
+        contact = "contact_status" in fields
+        slave = slave_side_set(mesh, fields, args.slave) if contact else None
+    except (OSError, KeyError, ValueError, IndexError, subprocess.CalledProcessError) as e:
+        print("plot_results.py: %s" % e, file=sys.stderr)
+        return 2
+    os.makedirs(args.outdir, exist_ok=True)
+    path = lambda name: os.path.join(args.outdir, name)  # noqa: E731
+    if contact:
+        plot_contact(mesh, coords, fields, slave, path("contact_stress.png"))
+        print("wrote", path("contact_stress.png"))
+    else:
+        print("plot_results.py: no contact fields (a scene without contact): contact_stress.png not written",
+              file=sys.stderr)
+    if plot_convergence(summary, path("convergence.png")):
+        print("wrote", path("convergence.png"))
+    else:
+        print("plot_results.py: no \"history\" in %s (not a contact solve): convergence.png not written"
+              % args.summary, file=sys.stderr)
+    plot_deformed(mesh, coords, fields, args.scale, path("deformed.png"))
+    print("wrote", path("deformed.png"))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
