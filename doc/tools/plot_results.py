@@ -18,6 +18,7 @@ Usage:
                 contact force, e.g. contact_aluminium in input/two_bricks.xml)
   --scale S     displacement magnification of deformed.png (default: the largest displacement
                 drawn as 8 % of the model's size)
+  --dpi N       resolution of the PNGs (default 100)
 
 Normal stress: the nodal variable contact_pressure (normal force per tributary area);
 tangential stress: |(contact_t1, contact_t2)| per tributary area (a third of the slave faces
@@ -30,6 +31,7 @@ Exit status: 0 written, 2 bad input (missing file, variable or side set), 77 mat
 ncdump missing (the CTest reports a skip).
 """
 import argparse
+import io
 import json
 import math
 import os
@@ -50,6 +52,7 @@ try:
     from matplotlib.lines import Line2D
     from matplotlib.ticker import MaxNLocator
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+    from PIL import Image  # comes with matplotlib
 except ImportError as missing:
     print("plot_results.py: needs matplotlib and numpy (apt-get install python3-matplotlib): %s" % missing,
           file=sys.stderr)
@@ -59,6 +62,15 @@ AXES = "xyz"
 STATUS_NAMES = ("no contact", "stick", "slip")
 
 # ---------------------------------------------------------------- data
+
+
+def save(fig, out, dpi):
+    """A PNG with a 256-colour palette: a third of the size of a true-colour one (pictures
+    committed under doc/figures stay small), no visible loss on these flat-shaded plots."""
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format="png", dpi=dpi)
+    plt.close(fig)
+    Image.open(buffer).convert("RGB").quantize(colors=256).save(out, optimize=True)
 
 
 CONTACT_FIELDS = ("contact_normal", "contact_t1", "contact_t2", "contact_status", "contact_pressure")
@@ -137,7 +149,7 @@ def zoom_to_contact(ax, u, v, status):
     ax.set_ylim(max(lo[1] - margin, v.min()), min(hi[1] + margin, v.max()))
 
 
-def plot_contact(mesh, coords, fields, slave, out):
+def plot_contact(mesh, coords, fields, slave, out, dpi):
     triangles = exodus_read.side_set_triangles(mesh, slave)
     nodes = sorted({n for tri in triangles for n in tri})
     local = {n: i for i, n in enumerate(nodes)}
@@ -165,13 +177,12 @@ def plot_contact(mesh, coords, fields, slave, out):
         ax.set_title("%s (max %.4g)" % (title, values.max()))
     axes[1].legend(handles=handles, loc="upper right", fontsize=8, framealpha=0.8)
     fig.suptitle("slave surface %s: %d no contact, %d stick, %d slip nodes" % (slave, *counts))
-    fig.savefig(out, dpi=110)
-    plt.close(fig)
+    save(fig, out, dpi)
 
 # ---------------------------------------------------------------- convergence history
 
 
-def plot_convergence(summary, out):
+def plot_convergence(summary, out, dpi):
     history = summary.get("history") or []
     if not history:
         return False
@@ -203,8 +214,7 @@ def plot_convergence(summary, out):
     state = "converged" if summary.get("converged") else "NOT converged"
     fig.suptitle("%s: %d outer iterations, %s" % (os.path.basename(str(summary.get("input", ""))), len(history),
                                                   state))
-    fig.savefig(out, dpi=110)
-    plt.close(fig)
+    save(fig, out, dpi)
     return True
 
 # ---------------------------------------------------------------- deformed shape
@@ -233,7 +243,7 @@ def magnification(coords, displacement, requested):
     return max(m * step for m in (1, 2, 5) if m * step <= raw)  # a round number
 
 
-def plot_deformed(mesh, coords, fields, requested_scale, out):
+def plot_deformed(mesh, coords, fields, requested_scale, out, dpi):
     displacement = np.column_stack([fields["displ_x"], fields["displ_y"], fields["displ_z"]])
     scale = magnification(coords, displacement, requested_scale)
     warped = coords + scale * displacement
@@ -280,8 +290,7 @@ def plot_deformed(mesh, coords, fields, requested_scale, out):
     ax2.set_ylabel(AXES[j])
     ax2.set_title("seen along %s (grey: undeformed)" % AXES[depth])
     fig.colorbar(plt.cm.ScalarMappable(norm=norm, cmap=cmap), ax=ax2, shrink=0.9, label="|u| (unscaled)")
-    fig.savefig(out, dpi=110)
-    plt.close(fig)
+    save(fig, out, dpi)
 
 
 def main():
@@ -291,6 +300,7 @@ def main():
     parser.add_argument("outdir")
     parser.add_argument("--slave", default="")
     parser.add_argument("--scale", type=float, default=0.0)
+    parser.add_argument("--dpi", type=int, default=100)
     args = parser.parse_args()
     if shutil.which("ncdump") is None:
         print("plot_results.py: needs ncdump to read Exodus (apt-get install netcdf-bin)", file=sys.stderr)
@@ -309,17 +319,17 @@ def main():
     os.makedirs(args.outdir, exist_ok=True)
     path = lambda name: os.path.join(args.outdir, name)  # noqa: E731
     if contact:
-        plot_contact(mesh, coords, fields, slave, path("contact_stress.png"))
+        plot_contact(mesh, coords, fields, slave, path("contact_stress.png"), args.dpi)
         print("wrote", path("contact_stress.png"))
     else:
         print("plot_results.py: no contact fields (a scene without contact): contact_stress.png not written",
               file=sys.stderr)
-    if plot_convergence(summary, path("convergence.png")):
+    if plot_convergence(summary, path("convergence.png"), args.dpi):
         print("wrote", path("convergence.png"))
     else:
         print("plot_results.py: no \"history\" in %s (not a contact solve): convergence.png not written"
               % args.summary, file=sys.stderr)
-    plot_deformed(mesh, coords, fields, args.scale, path("deformed.png"))
+    plot_deformed(mesh, coords, fields, args.scale, path("deformed.png"), args.dpi)
     print("wrote", path("deformed.png"))
     return 0
 
