@@ -128,9 +128,9 @@ def outline_zones(ax, triangulation, status):
     for indicator, style, label in ((status > 0.5, "-", "contact zone"), (np.abs(status - 1.0) < 0.5, "--",
                                                                            "stick zone")):
         values = indicator.astype(float)
-        if values.min() < 0.5 < values.max():
+        if values.min() < 0.5 < values.max():  # the zone exists and is not everything
             ax.tricontour(triangulation, values, levels=[0.5], colors="k", linestyles=style, linewidths=1.4)
-        handles.append(Line2D([], [], color="k", linestyle=style, label=label + " boundary"))
+            handles.append(Line2D([], [], color="k", linestyle=style, label=label + " boundary"))
     return handles
 
 
@@ -175,7 +175,8 @@ def plot_contact(mesh, coords, fields, slave, out, dpi):
         ax.set_xlabel(AXES[i])
         ax.set_ylabel(AXES[j])
         ax.set_title("%s (max %.4g)" % (title, values.max()))
-    axes[1].legend(handles=handles, loc="upper right", fontsize=8, framealpha=0.8)
+    if handles:
+        axes[1].legend(handles=handles, loc="upper right", fontsize=8, framealpha=0.8)
     fig.suptitle("slave surface %s: %d no contact, %d stick, %d slip nodes" % (slave, *counts))
     save(fig, out, dpi)
 
