@@ -1,6 +1,7 @@
 // P1 tetrahedron (paper Section 2): K_e is symmetric with exactly the 6 rigid body modes in
 // its kernel, its energy is V sigma:eps for a constant strain, and an assembled patch passes
-// the constant-strain patch test to round-off.
+// the constant-strain patch test to round-off; the recovered stress of a linear field is its
+// exact constant stress.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -169,4 +170,47 @@ TEST(ElementKernels, constantStrainPatchTestIsExactToRoundOff) {
   double uMax = 0.0;
   for (double v : u) uMax = std::max(uMax, std::abs(v));
   for (size_t r = 0; r < m; ++r) EXPECT_NEAR(uI[r], u[interior[r]], 1e-12 * uMax) << "interior dof " << interior[r];
+}
+
+// Stress recovery: a linear field gives its exact constant stress on every tet (whatever the
+// translation part), the strain energy V sigma:eps/2 equals u^T K_e u / 2, and von Mises is
+// sqrt(3 J2): p under uniaxial stress p, sqrt(3) tau under pure shear tau, 0 under pressure.
+TEST(ElementKernels, stressOfALinearFieldIsExactAndEnergyMatchesStiffness) {
+  double sigma[3][3];
+  linearStress(kSteel, sigma);
+  const int row[6] = {0, 1, 2, 0, 1, 0}, col[6] = {0, 1, 2, 1, 2, 2};
+  for (const auto& x : kTets) {
+    double u[12], eps[6], s[6], Ke[12][12];
+    for (int v = 0; v < 4; ++v)
+      for (int i = 0; i < 3; ++i) u[3 * v + i] = kC[i] + kA[i][0] * x[v][0] + kA[i][1] * x[v][1] + kA[i][2] * x[v][2];
+    const double V = fem::tetStress(x, u, kSteel.lambda, kSteel.mu, eps, s);
+    ASSERT_GT(V, 0.0);
+    double scale = 0.0;
+    for (int k = 0; k < 6; ++k) scale = std::max(scale, std::abs(sigma[row[k]][col[k]]));
+    for (int k = 0; k < 6; ++k) EXPECT_NEAR(s[k], sigma[row[k]][col[k]], 1e-10 * scale) << "component " << k;
+    fem::tetStiffness(x, kSteel.lambda, kSteel.mu, Ke);
+    double energy = 0.0, roundOff = 0.0;
+    for (int i = 0; i < 12; ++i)
+      for (int j = 0; j < 12; ++j) {
+        energy += 0.5 * u[i] * Ke[i][j] * u[j];
+        roundOff += std::abs(u[i] * Ke[i][j] * u[j]);
+      }
+    EXPECT_NEAR(V * fem::strainEnergyDensity(eps, s), energy, 1e-12 * roundOff);
+  }
+  const double uniaxial[6] = {0, 0, -3.5, 0, 0, 0}, shear[6] = {0, 0, 0, 0, 2.0, 0}, pressure[6] = {-4, -4, -4, 0, 0, 0};
+  EXPECT_NEAR(fem::vonMisesStress(uniaxial), 3.5, 1e-15);
+  EXPECT_NEAR(fem::vonMisesStress(shear), 2.0 * std::sqrt(3.0), 1e-14);
+  EXPECT_EQ(fem::vonMisesStress(pressure), 0.0);
+}
+
+TEST(ElementKernels, invertedTetLeavesStressAlone) {
+  double x[4][3];
+  for (int v = 0; v < 4; ++v)
+    for (int c = 0; c < 3; ++c) x[v][c] = kTets[0][v][c];
+  std::swap(x[2], x[3]);
+  const double u[12] = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12};
+  double eps[6] = {42, 0, 0, 0, 0, 0}, s[6] = {42, 0, 0, 0, 0, 0};
+  EXPECT_LT(fem::tetStress(x, u, kSteel.lambda, kSteel.mu, eps, s), 0.0);
+  EXPECT_EQ(eps[0], 42.0);
+  EXPECT_EQ(s[0], 42.0);
 }

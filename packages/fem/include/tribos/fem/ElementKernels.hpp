@@ -20,6 +20,20 @@ KOKKOS_INLINE_FUNCTION double triangleTraction(const double x[3][3], const doubl
 /// gets V/4 * b. Returns the signed volume.
 KOKKOS_INLINE_FUNCTION double tetVolumeForce(const double x[4][3], const double b[3], double fe[12]);
 
+/// Constant strain and Cauchy stress of the linear tetrahedron with nodal displacements
+/// u[3*vertex + component] (Hooke: sigma = lambda tr(eps) I + 2 mu eps). Both in the order
+/// xx, yy, zz, xy, yz, xz as tensor components (eps_xy = (du_x/dy + du_y/dx) / 2, not the
+/// engineering shear). Returns the signed volume; eps and sigma are written only when V > 0.
+KOKKOS_INLINE_FUNCTION double tetStress(const double x[4][3], const double u[12], double lambda, double mu,
+                                        double eps[6], double sigma[6]);
+
+/// von Mises equivalent stress sqrt(3 J2) of sigma (order as in tetStress).
+KOKKOS_INLINE_FUNCTION double vonMisesStress(const double sigma[6]);
+
+/// Strain energy density sigma : eps / 2 (tensor components, order as in tetStress): the
+/// element's strain energy is V times this, and the sum over elements is u^T K u / 2.
+KOKKOS_INLINE_FUNCTION double strainEnergyDensity(const double eps[6], const double sigma[6]);
+
 }  // namespace tribos::fem
 
 #include "tribos/fem/ElementKernels_impl.hpp"

@@ -67,4 +67,34 @@ KOKKOS_INLINE_FUNCTION double tetVolumeForce(const double x[4][3], const double 
   return V;
 }
 
+KOKKOS_INLINE_FUNCTION double tetStress(const double x[4][3], const double u[12], double lambda, double mu,
+                                        double eps[6], double sigma[6]) {
+  double grad[4][3];
+  const double V = detail::shapeGradients(x, grad);
+  if (!(V > 0.0)) return V;
+  // du_i/dx_j = sum_a u_ai dN_a/dx_j, constant over the element.
+  double du[3][3] = {{0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}};
+  for (int a = 0; a < 4; ++a)
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) du[i][j] += u[3 * a + i] * grad[a][j];
+  constexpr int row[6] = {0, 1, 2, 0, 1, 0}, col[6] = {0, 1, 2, 1, 2, 2};
+  for (int k = 0; k < 6; ++k) eps[k] = 0.5 * (du[row[k]][col[k]] + du[col[k]][row[k]]);
+  const double trace = eps[0] + eps[1] + eps[2];
+  for (int k = 0; k < 6; ++k) sigma[k] = 2.0 * mu * eps[k] + (k < 3 ? lambda * trace : 0.0);
+  return V;
+}
+
+KOKKOS_INLINE_FUNCTION double vonMisesStress(const double s[6]) {
+  // 3 J2 = ((s11 - s22)^2 + (s22 - s33)^2 + (s33 - s11)^2) / 2 + 3 (s12^2 + s23^2 + s13^2).
+  const double a = s[0] - s[1], b = s[1] - s[2], c = s[2] - s[0];
+  const double threeJ2 = 0.5 * (a * a + b * b + c * c) + 3.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]);
+  return Kokkos::Experimental::sqrt(threeJ2);
+}
+
+KOKKOS_INLINE_FUNCTION double strainEnergyDensity(const double eps[6], const double sigma[6]) {
+  // The off-diagonal components appear twice in the double contraction.
+  return 0.5 * (eps[0] * sigma[0] + eps[1] * sigma[1] + eps[2] * sigma[2]) +
+         (eps[3] * sigma[3] + eps[4] * sigma[4] + eps[5] * sigma[5]);
+}
+
 }  // namespace tribos::fem
