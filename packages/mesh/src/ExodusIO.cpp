@@ -133,6 +133,7 @@ int longestName(const Mesh& mesh, const std::vector<TimeStep>& steps) {
   if (!steps.empty()) {
     for (const auto& f : steps.front().nodal) longest = std::max(longest, f.name.size());
     for (const auto& f : steps.front().element) longest = std::max(longest, f.name.size());
+    for (const auto& g : steps.front().global) longest = std::max(longest, g.name.size());
   }
   return static_cast<int>(std::min<size_t>(longest, kMaxNameLength));
 }
@@ -145,14 +146,92 @@ std::string upper(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
   return s;
 }
+
+/// Global variables, like fields, are declared once per file: same names in every step.
+void checkSameGlobals(const std::vector<GlobalValue>& first, const std::vector<GlobalValue>& other, size_t step) {
+  bool same = first.size() == other.size();
+  for (size_t v = 0; same && v < first.size(); ++v) same = first[v].name == other[v].name;
+  if (!same)
+    throw std::invalid_argument("tribos::mesh::writeExodus: time step " + std::to_string(step + 1) +
+                                " has other global variables than time step 1 (every step must carry the same)");
+  for (size_t v = 0; v < other.size(); ++v)
+    for (size_t w = 0; w < v; ++w)
+      if (other[w].name == other[v].name)
+        throw std::invalid_argument("tribos::mesh::writeExodus: global variable \"" + other[v].name +
+                                    "\" appears twice");
+}
+
+/// Info records are lines of at most MAX_LINE_LENGTH (80) characters: longer lines are cut
+/// into pieces rather than lost, so a parameter list written as info stays complete.
+std::vector<std::string> infoLines(const std::vector<std::string>& info) {
+  std::vector<std::string> lines;
+  for (const auto& text : info) {
+    if (text.empty()) lines.emplace_back();
+    for (size_t at = 0; at < text.size(); at += MAX_LINE_LENGTH) lines.push_back(text.substr(at, MAX_LINE_LENGTH));
+  }
+  return lines;
+}
+
+void writeInfo(int id, const std::string& path, const std::vector<std::string>& info) {
+  const auto lines = infoLines(info);
+  if (lines.empty()) return;
+  NameArray records(lines, MAX_LINE_LENGTH);
+  check(ex_put_info(id, static_cast<int>(lines.size()), records.data()), path, "writing the info records");
+}
+
+void defineGlobals(int id, const std::string& path, const std::vector<GlobalValue>& globals, int nameLength) {
+  if (globals.empty()) return;
+  std::vector<std::string> names;
+  for (const auto& g : globals) names.push_back(g.name);
+  const int count = static_cast<int>(names.size());
+  check(ex_put_variable_param(id, EX_GLOBAL, count), path, "defining global variables");
+  NameArray n(names, nameLength);
+  check(ex_put_variable_names(id, EX_GLOBAL, count, n.data()), path, "naming global variables");
+}
+
+void writeGlobals(int id, const std::string& path, int step, const std::vector<GlobalValue>& globals) {
+  if (globals.empty()) return;
+  std::vector<double> values;
+  for (const auto& g : globals) values.push_back(g.value);
+  // For EX_GLOBAL the library writes all variables of the step at once.
+  check(ex_put_var(id, step, EX_GLOBAL, 1, 0, static_cast<int64_t>(values.size()), values.data()), path,
+        "writing the global variables of time step " + std::to_string(step));
+}
+
+std::vector<std::string> readInfo(int id, const std::string& path) {
+  const int64_t count = ex_inquire_int(id, EX_INQ_INFO);
+  if (count <= 0) return {};
+  NameArray records(static_cast<size_t>(count), MAX_LINE_LENGTH);
+  check(ex_get_info(id, records.data()), path, "reading the info records");
+  std::vector<std::string> lines;
+  for (int64_t i = 0; i < count; ++i) lines.push_back(records[static_cast<size_t>(i)]);
+  return lines;
+}
+
+/// Names of the global variables and their values at every step (steps x names).
+void readGlobals(int id, const std::string& path, int nameLength, std::vector<TimeStep>& steps) {
+  int count = 0;
+  check(ex_get_variable_param(id, EX_GLOBAL, &count), path, "counting global variables");
+  if (count <= 0) return;
+  NameArray names(static_cast<size_t>(count), nameLength);
+  check(ex_get_variable_names(id, EX_GLOBAL, count, names.data()), path, "reading global variable names");
+  std::vector<double> values(static_cast<size_t>(count));
+  for (size_t s = 0; s < steps.size(); ++s) {
+    check(ex_get_var(id, static_cast<int>(s) + 1, EX_GLOBAL, 1, 0, count, values.data()), path,
+          "reading the global variables of time step " + std::to_string(s + 1));
+    for (int v = 0; v < count; ++v) steps[s].global.push_back({names[static_cast<size_t>(v)], values[v]});
+  }
+}
 }  // namespace
 
-void writeExodus(const std::string& path, const Mesh& mesh, const std::vector<TimeStep>& steps) {
+void writeExodus(const std::string& path, const Mesh& mesh, const std::vector<TimeStep>& steps,
+                 const std::vector<std::string>& info) {
   // Validate everything before touching the file, so a bad call does not clobber a good one.
   checkWritableMesh(mesh);
   for (size_t s = 0; s < steps.size(); ++s) {
     checkSameFields(steps.front().nodal, steps[s].nodal, s, "nodal");
     checkSameFields(steps.front().element, steps[s].element, s, "element");
+    checkSameGlobals(steps.front().global, steps[s].global, s);
     checkFieldSizes(steps[s].nodal, mesh.numNodes(), "nodal", "nodes");
     checkFieldSizes(steps[s].element, mesh.numElements(), "element", "elements");
   }
@@ -175,11 +254,13 @@ void writeExodus(const std::string& path, const Mesh& mesh, const std::vector<Ti
   check(ex_put_coord(id, x.data(), y.data(), z.data()), path, "writing coordinates");
   NameArray coordNames(std::vector<std::string>{"x", "y", "z"}, nameLength);
   check(ex_put_coord_names(id, coordNames.data()), path, "writing coordinate names");
+  writeInfo(id, path, info);
 
   // The file uses 32-bit ids (the default), which LO = int always fits.
   std::vector<std::string> names;
   for (const auto& b : mesh.blocks) {
-    check(ex_put_block(id, EX_ELEM_BLOCK, b.id, "TETRA4", b.count, 4, 0, 0, 0), path, "writing block " + b.name);
+    // "TETRA": meshio 5 maps "TETRA4" to a cell type it does not know (KeyError 'tetra4').
+    check(ex_put_block(id, EX_ELEM_BLOCK, b.id, "TETRA", b.count, 4, 0, 0, 0), path, "writing block " + b.name);
     std::vector<int> conn(4 * static_cast<size_t>(b.count));
     for (LO e = 0; e < b.count; ++e)
       for (int v = 0; v < 4; ++v) conn[4 * static_cast<size_t>(e) + v] = mesh.tets[b.first + e][v] + 1;
@@ -222,6 +303,7 @@ void writeExodus(const std::string& path, const Mesh& mesh, const std::vector<Ti
   }
 
   if (!steps.empty()) {
+    defineGlobals(id, path, steps.front().global, nameLength);
     const auto nodalNames = fieldNames(steps.front().nodal), elementNames = fieldNames(steps.front().element);
     const int numNodal = static_cast<int>(nodalNames.size()), numElemVars = static_cast<int>(elementNames.size());
     if (numNodal > 0) {
@@ -243,6 +325,7 @@ void writeExodus(const std::string& path, const Mesh& mesh, const std::vector<Ti
       const int step = static_cast<int>(s) + 1;
       const double time = steps[s].time;
       check(ex_put_time(id, step, &time), path, "writing time");
+      writeGlobals(id, path, step, steps[s].global);
       for (size_t v = 0; v < steps[s].nodal.size(); ++v)
         check(ex_put_var(id, step, EX_NODAL, static_cast<int>(v) + 1, 1, mesh.numNodes(), steps[s].nodal[v].values.data()),
               path, "writing nodal variable " + steps[s].nodal[v].name);
@@ -295,9 +378,10 @@ ExodusData readExodus(const std::string& path) {
   auto readIds = [&](ex_entity_type type, int64_t count, const char* kind) {
     std::vector<int64_t> ids(count);
     if (count > 0) check(ex_get_ids(id, type, ids.data()), path, std::string("reading ") + kind + " ids");
+    // meshio numbers blocks and sets from 0; Exodus itself only asks for distinct ids.
     for (int64_t i : ids)
-      if (i <= 0 || i > INT_MAX)
-        throw core::InputError(path + ": " + kind + " id " + std::to_string(i) + " is not in 1.." + std::to_string(INT_MAX));
+      if (i < 0 || i > INT_MAX)
+        throw core::InputError(path + ": " + kind + " id " + std::to_string(i) + " is not in 0.." + std::to_string(INT_MAX));
     return ids;
   };
   // Files from other tools often carry no names; fall back to "<kind>_<id>" so that every
@@ -325,7 +409,7 @@ ExodusData readExodus(const std::string& path) {
         block.num_nodes_per_entry != 4)
       throw core::InputError(path + ": element block \"" + blockNames[b] + "\" (id " + std::to_string(blockIds[b]) +
                              ") has topology " + block.topology + " with " + std::to_string(block.num_nodes_per_entry) +
-                             " nodes per element; Tribos needs linear tetrahedra (TETRA4)");
+                             " nodes per element; Tribos needs linear tetrahedra (TETRA, 4 nodes)");
     std::vector<int64_t> conn(4 * static_cast<size_t>(block.num_entry));
     if (block.num_entry > 0)
       check(ex_get_conn(id, EX_ELEM_BLOCK, blockIds[b], conn.data(), nullptr, nullptr), path,
@@ -428,6 +512,8 @@ ExodusData readExodus(const std::string& path) {
     }
     data.steps.push_back(std::move(step));
   }
+  readGlobals(id, path, nameLength, data.steps);
+  data.info = readInfo(id, path);
   return data;
 }
 

@@ -216,6 +216,60 @@ TEST(ExodusIO, twoBricksRoundTripIsIdentical) {
   expectSameSteps(back.steps, steps);
 }
 
+// Global variables per step and info records (how a result was made) survive the round
+// trip; an info line longer than the format's 80 characters is wrapped, not cut.
+TEST(ExodusIO, globalVariablesAndInfoRecordsRoundTrip) {
+  const ScratchDir dir("globals");
+  const Mesh mesh = cubeMesh();
+  auto steps = someSteps(mesh);
+  for (size_t s = 0; s < steps.size(); ++s)
+    steps[s].global = {{"outer_iterations", 12.0 + s}, {"kkt_equilibrium", 1.0 / 3.0 * 1e-9}};
+  const std::string longLine(170, 'x');
+  const std::vector<std::string> info = {"tribos --input scene.xml", "", longLine};
+  const std::string path = dir.file("globals.exo");
+  writeExodus(path, mesh, steps, info);
+  const ExodusData back = readExodus(path);
+  expectSameSteps(back.steps, steps);
+  for (size_t s = 0; s < steps.size(); ++s) {
+    ASSERT_EQ(back.steps[s].global.size(), 2u);
+    for (size_t v = 0; v < 2; ++v) {
+      EXPECT_EQ(back.steps[s].global[v].name, steps[s].global[v].name);
+      EXPECT_TRUE(bitwiseEqual({back.steps[s].global[v].value}, {steps[s].global[v].value}));
+    }
+  }
+  EXPECT_EQ(back.info, (std::vector<std::string>{info[0], "", longLine.substr(0, 80), longLine.substr(80, 80),
+                                                 longLine.substr(160)}));
+  steps[1].global.pop_back();
+  expectInvalidArgument([&] { writeExodus(dir.file("bad.exo"), mesh, steps); }, "global variables");
+}
+
+// The layout meshio writes: block and set ids from 0, no names, node sets only. Every entity
+// is still named ("block_0", "nodeset_0"), and the file Tribos writes back reads the same.
+TEST(ExodusIO, idsFromZeroAndUnnamedEntitiesRead) {
+  const ScratchDir dir("zero");
+  Mesh mesh = cubeMesh();
+  mesh.blocks[0].id = 0;
+  mesh.blocks[1].id = 1;
+  for (auto& b : mesh.blocks) b.name.clear();
+  mesh.nodeSets[0].id = 0;
+  mesh.nodeSets[0].name.clear();
+  mesh.sideSets.clear();
+  const std::string path = dir.file("zero.exo");
+  writeExodus(path, mesh);
+  const ExodusData back = readExodus(path);
+  ASSERT_EQ(back.mesh.blocks.size(), 2u);
+  EXPECT_EQ(back.mesh.blocks[0].name, "block_0");
+  EXPECT_EQ(back.mesh.blocks[0].id, 0);
+  EXPECT_EQ(back.mesh.blocks[1].name, "block_1");
+  EXPECT_EQ(back.mesh.tets, mesh.tets);
+  ASSERT_EQ(back.mesh.nodeSets.size(), 1u);
+  EXPECT_EQ(back.mesh.nodeSets[0].name, "nodeset_0");
+  EXPECT_EQ(back.mesh.nodeSets[0].nodes, mesh.nodeSets[0].nodes);
+  const std::string again = dir.file("again.exo");
+  writeExodus(again, back.mesh);
+  expectSameMesh(readExodus(again).mesh, back.mesh);
+}
+
 TEST(ExodusIO, writerClobbersAnExistingFile) {
   const ScratchDir dir("clobber");
   const std::string path = dir.file("cube.exo");

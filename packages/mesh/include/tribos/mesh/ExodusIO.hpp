@@ -16,28 +16,42 @@ struct Field {
   std::vector<double> values;
 };
 
+/// One value per time step for the whole model (an Exodus global variable), e.g. an
+/// iteration count or a residual.
+struct GlobalValue {
+  std::string name;
+  double value = 0.0;
+};
+
 struct TimeStep {
   double time = 0.0;
   std::vector<Field> nodal;
   std::vector<Field> element;
+  std::vector<GlobalValue> global;
 };
 
 struct ExodusData {
   Mesh mesh;
   std::vector<TimeStep> steps;
+  std::vector<std::string> info;  ///< the info records, one line each
 };
 
-/// Writes `mesh` (element blocks as TETRA4 with their names and ids, node sets, side sets,
-/// all named) and the time steps (every step must carry the same field names). Throws
+/// Writes `mesh` (element blocks with the topology name "TETRA", which ParaView, meshio and
+/// the Exodus library all read, with their names and ids; node sets, side sets, all named),
+/// the time steps (every step must carry the same field and global names) and `info` as
+/// info records (lines longer than 80 characters, the format's limit, are wrapped). Throws
 /// core::InputError naming `path` when the file cannot be created, and std::invalid_argument
 /// when field sizes do not match the mesh.
-void writeExodus(const std::string& path, const Mesh& mesh, const std::vector<TimeStep>& steps = {});
+void writeExodus(const std::string& path, const Mesh& mesh, const std::vector<TimeStep>& steps = {},
+                 const std::vector<std::string>& info = {});
 
-/// Reads a 3D tetrahedral Exodus II file (TETRA/TETRA4/TET4 blocks; 32- or 64-bit ids)
-/// with its node sets, side sets and all nodal / element variables. Errors (missing file,
-/// not Exodus, non-tet block, 2D mesh, ids out of range) throw core::InputError naming the
-/// file and what is wrong; the result passes Mesh::validate (inverted elements are an
-/// error naming the element).
+/// Reads a 3D tetrahedral Exodus II file (TETRA/TETRA4/TET4 blocks; 32- or 64-bit ids,
+/// ids from 0 as meshio writes them) with its node sets, side sets, all nodal / element /
+/// global variables and the info records. Unnamed blocks and sets are named
+/// "block_<id>", "nodeset_<id>", "sideset_<id>". Errors (missing file, not Exodus, non-tet
+/// block, 2D mesh, ids out of range) throw core::InputError naming the file and what is
+/// wrong; the result passes Mesh::validate (inverted elements are an error naming the
+/// element).
 ExodusData readExodus(const std::string& path);
 
 }  // namespace tribos::mesh

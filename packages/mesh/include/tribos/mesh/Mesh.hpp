@@ -19,14 +19,14 @@ inline constexpr int kTetFaceVertices[4][3] = {{0, 1, 3}, {1, 2, 3}, {0, 3, 2}, 
 /// Element block = body. Elements of a block are contiguous: [first, first + count).
 struct ElementBlock {
   std::string name;
-  int id = 0;       ///< Exodus block id (> 0)
+  int id = 0;       ///< Exodus block id (>= 0; meshio numbers blocks from 0)
   LO first = 0;     ///< first element of the block
   LO count = 0;     ///< number of elements
 };
 
 struct NodeSet {
   std::string name;
-  int id = 0;                ///< Exodus set id (> 0)
+  int id = 0;                ///< Exodus set id (>= 0)
   std::vector<LO> nodes;     ///< 0-based global node ids, ascending, unique
 };
 
