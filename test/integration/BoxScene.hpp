@@ -22,14 +22,9 @@
 #include "tribos/stack/Scene.hpp"
 #include "tribos/stack/SceneParameters.hpp"
 #include "tribos/stack/SubdomainSetup.hpp"
+#include "WorldRank.hpp"
 
 namespace tribos::test {
-
-inline int worldRank() {
-  int rank = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  return rank;
-}
 
 /// The validated parameter list of a scene on `mesh`: Mesh/Generator = Exodus with
 /// Mesh/File a temporary file holding `mesh` (one per process, so ranks never race on it),

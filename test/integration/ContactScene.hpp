@@ -15,6 +15,7 @@
 #include "tribos/stack/Scene.hpp"
 #include "tribos/stack/SceneParameters.hpp"
 #include "tribos/stack/SubdomainSetup.hpp"
+#include "WorldRank.hpp"
 
 namespace tribos::test {
 
@@ -41,12 +42,6 @@ inline SolvedContactScene solveContactScene(const std::vector<std::string>& over
   s.B = feti::buildConstraintMatrix(s.scene.mesh, s.scene.decomposition, stack::constraintSpec(s.scene), size);
   s.result = stack::solveContactScene(s.scene, std::move(systems), s.B, s.params, comm);
   return s;
-}
-
-inline int worldRank() {
-  int rank = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  return rank;
 }
 
 }  // namespace tribos::test

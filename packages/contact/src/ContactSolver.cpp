@@ -329,6 +329,7 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
   }
   std::vector<char> mask(B.numRows, 0);
   Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, static_cast<int>(B.numRows), inactive.data(), mask.data());
+  for (size_t i = 0; i < lam.extent(0); ++i) result.lambda.push_back(lam(i, 0));
   const auto alpha = feti.rigidBodyCoefficients(*lambda, mask);
   result.displacement = feti.recoverDisplacements(*lambda, alpha);
   result.energy = feti.energy(result.displacement);
@@ -371,6 +372,7 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
     out.slaveNode = node.slaveNode;
     out.force[0] = node.rowScale * lam(r, 0);
     out.relativeDisplacement[0] = bu(r, 0) / node.rowScale;
+    out.opening = -gap / node.rowScale;
     // In contact without friction the node slides freely: "slip".
     const bool touching = lam(r, 0) > tinyForce;
     ContactStatus status = !touching ? ContactStatus::NoContact

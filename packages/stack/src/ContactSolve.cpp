@@ -114,6 +114,48 @@ void attachProgress(const Teuchos::ParameterList& solver, contact::FrictionSetti
   smalse.mpgp.progressEvery = 10;  // a clock read every 10 MPGP iterations costs nothing against F
   smalse.innerMonitor = innerProgress(clock, solver.get<double>("Progress Interval"), history);
 }
+
+/// Contact fields on the global mesh (rank 0): every contact node's rows belong to one rank,
+/// which sends its forces, status and opening; the geometry (gap, normal, master) is in B on
+/// every rank.
+void gatherContactFields(const Scene& scene, const feti::ConstraintMatrix& B, MPI_Comm comm, ContactSolveResult& out) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  const size_t numNodes = static_cast<size_t>(scene.mesh.numNodes());
+  constexpr size_t kPerNode = 5;  // force (nu, t1, t2), status, opening
+  std::vector<double> fields(kPerNode * numNodes, 0.0), all(rank == 0 ? fields.size() : 0);
+  for (const auto& node : out.contact.nodes) {
+    double* f = fields.data() + kPerNode * static_cast<size_t>(node.slaveNode);
+    for (int j = 0; j < 3; ++j) f[j] = node.force[j];
+    f[3] = static_cast<double>(node.status);
+    f[4] = node.opening;
+  }
+  MPI_Reduce(fields.data(), all.data(), static_cast<int>(fields.size()), MPI_DOUBLE, MPI_SUM, 0, comm);
+  if (rank != 0) return;
+  for (auto* field : {&out.contactNormal, &out.contactT1, &out.contactT2, &out.contactStatus, &out.contactPressure,
+                      &out.contactGap, &out.contactOpening, &out.contactNx, &out.contactNy, &out.contactNz,
+                      &out.contactMaster})
+    field->assign(numNodes, 0.0);
+  const auto area = scene.contact.hasContact() ? tributaryArea(scene.mesh, scene.contact.slaveSideSet)
+                                               : std::vector<double>(numNodes, 0.0);
+  for (const auto& c : B.contact) {
+    const size_t g = static_cast<size_t>(c.slaveNode);
+    const double* f = all.data() + kPerNode * g;
+    out.contactNormal[g] = f[0];
+    out.contactT1[g] = f[1];
+    out.contactT2[g] = f[2];
+    out.contactStatus[g] = f[3];
+    out.contactOpening[g] = f[4];
+    out.contactPressure[g] = area[g] > 0.0 ? f[0] / area[g] : 0.0;
+    out.contactGap[g] = c.gap;
+    out.contactNx[g] = c.normal[0];
+    out.contactNy[g] = c.normal[1];
+    out.contactNz[g] = c.normal[2];
+    out.contactMaster[g] = static_cast<double>(c.masterNode + 1);
+    out.totalNormalForce += f[0];
+    for (int x = 0; x < 3; ++x) out.totalContactForce[x] += f[0] * c.normal[x] + f[1] * c.t1[x] + f[2] * c.t2[x];
+  }
+}
 }  // namespace
 
 ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
@@ -131,6 +173,7 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
   if (rank == 0) attachProgress(tribos.sublist("Solver"), friction, smalse, out.history);
   out.chain = describeContactChain(tribos);
 
+  out.appliedLoad = totalLoad(owned, comm);
   const feti::TotalFeti feti(scene.mesh, scene.decomposition, std::move(owned), B,
                              Teuchos::rcp(new Teuchos::MpiComm<int>(comm)), settings);
   out.factorizationSeconds = feti.factorizationSeconds();
@@ -140,36 +183,8 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
   out.fApplications = feti.fApplications();
   out.displacement = gatherDisplacement(scene, feti.firstOwnedSubdomain(), out.contact.displacement, comm);
 
-  // Contact fields on the global mesh: every contact node's rows belong to one rank.
-  const size_t numNodes = static_cast<size_t>(scene.mesh.numNodes());
-  std::vector<double> fields(5 * numNodes, 0.0), all(rank == 0 ? fields.size() : 0);
-  for (const auto& node : out.contact.nodes) {
-    const size_t g = static_cast<size_t>(node.slaveNode);
-    for (int j = 0; j < 3; ++j) fields[5 * g + j] = node.force[j];
-    fields[5 * g + 3] = static_cast<double>(node.status);
-    fields[5 * g + 4] = 1.0;
-  }
-  MPI_Reduce(fields.data(), all.data(), static_cast<int>(fields.size()), MPI_DOUBLE, MPI_SUM, 0, comm);
-  if (rank == 0) {
-    out.contactNormal.assign(numNodes, 0.0);
-    out.contactT1.assign(numNodes, 0.0);
-    out.contactT2.assign(numNodes, 0.0);
-    out.contactStatus.assign(numNodes, 0.0);
-    out.contactPressure.assign(numNodes, 0.0);
-    const auto area = scene.contact.hasContact() ? tributaryArea(scene.mesh, scene.contact.slaveSideSet)
-                                                 : std::vector<double>(numNodes, 0.0);
-    for (const auto& c : B.contact) {
-      const size_t g = static_cast<size_t>(c.slaveNode);
-      out.contactNormal[g] = all[5 * g];
-      out.contactT1[g] = all[5 * g + 1];
-      out.contactT2[g] = all[5 * g + 2];
-      out.contactStatus[g] = all[5 * g + 3];
-      out.contactPressure[g] = area[g] > 0.0 ? all[5 * g] / area[g] : 0.0;
-      out.totalNormalForce += all[5 * g];
-      for (int x = 0; x < 3; ++x)
-        out.totalContactForce[x] += all[5 * g] * c.normal[x] + all[5 * g + 1] * c.t1[x] + all[5 * g + 2] * c.t2[x];
-    }
-  }
+  out.reaction = gatherReactions(scene, B, out.contact.lambda, comm);
+  gatherContactFields(scene, B, comm, out);
   return out;
 }
 

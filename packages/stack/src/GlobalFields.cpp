@@ -47,6 +47,43 @@ GlobalDisplacement gatherDisplacement(const Scene& scene, int firstOwned, const 
   return out;
 }
 
+std::vector<std::array<double, 3>> gatherReactions(const Scene& scene, const feti::ConstraintMatrix& B,
+                                                   const std::vector<double>& ownedLambda, MPI_Comm comm) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  const GO first = B.firstRowOfRank[rank], end = B.firstRowOfRank[rank + 1];
+  const size_t numNodes = static_cast<size_t>(scene.mesh.numNodes());
+  std::vector<double> local(3 * numNodes, 0.0);
+  // Every row lives in the blocks of the subdomains it touches; a Dirichlet row touches one.
+  for (size_t s = 0; s < B.blocks.size(); ++s) {
+    const auto& block = B.blocks[s];
+    const auto& nodes = scene.decomposition.subdomains[s].nodes;
+    for (size_t i = 0; i < block.rows.size(); ++i) {
+      const GO row = block.rows[i];
+      if (row < first || row >= end || B.kind[row] != feti::RowKind::Dirichlet) continue;
+      for (LO k = block.rowPtr[i]; k < block.rowPtr[i + 1]; ++k) {
+        const LO dof = block.dof[k];
+        local[3 * static_cast<size_t>(nodes[dof / 3]) + dof % 3] -= block.value[k] * ownedLambda[row - first];
+      }
+    }
+  }
+  std::vector<double> all(rank == 0 ? local.size() : 0);
+  MPI_Reduce(local.data(), all.data(), static_cast<int>(local.size()), MPI_DOUBLE, MPI_SUM, 0, comm);
+  std::vector<std::array<double, 3>> out;
+  if (rank != 0) return out;
+  out.resize(numNodes);
+  for (size_t n = 0; n < numNodes; ++n) out[n] = {all[3 * n], all[3 * n + 1], all[3 * n + 2]};
+  return out;
+}
+
+std::array<double, 3> totalLoad(const std::vector<fem::SubdomainSystem>& owned, MPI_Comm comm) {
+  std::array<double, 3> local{0.0, 0.0, 0.0}, global{0.0, 0.0, 0.0};
+  for (const auto& s : owned)
+    for (size_t i = 0; i < s.f.size(); ++i) local[i % 3] += s.f[i];
+  MPI_Allreduce(local.data(), global.data(), 3, MPI_DOUBLE, MPI_SUM, comm);
+  return global;
+}
+
 std::vector<double> tributaryArea(const mesh::Mesh& mesh, const std::string& sideSet) {
   std::vector<double> area(mesh.numNodes(), 0.0);
   const auto& set = mesh.sideSet(sideSet);

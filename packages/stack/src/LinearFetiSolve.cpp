@@ -41,6 +41,8 @@ LinearFetiResult solveLinearFeti(const Scene& scene, std::vector<fem::SubdomainS
   double fNorm = 0.0;
   MPI_Allreduce(&fNormLocal, &fNorm, 1, MPI_DOUBLE, MPI_MAX, comm);
 
+  result.appliedLoad = totalLoad(owned, comm);
+
   feti::TotalFetiSettings settings;
   settings.factorization = fetiList.get<std::string>("Factorization");
   settings.explicitF = fetiList.get<std::string>("Dual Operator") == "Explicit";
@@ -87,6 +89,12 @@ LinearFetiResult solveLinearFeti(const Scene& scene, std::vector<fem::SubdomainS
   auto global = gatherDisplacement(scene, feti.firstOwnedSubdomain(), u, comm);
   result.displacement = std::move(global.value);
   result.maxCopyJump = global.maxCopyJump;
+  std::vector<double> ownedLambda;
+  {
+    const auto lam = lambda->getLocalViewHost(Tpetra::Access::ReadOnly);
+    for (size_t i = 0; i < lam.extent(0); ++i) ownedLambda.push_back(lam(i, 0));
+  }
+  result.reaction = gatherReactions(scene, B, ownedLambda, comm);
   return result;
 }
 

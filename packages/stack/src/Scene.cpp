@@ -8,6 +8,7 @@
 
 #include "tribos/core/Errors.hpp"
 #include "tribos/core/Timer.hpp"
+#include "tribos/mesh/BoundaryFaces.hpp"
 #include "tribos/mesh/ExodusIO.hpp"
 #include "tribos/mesh/TwoBricks.hpp"
 
@@ -119,12 +120,15 @@ void readLoads(const ParameterList& list, const std::string& source, bool paperD
   for (auto it = list.begin(); it != list.end(); ++it) {
     const std::string where = source + ": Loads/" + list.name(it);
     const ParameterList& load = list.sublist(list.name(it));
-    const auto sideSet = getOr(load, "Side Set", std::string());
+    auto sideSet = getOr(load, "Side Set", std::string());
+    const auto nodeSet = getOr(load, "Node Set", std::string());
     const auto block = getOr(load, "Element Block", std::string());
-    core::requireInput(sideSet.empty() != block.empty(),
-                       where + ": give exactly one of \"Side Set\" (with Traction) or \"Element Block\" "
-                               "(with Volume Force)");
+    core::requireInput(sideSet.empty() + nodeSet.empty() + block.empty() == 2,
+                       where + ": give exactly one of \"Side Set\" or \"Node Set\" (with Traction) or \"Element "
+                               "Block\" (with Volume Force)");
     try {
+      if (!nodeSet.empty())  // its boundary faces, as a side set of the mesh (meshio writes node sets only)
+        sideSet = scene.mesh.sideSets[mesh::addSideSetFromNodeSet(scene.mesh, nodeSet)].name;
       if (!sideSet.empty()) {
         scene.mesh.sideSet(sideSet);  // existence check, names the set
         scene.loads.tractions.push_back(fem::Traction{sideSet, vector3(load, "Traction", where)});
@@ -210,7 +214,7 @@ Scene buildScene(const ParameterList& tribos, const std::string& source) {
   for (const auto* name : {&scene.contact.slaveSideSet, &scene.contact.masterSideSet}) {
     if (name->empty()) continue;
     try {
-      scene.mesh.sideSet(*name);
+      mesh::requireSideSet(scene.mesh, *name);  // a node set of that name stands for its boundary faces
     } catch (const InputError& e) {
       throw InputError(source + ": Contact: " + e.what());
     }

@@ -57,8 +57,11 @@ void materialParameters(ParameterList& pl) {
 void loadParameters(ParameterList& pl) {
   ParameterList& load = pl.sublist("*", false,
                                    "one sublist per load, any name: a constant traction on a side set "
-                                   "or a volume force on an element block");
+                                   "(or on the boundary faces of a node set) or a volume force on an element block");
   load.set("Side Set", std::string(""), "side set that carries the traction (Traction)");
+  load.set("Node Set", std::string(""),
+           "instead of Side Set: the traction acts on the boundary faces whose three nodes all lie in this node set "
+           "(meshes with node sets only, e.g. written by meshio)");
   load.set("Traction", Teuchos::Array<double>(3, 0.0), "{px, py, pz}: traction density [stress]");
   load.set("Element Block", std::string(""), "element block that carries the volume force");
   load.set("Volume Force", Teuchos::Array<double>(3, 0.0), "{bx, by, bz}: force per volume");
@@ -89,9 +92,11 @@ void contactParameters(ParameterList& pl) {
   pl.set("F2", 0.3, "friction coefficient along t2, >= 0", atLeast<double>(0.0));
   pl.set("Slave Side Set", std::string(""),
          "contact surface of the slave body (its nodes are projected on the master surface); empty with an "
-         "empty Master Side Set: no contact (the paper's pair: contact_aluminium)");
+         "empty Master Side Set: no contact (the paper's pair: contact_aluminium). Without a side set of this name, "
+         "a node set of this name stands for its boundary faces (all three nodes in the set)");
   pl.set("Master Side Set", std::string(""),
-         "contact surface of the master body (the paper's: contact_steel)");
+         "contact surface of the master body (the paper's: contact_steel); a node set of this name also serves, "
+         "as for the Slave Side Set");
   pl.set("Slip Bound", 0.0, "Tresca: the given slip bound g as a nodal force [force], >= 0", atLeast<double>(0.0));
   Teuchos::setStringToIntegralParameter<int>(
       "Fixed Point", "Inexact",

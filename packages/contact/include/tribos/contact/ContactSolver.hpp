@@ -59,6 +59,9 @@ struct ContactNodeResult {
   LO slaveNode = -1;
   std::array<double, 3> force{};  ///< physical nodal force of slave on master in (nu, t1, t2)
   std::array<double, 3> relativeDisplacement{};  ///< (u_slave - u_master) in (nu, t1, t2)
+  /// The gap after deformation: d minus the normal relative displacement, prescribed
+  /// components included, (c_r - (B u)_r) / rowScale; >= 0 up to the tolerance, 0 in contact.
+  double opening = 0.0;
   double slipBound = 0.0;         ///< g (force units) of the last Tresca problem
   ContactStatus status = ContactStatus::NoContact;
 };
@@ -75,6 +78,9 @@ struct ContactResult {
   double energy = 0.0;            ///< 1/2 u^T K u - f^T u (global)
   std::vector<std::vector<double>> displacement;  ///< u_s of the owned subdomains
   std::vector<ContactNodeResult> nodes;           ///< contact nodes whose rows this rank owns
+  /// lambda of the rows this rank owns, [B.firstRowOfRank[rank], B.firstRowOfRank[rank + 1]):
+  /// the reactions of the prescribed displacements are read from it.
+  std::vector<double> lambda;
 };
 
 /// Solves the contact problem. B's contact rows must have tangential rows unless model is

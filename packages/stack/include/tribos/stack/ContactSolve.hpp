@@ -36,6 +36,13 @@ struct ContactSolveResult {
   /// master body in (nu, t1, t2), status (0 none, 1 stick, 2 slip), pressure (normal force
   /// per tributary area).
   std::vector<double> contactNormal, contactT1, contactT2, contactStatus, contactPressure;
+  /// Per global node (rank 0), zero off the slave surface: the initial signed gap d along nu
+  /// (negative: overlap), the gap after deformation (ContactNodeResult::opening), the
+  /// normal nu, and the master node with the largest weight (1-based id; 0 off the surface).
+  std::vector<double> contactGap, contactOpening, contactNx, contactNy, contactNz, contactMaster;
+  /// Reaction force per global node (gatherReactions), rank 0.
+  std::vector<std::array<double, 3>> reaction;
+  std::array<double, 3> appliedLoad{};  ///< sum of the nodal loads (every rank)
   double totalNormalForce = 0.0;    ///< sum of the normal nodal forces (rank 0)
   std::array<double, 3> totalContactForce{};  ///< sum of nodal contact forces in x, y, z (rank 0)
   double factorizationSeconds = 0.0, solveSeconds = 0.0;

@@ -20,6 +20,19 @@ struct GlobalDisplacement {
 GlobalDisplacement gatherDisplacement(const Scene& scene, int firstOwned, const std::vector<std::vector<double>>& u,
                                       MPI_Comm comm);
 
+/// Reaction forces on the user's mesh, per global node (rank 0; zero where nothing is
+/// prescribed): the force the support exerts on the body, summed over the node's copies.
+/// A prescribed-displacement row of B is a unit row on one copy's component, and
+/// K u = f - B^T lambda, so the row's reaction is -lambda_r. `ownedLambda` holds the
+/// multipliers of this rank's rows [B.firstRowOfRank[rank], B.firstRowOfRank[rank + 1]).
+/// Collective over `comm`.
+std::vector<std::array<double, 3>> gatherReactions(const Scene& scene, const feti::ConstraintMatrix& B,
+                                                   const std::vector<double>& ownedLambda, MPI_Comm comm);
+
+/// The applied load: the sum of the nodal loads f_s of every subdomain (each traction and
+/// volume force is assembled into exactly one subdomain), on every rank. Collective.
+std::array<double, 3> totalLoad(const std::vector<fem::SubdomainSystem>& owned, MPI_Comm comm);
+
 /// Tributary area of every node of a side set (a third of each adjacent face's area); zero
 /// for nodes off the set. Length mesh.numNodes().
 std::vector<double> tributaryArea(const mesh::Mesh& mesh, const std::string& sideSet);

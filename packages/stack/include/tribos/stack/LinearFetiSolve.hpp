@@ -34,6 +34,9 @@ struct LinearFetiResult {
   std::vector<std::array<double, 3>> displacement;
   /// Largest difference between two copies of a node (gluing error), rank 0 only.
   double maxCopyJump = 0.0;
+  /// Reaction force per global node (gatherReactions), rank 0 only.
+  std::vector<std::array<double, 3>> reaction;
+  std::array<double, 3> appliedLoad{};  ///< sum of the nodal loads (every rank)
 };
 
 /// Solves the linear T-FETI problem. `owned` are this rank's assembled subdomain systems

@@ -1,0 +1,97 @@
+#include "tribos/stack/Results.hpp"
+
+#include <cmath>
+
+#include "tribos/fem/ElementKernels.hpp"
+
+namespace tribos::stack {
+
+namespace {
+double norm(const std::array<double, 3>& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+
+/// The body whose elements a node's mean stress is taken over: the first block that holds it.
+std::vector<int> nodeBody(const mesh::Mesh& mesh) {
+  std::vector<int> body(mesh.numNodes(), -1);
+  for (int b = 0; b < mesh.numBlocks(); ++b)
+    for (LO e = mesh.blocks[b].first; e < mesh.blocks[b].first + mesh.blocks[b].count; ++e)
+      for (LO n : mesh.tets[e])
+        if (body[n] < 0) body[n] = b;
+  return body;
+}
+
+/// Nodal means of the element stresses, weighted by element volume, within each node's body.
+void averageToNodes(const mesh::Mesh& mesh, const std::vector<double>& volume, StressResults& r) {
+  const auto body = nodeBody(mesh);
+  std::vector<double> weight(mesh.numNodes(), 0.0);
+  for (auto& c : r.nodal) c.assign(mesh.numNodes(), 0.0);
+  for (int b = 0; b < mesh.numBlocks(); ++b)
+    for (LO e = mesh.blocks[b].first; e < mesh.blocks[b].first + mesh.blocks[b].count; ++e)
+      for (LO n : mesh.tets[e]) {
+        if (body[n] != b) continue;
+        weight[n] += volume[e];
+        for (int k = 0; k < 6; ++k) r.nodal[k][n] += volume[e] * r.element[k][e];
+      }
+  r.nodalVonMises.assign(mesh.numNodes(), 0.0);
+  for (LO n = 0; n < mesh.numNodes(); ++n) {
+    if (!(weight[n] > 0.0)) continue;  // a node of no element
+    double sigma[6];
+    for (int k = 0; k < 6; ++k) sigma[k] = r.nodal[k][n] /= weight[n];
+    r.nodalVonMises[n] = fem::vonMisesStress(sigma);
+  }
+}
+}  // namespace
+
+StressResults evaluateStresses(const Scene& scene, const std::vector<std::array<double, 3>>& displacement) {
+  const auto& mesh = scene.mesh;
+  StressResults r;
+  for (auto& c : r.element) c.assign(mesh.numElements(), 0.0);
+  r.elementVonMises.assign(mesh.numElements(), 0.0);
+  std::vector<double> volume(mesh.numElements(), 0.0);
+  for (int b = 0; b < mesh.numBlocks(); ++b) {
+    const auto& material = scene.materials[b];
+    for (LO e = mesh.blocks[b].first; e < mesh.blocks[b].first + mesh.blocks[b].count; ++e) {
+      double x[4][3], u[12], eps[6], sigma[6];
+      for (int v = 0; v < 4; ++v)
+        for (int c = 0; c < 3; ++c) {
+          x[v][c] = mesh.coords[mesh.tets[e][v]][c];
+          u[3 * v + c] = displacement[mesh.tets[e][v]][c];
+        }
+      volume[e] = fem::tetStress(x, u, material.lambda, material.mu, eps, sigma);
+      if (!(volume[e] > 0.0)) continue;  // Mesh::validate rejects these; never read garbage
+      for (int k = 0; k < 6; ++k) r.element[k][e] = sigma[k];
+      r.elementVonMises[e] = fem::vonMisesStress(sigma);
+      r.strainEnergy += volume[e] * fem::strainEnergyDensity(eps, sigma);
+    }
+  }
+  averageToNodes(mesh, volume, r);
+  return r;
+}
+
+ForceBalance forceBalance(const Scene& scene, const std::vector<std::array<double, 3>>& nodalReaction,
+                          const std::array<double, 3>& appliedLoad) {
+  ForceBalance out;
+  out.appliedLoad = appliedLoad;
+  auto sumOver = [&](const std::string& name, const std::string& nodeSet, const std::array<bool, 3>& components) {
+    ConditionReaction r{name, {0.0, 0.0, 0.0}};
+    for (LO n : scene.mesh.nodeSet(nodeSet).nodes)
+      for (int c = 0; c < 3; ++c)
+        if (components[c]) r.force[c] += nodalReaction[n][c];
+    out.reactions.push_back(r);
+  };
+  for (const auto& set : scene.dirichletNodeSets) sumOver(set, set, {true, true, true});
+  for (const auto& condition : scene.displacementConditions)
+    sumOver(condition.name, condition.nodeSet, condition.components);
+
+  double magnitude = 0.0;  // the scale when nothing is loaded
+  for (const auto& r : nodalReaction) {
+    for (int c = 0; c < 3; ++c) out.totalReaction[c] += r[c];
+    magnitude += norm(r);
+  }
+  const std::array<double, 3> residual{out.totalReaction[0] + appliedLoad[0], out.totalReaction[1] + appliedLoad[1],
+                                       out.totalReaction[2] + appliedLoad[2]};
+  const double scale = norm(appliedLoad) > 0.0 ? norm(appliedLoad) : magnitude;
+  out.relativeImbalance = scale > 0.0 ? norm(residual) / scale : 0.0;
+  return out;
+}
+
+}  // namespace tribos::stack

@@ -1,0 +1,161 @@
+// What an analyst reads off a solution (stack/Results.hpp): stresses, strain energy,
+// reactions and the force balance, and the contact output fields.
+//  - uniform compression: a column held by three symmetry planes under a pressure p on top
+//    has the exact uniform state sigma = (0, 0, -p, 0, 0, 0) in every element and at every
+//    node (linear fields lie in the P1 space), von Mises = p, strain energy p^2 V / (2E),
+//    and the symmetry plane z = 0 carries the load;
+//  - the paper's two bricks (Coulomb, tolerance 1e-10): reactions + applied load = 0 to
+//    1e-8, and the aluminium brick, which carries no load, passes the contact force on to
+//    its clamp;
+//  - surfaces from node sets: the same contact scene with loads and contact surfaces given
+//    by node sets only (as meshio writes meshes) has the same solution as with side sets.
+// ctest runs the first two on 1 and 2 ranks (reactions are gathered from every rank).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "BoxMesh.hpp"
+#include "BoxScene.hpp"
+#include "ContactScene.hpp"
+#include "tribos/stack/Results.hpp"
+
+namespace {
+using namespace tribos;
+using test::displacementCondition;
+using test::with;
+using test::worldRank;
+
+double norm(const std::array<double, 3>& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+
+std::array<double, 3> plus(const std::array<double, 3>& a, const std::array<double, 3>& b) {
+  return {a[0] + b[0], a[1] + b[1], a[2] + b[2]};
+}
+
+const stack::ConditionReaction& reactionOf(const stack::ForceBalance& balance, const std::string& name) {
+  const auto it = std::find_if(balance.reactions.begin(), balance.reactions.end(),
+                               [&](const stack::ConditionReaction& r) { return r.name == name; });
+  if (it == balance.reactions.end()) throw std::runtime_error("no reaction named " + name);
+  return *it;
+}
+}  // namespace
+
+TEST(results, uniformCompressionGivesTheExactStressEverywhere) {
+  // Column [0,1] x [0,1] x [0,3], E = 1000, nu = 0.25, p = 2 on the top face.
+  constexpr double kE = 1000.0, kP = 2.0, kVolume = 3.0;
+  const auto mesh = test::boxMesh({0.0, 0.0, 0.0}, {1.0, 1.0, 3.0}, {2, 2, 6}, "column");
+  std::vector<std::string> o = {"Mesh/Subdomains=4", "Materials/column/Young Modulus=1000",
+                                "Materials/column/Poisson Ratio=0.25", "Solver/Tolerance=1e-13", "Solver/Verbose=false",
+                                "Loads/top/Side Set=column_z1", "Loads/top/Traction={0, 0, -2}"};
+  o = with(o, displacementCondition("symmetry_x", "column_x0", "x"));
+  o = with(o, displacementCondition("symmetry_y", "column_y0", "y"));
+  o = with(o, displacementCondition("symmetry_z", "column_z0", "z"));
+  const auto s = test::solveBoxScene(mesh, o);
+  ASSERT_TRUE(s.linear.converged);
+  if (worldRank() != 0) return;
+
+  const auto stress = stack::evaluateStresses(s.scene, s.displacement());
+  const double exact[6] = {0.0, 0.0, -kP, 0.0, 0.0, 0.0};
+  double worstElement = 0.0, worstNode = 0.0;
+  for (LO e = 0; e < s.scene.mesh.numElements(); ++e) {
+    for (int k = 0; k < 6; ++k) worstElement = std::max(worstElement, std::abs(stress.element[k][e] - exact[k]));
+    worstElement = std::max(worstElement, std::abs(stress.elementVonMises[e] - kP));
+  }
+  for (LO n = 0; n < s.scene.mesh.numNodes(); ++n) {
+    for (int k = 0; k < 6; ++k) worstNode = std::max(worstNode, std::abs(stress.nodal[k][n] - exact[k]));
+    worstNode = std::max(worstNode, std::abs(stress.nodalVonMises[n] - kP));
+  }
+  std::printf("uniform compression: max |sigma - exact| / p = %.2e (elements), %.2e (nodes)\n", worstElement / kP,
+              worstNode / kP);
+  EXPECT_LE(worstElement, 1e-10 * kP);
+  EXPECT_LE(worstNode, 1e-10 * kP);
+  EXPECT_NEAR(stress.strainEnergy, kP * kP * kVolume / (2.0 * kE), 1e-10 * kP * kP * kVolume / kE);
+
+  // The load p A = 2 goes down; the plane z = 0 pushes back with 2; the lateral planes carry nothing.
+  const auto balance = stack::forceBalance(s.scene, s.linear.reaction, s.linear.appliedLoad);
+  EXPECT_NEAR(balance.appliedLoad[2], -kP, 1e-14);
+  EXPECT_NEAR(norm(reactionOf(balance, "symmetry_z").force), kP, 1e-10 * kP);
+  EXPECT_NEAR(reactionOf(balance, "symmetry_z").force[2], kP, 1e-10 * kP);
+  EXPECT_LE(norm(reactionOf(balance, "symmetry_x").force), 1e-10 * kP);
+  EXPECT_LE(norm(reactionOf(balance, "symmetry_y").force), 1e-10 * kP);
+  EXPECT_LE(balance.relativeImbalance, 1e-10);
+}
+
+TEST(results, paperProblemReactionsBalanceTheLoad) {
+  const auto s = test::solveContactScene({"Mesh/Subdomains Per Brick=4x2x2", "Mesh/H Over h=2",
+                                          "Contact/Friction Model=Coulomb", "Contact/F1=0.3", "Contact/F2=0.3",
+                                          "Solver/Tolerance=1e-10", "Solver/Verbose=false"});
+  const auto& r = s.result;
+  EXPECT_TRUE(r.contact.converged) << r.contact.message;
+  if (worldRank() != 0) return;
+  const auto balance = stack::forceBalance(s.scene, r.reaction, r.appliedLoad);
+  const double load = norm(r.appliedLoad);
+  std::printf("paper problem: applied load (%g, %g, %g), |reactions + load| / |load| = %.2e\n", r.appliedLoad[0],
+              r.appliedLoad[1], r.appliedLoad[2], balance.relativeImbalance);
+  EXPECT_NEAR(load, std::hypot(100.0, 4000.0), 1e-9 * load);  // the paper's tractions on the steel brick
+  EXPECT_LE(balance.relativeImbalance, 1e-8);
+  ASSERT_EQ(balance.reactions.size(), 2u);
+  // Each clamp is in one condition here, so the conditions add up to the total.
+  const auto sum = plus(balance.reactions[0].force, balance.reactions[1].force);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(sum[c], balance.totalReaction[c], 1e-12 * load);
+  // The aluminium brick (slave) is loaded only by the steel brick: its clamp takes exactly
+  // what it passes on to the steel (the contact force on the master).
+  const auto& aluminium = reactionOf(balance, "dirichlet_aluminium").force;
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(aluminium[c], r.totalContactForce[c], 1e-8 * load) << "component " << c;
+
+  // Contact output fields: matching meshes, no initial gap; unit normals; the master node is
+  // on the steel's contact surface; bodies in contact have closed their gap.
+  const auto& steel = s.scene.mesh.nodeSet("contact_steel").nodes;
+  double uMax = 0.0;
+  for (const auto& u : r.displacement.value) uMax = std::max(uMax, norm(u));
+  for (const auto& c : s.B.contact) {
+    const LO n = c.slaveNode;
+    EXPECT_EQ(r.contactGap[n], 0.0);
+    EXPECT_NEAR(std::hypot(r.contactNx[n], r.contactNy[n], r.contactNz[n]), 1.0, 1e-14);
+    const LO master = static_cast<LO>(r.contactMaster[n]) - 1;
+    EXPECT_TRUE(std::binary_search(steel.begin(), steel.end(), master)) << "master node " << master + 1;
+    EXPECT_GE(r.contactOpening[n], -1e-6 * uMax);
+    if (r.contactStatus[n] > 0) EXPECT_LE(std::abs(r.contactOpening[n]), 1e-6 * uMax);
+  }
+  for (LO n = 0; n < s.scene.mesh.numNodes(); ++n)
+    if (r.contactMaster[n] == 0.0) EXPECT_EQ(r.contactNormal[n], 0.0);
+}
+
+// Two stacked boxes in contact: the lower one clamped at its bottom, the upper one held by
+// symmetry planes x = 0, y = 0 and the contact, pressed by a traction on its top.
+TEST(results, nodeSetSurfacesGiveTheSameSolutionAsSideSets) {
+  const auto lower = test::boxMesh({0.0, 0.0, 0.0}, {1.0, 1.0, 1.0}, {2, 2, 2}, "lower");
+  const auto upper = test::boxMesh({0.0, 0.0, 1.0}, {1.0, 1.0, 1.0}, {3, 3, 2}, "upper");
+  const auto withSideSets = test::mergeMeshes(lower, upper);
+  auto nodeSetsOnly = withSideSets;
+  nodeSetsOnly.sideSets.clear();
+  std::vector<std::string> o = {"Mesh/Subdomains=4", "Materials/lower/Young Modulus=1000",
+                                "Materials/lower/Poisson Ratio=0.3", "Materials/upper/Young Modulus=3000",
+                                "Materials/upper/Poisson Ratio=0.2", "Solver/Tolerance=1e-10", "Solver/Verbose=false",
+                                "Boundary/Dirichlet Node Sets={lower_z0}", "Contact/Friction Model=None",
+                                "Contact/Slave Side Set=lower_z1", "Contact/Master Side Set=upper_z0",
+                                "Loads/press/Traction={0, 0, -5}"};
+  o = with(o, displacementCondition("upper_x", "upper_x0", "x"));
+  o = with(o, displacementCondition("upper_y", "upper_y0", "y"));
+  const auto bySideSets = test::solveBoxScene(withSideSets, with(o, {"Loads/press/Side Set=upper_z1"}));
+  const auto byNodeSets = test::solveBoxScene(nodeSetsOnly, with(o, {"Loads/press/Node Set=upper_z1"}));
+  EXPECT_TRUE(bySideSets.contact.contact.converged);
+  EXPECT_TRUE(byNodeSets.contact.contact.converged);
+  if (worldRank() != 0) return;
+  EXPECT_EQ(byNodeSets.B.contact.size(), bySideSets.B.contact.size());
+  double diff = 0.0, scale = 0.0;
+  for (size_t n = 0; n < bySideSets.displacement().size(); ++n) {
+    scale = std::max(scale, norm(bySideSets.displacement()[n]));
+    for (int c = 0; c < 3; ++c)
+      diff = std::max(diff, std::abs(bySideSets.displacement()[n][c] - byNodeSets.displacement()[n][c]));
+  }
+  EXPECT_LE(diff, 1e-8 * scale);
+  // The upper box passes its load (5 on its unit top) through the contact to the clamp.
+  const auto& r = byNodeSets.contact;
+  EXPECT_NEAR(r.appliedLoad[2], -5.0, 1e-12);
+  EXPECT_NEAR(r.totalContactForce[2], 5.0, 1e-8 * 5.0);  // force of the lower (slave) box on the upper
+  const auto balance = stack::forceBalance(byNodeSets.scene, r.reaction, r.appliedLoad);
+  EXPECT_NEAR(reactionOf(balance, "lower_z0").force[2], 5.0, 1e-8 * 5.0);
+  EXPECT_LE(balance.relativeImbalance, 1e-8);
+}
