@@ -34,6 +34,7 @@
 #include "tribos/feti/Solvability.hpp"
 #include "tribos/stack/ContactSolve.hpp"
 #include "tribos/stack/LinearFetiSolve.hpp"
+#include "tribos/stack/Results.hpp"
 #include "tribos/stack/Scene.hpp"
 #include "tribos/stack/SceneParameters.hpp"
 
@@ -108,33 +109,92 @@ nlohmann::json historyJson(const std::vector<stack::OuterIterationRecord>& histo
   return list;
 }
 
-struct ContactFields {
-  const std::vector<double>*normal = nullptr, *t1 = nullptr, *t2 = nullptr, *status = nullptr, *pressure = nullptr;
+/// Everything the Exodus result shows besides the mesh; null pointers: not computed (dry run).
+struct OutputData {
+  const std::vector<std::array<double, 3>>* displacement = nullptr;
+  const std::vector<std::array<double, 3>>* reaction = nullptr;
+  const stack::StressResults* stress = nullptr;
+  const stack::ContactSolveResult* contact = nullptr;  ///< contact scenes
+  std::vector<mesh::GlobalValue> globals;
+  std::vector<std::string> info;
 };
 
-void writeOutput(const std::string& path, const stack::Scene& scene,
-                 const std::vector<std::array<double, 3>>* displacement, const ContactFields& contact) {
+/// Three nodal fields <prefix>x, <prefix>y, <prefix>z from one vector per node.
+void addVectorField(const std::string& prefix, const std::vector<std::array<double, 3>>& v, mesh::TimeStep& step) {
+  for (int c = 0; c < 3; ++c) {
+    mesh::Field f{prefix + "xyz"[c], std::vector<double>(v.size())};
+    for (size_t n = 0; n < v.size(); ++n) f.values[n] = v[n][c];
+    step.nodal.push_back(std::move(f));
+  }
+}
+
+void addStressFields(const stack::StressResults& stress, mesh::TimeStep& step) {
+  for (int k = 0; k < 6; ++k) {
+    step.element.push_back({std::string("stress_") + stack::kStressComponents[k], stress.element[k]});
+    step.nodal.push_back({std::string("nodal_stress_") + stack::kStressComponents[k], stress.nodal[k]});
+  }
+  step.element.push_back({"von_mises", stress.elementVonMises});
+  step.nodal.push_back({"nodal_von_mises", stress.nodalVonMises});
+}
+
+void addContactFields(const stack::ContactSolveResult& c, mesh::TimeStep& step) {
+  const std::pair<const char*, const std::vector<double>*> fields[] = {
+      {"contact_normal", &c.contactNormal}, {"contact_t1", &c.contactT1},         {"contact_t2", &c.contactT2},
+      {"contact_status", &c.contactStatus}, {"contact_pressure", &c.contactPressure}, {"contact_gap", &c.contactGap},
+      {"contact_opening", &c.contactOpening}, {"contact_nx", &c.contactNx},       {"contact_ny", &c.contactNy},
+      {"contact_nz", &c.contactNz},         {"contact_master", &c.contactMaster}};
+  for (const auto& [name, values] : fields) step.nodal.push_back({name, *values});
+}
+
+void writeOutput(const std::string& path, const stack::Scene& scene, const OutputData& data) {
   mesh::TimeStep step;
-  step.time = displacement ? 1.0 : 0.0;
-  if (displacement) {
-    const char* names[3] = {"displ_x", "displ_y", "displ_z"};
-    for (int c = 0; c < 3; ++c) {
-      mesh::Field f{names[c], std::vector<double>(scene.mesh.numNodes())};
-      for (LO n = 0; n < scene.mesh.numNodes(); ++n) f.values[n] = (*displacement)[n][c];
-      step.nodal.push_back(std::move(f));
-    }
-  }
-  if (contact.normal) {
-    step.nodal.push_back({"contact_normal", *contact.normal});
-    step.nodal.push_back({"contact_t1", *contact.t1});
-    step.nodal.push_back({"contact_t2", *contact.t2});
-    step.nodal.push_back({"contact_status", *contact.status});
-    step.nodal.push_back({"contact_pressure", *contact.pressure});
-  }
+  step.time = data.displacement ? 1.0 : 0.0;
+  if (data.displacement) addVectorField("displ_", *data.displacement, step);
+  if (data.reaction) addVectorField("reaction_", *data.reaction, step);
+  if (data.stress) addStressFields(*data.stress, step);
+  if (data.contact) addContactFields(*data.contact, step);
   mesh::Field subdomain{"subdomain", std::vector<double>(scene.mesh.numElements())};
   for (LO e = 0; e < scene.mesh.numElements(); ++e) subdomain.values[e] = scene.decomposition.elementPart[e];
   step.element.push_back(std::move(subdomain));
-  mesh::writeExodus(path, scene.mesh, {step});
+  step.global = data.globals;
+  mesh::writeExodus(path, scene.mesh, {step}, data.info);
+}
+
+/// The result file says how it was made: the command line and the effective parameter list
+/// (defaults filled in) as XML, one info record per line.
+std::vector<std::string> infoRecords(int argc, char** argv, const Teuchos::ParameterList& params) {
+  std::string command = "tribos";
+  for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
+  std::vector<std::string> info = {"Tribos result", command};
+  std::ostringstream xml;
+  Teuchos::writeParameterListToXmlOStream(params, xml);
+  std::istringstream lines(xml.str());
+  for (std::string line; std::getline(lines, line);) info.push_back(line);
+  return info;
+}
+
+/// Per-step global variables: the summary's counts and KKT residuals (numbers only).
+std::vector<mesh::GlobalValue> globalValues(const nlohmann::json& summary) {
+  std::vector<mesh::GlobalValue> out;
+  for (const char* key : {"converged", "outer_iterations", "inner_iterations", "pfp_applications",
+                          "fixed_point_iterations", "strain_energy", "force_balance"})
+    if (summary.contains(key))
+      out.push_back({key, summary[key].is_boolean() ? double(summary[key].get<bool>()) : summary[key].get<double>()});
+  if (summary.contains("kkt"))
+    for (const auto& [name, value] : summary["kkt"].items())
+      if (value.is_number()) out.push_back({"kkt_" + name, value.get<double>()});
+  return out;
+}
+
+/// Stresses, strain energy, reactions and the force balance (rank 0) into the summary.
+void addResultsToSummary(const stack::StressResults& stress, const stack::ForceBalance& balance,
+                         nlohmann::json& summary) {
+  summary["strain_energy"] = stress.strainEnergy;
+  summary["reactions"] = nlohmann::json::object();
+  for (const auto& r : balance.reactions) summary["reactions"][r.name] = r.force;
+  summary["reaction_total"] = balance.totalReaction;
+  summary["applied_load"] = balance.appliedLoad;
+  summary["force_balance"] = balance.relativeImbalance;
 }
 
 int run(int argc, char** argv, int rank) {
@@ -197,10 +257,10 @@ int run(int argc, char** argv, int rank) {
   summary["times"]["constraints_s"] = constraintSeconds;
   summary["times"]["setup_s"] = setupSeconds;
   int status = core::kExitOk;
-  const std::vector<std::array<double, 3>>* displacement = nullptr;
   stack::LinearFetiResult linear;
   stack::ContactSolveResult contactSolve;
-  ContactFields contactFields;
+  OutputData output;
+  std::array<double, 3> appliedLoad{};
 
   // (4) Solve: linear T-FETI for bonded / contact-free scenes.
   const bool linearProblem = !scene.contact.hasContact() || scene.contact.frictionModel == "Bonded";
@@ -210,9 +270,10 @@ int run(int argc, char** argv, int rank) {
     if (rank == 0) std::cout << "  solver chain: " << stack::describeContactChain(params) << "\n";
     contactSolve = stack::solveContactScene(scene, std::move(systems), B, params, MPI_COMM_WORLD);
     const auto& r = contactSolve.contact;
-    displacement = &contactSolve.displacement.value;
-    contactFields = {&contactSolve.contactNormal, &contactSolve.contactT1, &contactSolve.contactT2,
-                     &contactSolve.contactStatus, &contactSolve.contactPressure};
+    output.displacement = &contactSolve.displacement.value;
+    output.reaction = &contactSolve.reaction;
+    output.contact = &contactSolve;
+    appliedLoad = contactSolve.appliedLoad;
     status = r.converged ? core::kExitOk : core::kExitNotConverged;
     summary["solver"] = contactSolve.chain;
     summary["converged"] = r.converged;
@@ -245,6 +306,7 @@ int run(int argc, char** argv, int rank) {
     summary["history"] = historyJson(contactSolve.history);
     summary["total_normal_force"] = contactSolve.totalNormalForce;
     summary["total_contact_force"] = contactSolve.totalContactForce;
+    summary["contact_force_on_master"] = contactSolve.totalContactForce;
     summary["times"]["factorization_s"] = contactSolve.factorizationSeconds;
     summary["times"]["solve_s"] = contactSolve.solveSeconds;
     if (rank == 0)
@@ -264,7 +326,9 @@ int run(int argc, char** argv, int rank) {
   } else {
     const double tolerance = params.sublist("Solver").get<double>("Tolerance");
     linear = stack::solveLinearFeti(scene, std::move(systems), B, params.sublist("FETI"), tolerance, MPI_COMM_WORLD);
-    displacement = &linear.displacement;
+    output.displacement = &linear.displacement;
+    output.reaction = &linear.reaction;
+    appliedLoad = linear.appliedLoad;
     status = linear.converged ? core::kExitOk : core::kExitNotConverged;
     summary["solver"] = "linear T-FETI (projected CG, preconditioner " +
                         params.sublist("FETI").get<std::string>("Preconditioner") + ")";
@@ -298,10 +362,22 @@ int run(int argc, char** argv, int rank) {
                     summary["times"][phase].get<double>());
   }
 
-  // (5) Results.
+  // (5) Results on rank 0, which holds the global displacement and reactions.
+  stack::StressResults stress;
+  if (rank == 0 && output.displacement) {
+    stress = stack::evaluateStresses(scene, *output.displacement);
+    const auto balance = stack::forceBalance(scene, *output.reaction, appliedLoad);
+    addResultsToSummary(stress, balance, summary);
+    output.stress = &stress;
+    std::cout << "  strain energy " << stress.strainEnergy << "; applied load (" << appliedLoad[0] << ", "
+              << appliedLoad[1] << ", " << appliedLoad[2] << "), |reactions + load| / |load| = "
+              << balance.relativeImbalance << "\n";
+  }
   if (rank == 0) {
     if (!cl.output.empty()) {
-      writeOutput(cl.output, scene, displacement, contactFields);
+      output.globals = globalValues(summary);
+      output.info = infoRecords(argc, argv, params);
+      writeOutput(cl.output, scene, output);
       std::cout << "  wrote " << cl.output << "\n";
     }
     if (!cl.summary.empty()) {
