@@ -1,7 +1,7 @@
 // Interoperability with meshio (Debian's python3-meshio 5.0): meshio reads a Tribos result
 // (element type TETRA, all fields), and Tribos solves a scene whose mesh meshio wrote (blocks
 // numbered from 0 without names, node sets only: the load and the contact surfaces come from
-// node sets). Skipped, saying why, where python3-meshio is not installed.
+// node sets). Skipped, saying why, where python3-meshio (with python3-netcdf4) is not installed.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -16,11 +16,12 @@ using tribos::test::quote;
 using tribos::test::runCommand;
 
 namespace {
-/// A python3 that imports meshio: Debian's package installs for /usr/bin/python3, which a
-/// python3 earlier on PATH (pyenv, venv) may not see. Empty if there is none.
+/// A python3 that imports meshio and netCDF4 (meshio's Exodus backend, only recommended by
+/// the Debian package): Debian's packages install for /usr/bin/python3, which a python3
+/// earlier on PATH (pyenv, venv) may not see. Empty if there is none.
 std::string pythonWithMeshio() {
   for (const char* python : {"/usr/bin/python3", "python3"})
-    if (runCommand(std::string(python) + " -c 'import meshio'").status == 0) return python;
+    if (runCommand(std::string(python) + " -c 'import meshio, netCDF4'").status == 0) return python;
   return "";
 }
 
@@ -28,7 +29,8 @@ class MeshioTest : public ::testing::Test {
  protected:
   void SetUp() override {
     python_ = pythonWithMeshio();
-    if (python_.empty()) GTEST_SKIP() << "python3-meshio is not installed (apt-get install python3-meshio)";
+    if (python_.empty())
+      GTEST_SKIP() << "python3-meshio or python3-netcdf4 is not installed (apt-get install python3-meshio python3-netcdf4)";
     dir_ = std::filesystem::temp_directory_path() / ("tribos_meshio_" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir_);
   }
