@@ -329,7 +329,7 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
   }
   std::vector<char> mask(B.numRows, 0);
   Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, static_cast<int>(B.numRows), inactive.data(), mask.data());
-  for (size_t i = 0; i < lam.extent(0); ++i) result.lambda.push_back(lam(i, 0));
+  for (size_t i = 0; i < lam.extent(0); ++i) result.lambda.push_back(lam(i, 0));  // reactions: -lambda_r
   const auto alpha = feti.rigidBodyCoefficients(*lambda, mask);
   result.displacement = feti.recoverDisplacements(*lambda, alpha);
   result.energy = feti.energy(result.displacement);

@@ -89,6 +89,7 @@ LinearFetiResult solveLinearFeti(const Scene& scene, std::vector<fem::SubdomainS
   auto global = gatherDisplacement(scene, feti.firstOwnedSubdomain(), u, comm);
   result.displacement = std::move(global.value);
   result.maxCopyJump = global.maxCopyJump;
+  // Reactions: -lambda of the prescribed-displacement rows, summed per node on rank 0.
   std::vector<double> ownedLambda;
   {
     const auto lam = lambda->getLocalViewHost(Tpetra::Access::ReadOnly);
