@@ -2,6 +2,7 @@
 // (element type TETRA, all fields), and Tribos solves a scene whose mesh meshio wrote (blocks
 // numbered from 0 without names, node sets only: the load and the contact surfaces come from
 // node sets). Skipped, saying why, where python3-meshio (with python3-netcdf4) is not installed.
+// Also ParaView's reader (VTK's vtkExodusIIReader, python3-vtk9, skipped without it).
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -88,4 +89,35 @@ TEST_F(MeshioTest, tribosSolvesAMeshWrittenByMeshio) {
   // And meshio reads the result of its own mesh back.
   const auto read = readWithMeshio(result, "assert 'von_mises' in m.cell_data\nassert len(m.cells) == 2");
   EXPECT_EQ(read.status, 0) << read.output;
+}
+
+// ParaView reads Exodus through VTK's vtkExodusIIReader: with Debian's python3-vtk9 the
+// same reader checks that our blocks are tetrahedra to it too, with the fields and globals.
+TEST(vtkExodusReader, readsATribosResultAsTetrahedra) {
+  if (runCommand("/usr/bin/python3 -c 'import vtk'").status != 0)
+    GTEST_SKIP() << "python3-vtk9 is not installed (apt-get install python3-vtk9): ParaView's reader not checked";
+  const auto dir = std::filesystem::temp_directory_path() / ("tribos_vtk_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const auto exo = (dir / "bricks.exo").string(), script = (dir / "read.py").string();
+  const auto run = runCommand(std::string(TRIBOS_DRIVER) + " --input " +
+                              quote(tribos::test::sourceDir() + "/input/two_bricks.xml") +
+                              " --set Solver/Verbose=false --output " + quote(exo));
+  ASSERT_EQ(run.status, 0) << run.output;
+  std::ofstream(script) << "import sys\nimport vtk\n"
+                           "r = vtk.vtkExodusIIReader()\nr.SetFileName(sys.argv[1])\nr.UpdateInformation()\n"
+                           "r.SetElementResultArrayStatus('von_mises', 1)\nr.SetPointResultArrayStatus('displ_', 1)\n"
+                           "r.Update()\nit = r.GetOutput().NewIterator()\nit.InitTraversal()\ncells = 0\n"
+                           "while not it.IsDoneWithTraversal():\n"
+                           "    ds = it.GetCurrentDataObject()\n"
+                           "    assert all(ds.GetCellType(c) == vtk.VTK_TETRA for c in range(ds.GetNumberOfCells()))\n"
+                           "    assert ds.GetCellData().GetArray('von_mises') is not None\n"
+                           "    assert ds.GetPointData().GetArray('displ_').GetNumberOfComponents() == 3\n"
+                           "    cells += ds.GetNumberOfCells()\n"
+                           "    it.GoToNextItem()\n"
+                           "assert cells == 160, cells\n"
+                           "names = [r.GetGlobalResultArrayName(i) for i in range(r.GetNumberOfGlobalResultArrays())]\n"
+                           "assert 'force_balance' in names, names\n";
+  const auto read = runCommand("/usr/bin/python3 " + quote(script) + " " + quote(exo));
+  EXPECT_EQ(read.status, 0) << read.output;
+  std::filesystem::remove_all(dir);
 }
