@@ -159,3 +159,38 @@ TEST(results, nodeSetSurfacesGiveTheSameSolutionAsSideSets) {
   EXPECT_NEAR(reactionOf(balance, "lower_z0").force[2], 5.0, 1e-8 * 5.0);
   EXPECT_LE(balance.relativeImbalance, 1e-8);
 }
+
+// Where a contact surface meets a symmetry plane, the contact rows drop the prescribed
+// components of their nodes, and the support takes that part of the contact force: the
+// reactions must include it to balance the load. Two stacked boxes, each held by the
+// symmetry planes x = 0 and y = 0, the lower one on z = 0, Coulomb friction with t1 along
+// (1, 1, 0) (so the tangential rows have x and y components) under a load with shear.
+TEST(results, reactionsBalanceWhereContactMeetsSymmetryPlanes) {
+  const auto lower = test::boxMesh({0.0, 0.0, 0.0}, {1.0, 1.0, 1.0}, {2, 2, 2}, "lower");
+  const auto upper = test::boxMesh({0.0, 0.0, 1.0}, {1.0, 1.0, 1.0}, {3, 3, 2}, "upper");
+  std::vector<std::string> o = {"Mesh/Subdomains=4", "Materials/lower/Young Modulus=1000",
+                                "Materials/lower/Poisson Ratio=0.3", "Materials/upper/Young Modulus=3000",
+                                "Materials/upper/Poisson Ratio=0.2", "Solver/Tolerance=1e-10", "Solver/Verbose=false",
+                                "Contact/Friction Model=Coulomb", "Contact/F1=0.3", "Contact/F2=0.3",
+                                "Contact/T1 Direction={1, 1, 0}", "Contact/Slave Side Set=lower_z1",
+                                "Contact/Master Side Set=upper_z0", "Loads/press/Side Set=upper_z1",
+                                "Loads/press/Traction={0.5, 0.3, -5}"};
+  for (const char* body : {"lower", "upper"}) {
+    o = with(o, displacementCondition(std::string(body) + "_x", std::string(body) + "_x0", "x"));
+    o = with(o, displacementCondition(std::string(body) + "_y", std::string(body) + "_y0", "y"));
+  }
+  o = with(o, displacementCondition("lower_z", "lower_z0", "z"));
+  const auto s = test::solveBoxScene(test::mergeMeshes(lower, upper), o);
+  const auto& r = s.contact;
+  EXPECT_TRUE(r.contact.converged) << r.contact.message;
+  if (worldRank() != 0) return;
+  const auto balance = stack::forceBalance(s.scene, r.reaction, r.appliedLoad);
+  std::printf("contact on symmetry planes: |reactions + load| / |load| = %.2e\n", balance.relativeImbalance);
+  EXPECT_LE(balance.relativeImbalance, 1e-8);
+  // The upper box is held by its planes and the contact only: its planes take the load
+  // minus what the contact passes on (the force of the lower, slave, box on it).
+  const auto& ux = reactionOf(balance, "upper_x").force;
+  const auto& uy = reactionOf(balance, "upper_y").force;
+  EXPECT_NEAR(ux[0] + r.totalContactForce[0] + r.appliedLoad[0], 0.0, 1e-8 * norm(r.appliedLoad));
+  EXPECT_NEAR(uy[1] + r.totalContactForce[1] + r.appliedLoad[1], 0.0, 1e-8 * norm(r.appliedLoad));
+}

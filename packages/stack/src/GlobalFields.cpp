@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace tribos::stack {
 
@@ -47,6 +48,50 @@ GlobalDisplacement gatherDisplacement(const Scene& scene, int firstOwned, const 
   return out;
 }
 
+namespace {
+/// Calls f(row, node, component, value) for every entry of a Dirichlet row (one per row).
+template <class F>
+void forEachDirichletEntry(const Scene& scene, const feti::ConstraintMatrix& B, F&& f) {
+  // Every row lives in the blocks of the subdomains it touches; a Dirichlet row touches one.
+  for (size_t s = 0; s < B.blocks.size(); ++s) {
+    const auto& block = B.blocks[s];
+    const auto& nodes = scene.decomposition.subdomains[s].nodes;
+    for (size_t i = 0; i < block.rows.size(); ++i) {
+      if (B.kind[block.rows[i]] != feti::RowKind::Dirichlet) continue;
+      for (LO k = block.rowPtr[i]; k < block.rowPtr[i + 1]; ++k)
+        f(block.rows[i], nodes[block.dof[k] / 3], block.dof[k] % 3, block.value[k]);
+    }
+  }
+}
+
+/// The contact forces that a support takes directly. A contact row drops the prescribed
+/// components of its nodes (feti/ConstraintMatrix.hpp), so K u = f - B^T lambda never applies
+/// its force -B_full lambda to them, yet the body is pressed there all the same and the
+/// support holds that component: its reaction gains + B_full,ri lambda_r (B_full: the row
+/// before dropping, weight 1 on the slave and -w_j on master j, times the direction and the
+/// row's scale). Without this, reactions and load would not balance where a contact surface
+/// meets a symmetry plane.
+void addDroppedContactForces(const feti::ConstraintMatrix& B, const std::vector<char>& prescribed, GO first, GO end,
+                             const std::vector<double>& ownedLambda, std::vector<double>& reaction) {
+  for (const auto& node : B.contact) {
+    if (node.normalRow < first || node.normalRow >= end) continue;  // its rows are on another rank
+    std::vector<std::pair<LO, double>> sides{{node.slaveNode, 1.0}};
+    for (size_t j = 0; j < node.masterNodes.size(); ++j) sides.push_back({node.masterNodes[j], -node.masterWeights[j]});
+    const std::array<double, 3>* directions[3] = {&node.normal, &node.t1, &node.t2};
+    for (int d = 0; d < 3; ++d) {
+      const GO row = d == 0 ? node.normalRow : node.tangentialRow(d - 1);
+      if (row < 0) continue;
+      const double scale = d == 0 ? node.rowScale : node.tangentialScale[d - 1];
+      const double lambda = ownedLambda[row - first];
+      for (const auto& [g, weight] : sides)
+        for (int c = 0; c < 3; ++c)
+          if (prescribed[3 * static_cast<size_t>(g) + c])
+            reaction[3 * static_cast<size_t>(g) + c] += weight * (*directions[d])[c] * scale * lambda;
+    }
+  }
+}
+}  // namespace
+
 std::vector<std::array<double, 3>> gatherReactions(const Scene& scene, const feti::ConstraintMatrix& B,
                                                    const std::vector<double>& ownedLambda, MPI_Comm comm) {
   int rank = 0;
@@ -54,19 +99,13 @@ std::vector<std::array<double, 3>> gatherReactions(const Scene& scene, const fet
   const GO first = B.firstRowOfRank[rank], end = B.firstRowOfRank[rank + 1];
   const size_t numNodes = static_cast<size_t>(scene.mesh.numNodes());
   std::vector<double> local(3 * numNodes, 0.0);
-  // Every row lives in the blocks of the subdomains it touches; a Dirichlet row touches one.
-  for (size_t s = 0; s < B.blocks.size(); ++s) {
-    const auto& block = B.blocks[s];
-    const auto& nodes = scene.decomposition.subdomains[s].nodes;
-    for (size_t i = 0; i < block.rows.size(); ++i) {
-      const GO row = block.rows[i];
-      if (row < first || row >= end || B.kind[row] != feti::RowKind::Dirichlet) continue;
-      for (LO k = block.rowPtr[i]; k < block.rowPtr[i + 1]; ++k) {
-        const LO dof = block.dof[k];
-        local[3 * static_cast<size_t>(nodes[dof / 3]) + dof % 3] -= block.value[k] * ownedLambda[row - first];
-      }
-    }
-  }
+  std::vector<char> prescribed(3 * numNodes, 0);
+  forEachDirichletEntry(scene, B, [&](GO row, LO node, int component, double value) {
+    const size_t i = 3 * static_cast<size_t>(node) + component;
+    prescribed[i] = 1;
+    if (row >= first && row < end) local[i] -= value * ownedLambda[row - first];
+  });
+  addDroppedContactForces(B, prescribed, first, end, ownedLambda, local);
   std::vector<double> all(rank == 0 ? local.size() : 0);
   MPI_Reduce(local.data(), all.data(), static_cast<int>(local.size()), MPI_DOUBLE, MPI_SUM, 0, comm);
   std::vector<std::array<double, 3>> out;

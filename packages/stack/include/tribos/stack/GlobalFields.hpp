@@ -23,7 +23,9 @@ GlobalDisplacement gatherDisplacement(const Scene& scene, int firstOwned, const 
 /// Reaction forces on the user's mesh, per global node (rank 0; zero where nothing is
 /// prescribed): the force the support exerts on the body, summed over the node's copies.
 /// A prescribed-displacement row of B is a unit row on one copy's component, and
-/// K u = f - B^T lambda, so the row's reaction is -lambda_r. `ownedLambda` holds the
+/// K u = f - B^T lambda, so the row's reaction is -lambda_r; contact rows that dropped a
+/// prescribed component add the contact force on it, which the support takes (doc/theory.md,
+/// "Results"). `ownedLambda` holds the
 /// multipliers of this rank's rows [B.firstRowOfRank[rank], B.firstRowOfRank[rank + 1]).
 /// Collective over `comm`.
 std::vector<std::array<double, 3>> gatherReactions(const Scene& scene, const feti::ConstraintMatrix& B,
