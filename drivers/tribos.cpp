@@ -392,8 +392,9 @@ int run(int argc, char** argv, int rank) {
 
 // Idle OpenMP threads must sleep, not spin: with more ranks x threads than free cores the
 // spinning threads starve the working ones (input/two_bricks.xml, 2 threads, the other core
-// busy: 3.1 s median, up to 20 s, against 0.7 s when they sleep). libgomp reads OMP_WAIT_POLICY once, in its load-time constructor, before
-// main runs; so when the user has not chosen a policy, set PASSIVE and execute this binary
+// busy: 3.1 s median, up to 20 s, against 0.7 s when they sleep). libgomp reads
+// OMP_WAIT_POLICY once, in its load-time constructor, before main runs; so when the user
+// has not chosen a policy, set PASSIVE and execute this binary
 // again (before MPI_Init, so mpirun sees one process; it costs about 0.05 s). One thread
 // never waits, so OMP_NUM_THREADS=1 skips it. If the exec fails, run as we are.
 void sleepWhileWaiting(char** argv) {

@@ -15,6 +15,8 @@ packages=(build-essential cmake ninja-build ccache
 # meshio and its Exodus backend (only recommended by python3-meshio): the interoperability
 # tests integration.meshio.* (skipped without them).
 packages+=(python3-meshio python3-netcdf4)
+# The pictures (doc/tools/plot_results.py) and their test integration.plotResults.*.
+packages+=(python3-matplotlib)
 
 missing=()
 for p in "${packages[@]}"; do
