@@ -224,6 +224,7 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
     s.equalityResidual = k.equalityResidual;
     s.normA = k.normA;
     s.converged = k.converged;
+    s.nonFinite = s.nonFinite || k.nonFinite;
   };
 
   // (3) Solve: one SMALSE-M run (None, Tresca, inexact Coulomb) or a sequence (exact Coulomb).
@@ -248,6 +249,7 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
       auto hook = [&](int, const qp::Vector& current, double, double, double) {
         const auto g = impliedSlip(current);
         const double change = relativeChange(g, slip);
+        if (std::isnan(change)) throw FixedPointDiverged{"diverged: the slip bound became NaN"};
         slip = g;
         setSlipBounds(slip);
         ++result.fixedPointIterations;
@@ -310,6 +312,11 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
   } catch (const FixedPointDiverged& d) {
     result.converged = false;
     result.message = d.message;
+  }
+  if (result.counters.nonFinite) {
+    result.converged = false;
+    result.message = "diverged: non-finite values (NaN or Inf) in the dual iterations; check the loads, the "
+                     "materials and Solver parameters for non-finite or extreme values";
   }
 
   // (4) lambda = mu + lambda_Im; alpha over the rows where the dual constraints are inactive

@@ -41,6 +41,12 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
   p.assign(phi);
   for (;;) {
     counters.projectedGradientNorm = projectedGradientNorm();
+    // A NaN would fail every comparison and loop to the iteration cap: stop at once (the
+    // norm is a global reduction, so every rank stops at the same iteration).
+    if (!std::isfinite(counters.projectedGradientNorm)) {
+      counters.nonFinite = true;
+      break;
+    }
     if (stop(counters.projectedGradientNorm, x)) {
       counters.converged = true;
       break;

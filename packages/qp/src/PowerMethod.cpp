@@ -25,6 +25,7 @@ double powerMethod(const SymmetricOperator& A, const Map& map, int iterations, d
     if (applications) ++*applications;
     const double next = y.norm2();  // ||A x|| with ||x|| = 1
     if (next == 0.0) return 0.0;
+    if (!std::isfinite(next)) return next;  // a NaN / Inf in A: the caller stops (no more products)
     x.update(1.0 / next, y, 0.0);
     const bool done = std::abs(next - estimate) <= tolerance * next;
     estimate = next;

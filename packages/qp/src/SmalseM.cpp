@@ -42,6 +42,10 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
   // Scale-free parameters: rho and M relative to ||A||, eta relative to ||c|| (= ||P h||).
   counters.normA = powerMethod(A, *map, s.powerIterations, 1e-4, &counters.operatorApplications);
   double normC = c.norm2();
+  if (!std::isfinite(counters.normA) || !std::isfinite(normC)) {
+    counters.nonFinite = true;  // a NaN / Inf in A or c: nothing to iterate on
+    return counters;
+  }
   if (counters.normA == 0.0) {
     // A = 0: the problem is linear and SMALSE-M's scaling is undefined. Only c = 0 with a
     // feasible mu is a (trivially) solved problem.
@@ -116,6 +120,12 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
     });
     counters.outerIterations = k + 1;
     counters.innerIterations += inner.iterations;
+    if (inner.nonFinite || !std::isfinite(equalityNorm(mu))) {
+      counters.nonFinite = true;  // "diverged": never converged, whatever the hook says
+      counters.operatorApplications += inner.operatorApplications;
+      counters.projectedGradient = inner.projectedGradientNorm / normC;
+      break;
+    }
     counters.cgSteps += inner.cgSteps;
     counters.expansionSteps += inner.expansionSteps;
     counters.proportioningSteps += inner.proportioningSteps;

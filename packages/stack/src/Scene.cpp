@@ -36,14 +36,16 @@ fem::Material materialFrom(const ParameterList& body, const std::string& where) 
                              "and \"Poisson Ratio\"");
   if (lame) {
     const double lambda = getOr(body, "Lame Lambda", 0.0), mu = getOr(body, "Lame Mu", 0.0);
+    core::requireInput(std::isfinite(lambda) && std::isfinite(mu),
+                       where + ": Lame constants must be finite numbers");
     core::requireInput(mu > 0.0 && 3.0 * lambda + 2.0 * mu > 0.0,
                        where + ": Lame constants must satisfy mu > 0 and 3 lambda + 2 mu > 0 (got lambda = " +
                            std::to_string(lambda) + ", mu = " + std::to_string(mu) + ")");
     return fem::Material{lambda, mu};
   }
   const double E = getOr(body, "Young Modulus", 0.0), nu = getOr(body, "Poisson Ratio", 0.0);
-  core::requireInput(E > 0.0 && nu > -1.0 && nu < 0.5,
-                     where + ": need Young Modulus > 0 and -1 < Poisson Ratio < 0.5");
+  core::requireInput(std::isfinite(E) && E > 0.0 && nu > -1.0 && nu < 0.5,
+                     where + ": need a finite Young Modulus > 0 and -1 < Poisson Ratio < 0.5");
   return fem::Material::fromYoungPoisson(E, nu);
 }
 

@@ -8,6 +8,7 @@
 #include <Teuchos_ParameterList.hpp>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "DenseQp.hpp"
@@ -340,4 +341,54 @@ TEST(SmalseM, parametersAreDocumentedAndValidated) {
   Teuchos::ParameterList step;
   step.sublist("MPGP").set("step scale", 2.0);
   EXPECT_THROW(qp::SmalseM::settingsFromParameters(step), core::InputError);
+}
+
+namespace {
+/// A that turns every product into NaN from its `poisonFrom`-th application on: a fault in F
+/// (a non-finite load, material or subdomain solve) as the dual iterations would see it.
+class PoisonedOperator : public qp::SymmetricOperator {
+ public:
+  PoisonedOperator(test::Dense A, long long poisonFrom) : inner_(std::move(A)), poisonFrom_(poisonFrom) {}
+  void apply(const qp::Vector& x, qp::Vector& y) const override {
+    inner_.apply(x, y);
+    if (inner_.applications >= poisonFrom_) y.putScalar(std::numeric_limits<double>::quiet_NaN());
+  }
+  long long applications() const { return inner_.applications; }
+
+ private:
+  test::DenseOperator inner_;
+  long long poisonFrom_;
+};
+}  // namespace
+
+TEST(SmalseM, nonFiniteOperatorStopsAtOnceAndNeverConverges) {
+  // Without the check a NaN fails every comparison: MPGP ran to its iteration cap and SMALSE-M
+  // to its outer cap. Poisoned at the start (the power method) and in the middle of the solve.
+  const int n = 12;
+  const auto M = test::randomSpd(n, 30.0, 11);
+  std::mt19937 gen(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<double> b(n);
+  for (double& v : b) v = u(gen);
+  test::BlockSet blocks;
+  blocks.boundIndex = {0, 4, 7};
+  blocks.lower = {0.0, -0.1, 0.05};
+  std::vector<double> x0(n, 0.0);
+  blocks.project(x0);
+  const auto qp = test::makeEqualityQp(M, randomRowsVanishingAt(x0, gen), b);
+  for (long long poisonFrom : {1LL, 60LL}) {
+    SCOPED_TRACE(poisonFrom);
+    auto map = test::makeMap(n, test::selfComm());
+    auto omega = blocks.build(*map);
+    PoisonedOperator op(qp.A, poisonFrom);
+    test::DenseProjector projector(qp.Q);
+    qp::Vector cv(map), mu(map);
+    test::scatter(qp.c, cv);
+    auto settings = tunedSettings();
+    settings.mpgp.maxIterations = 100000;
+    const auto counters = qp::SmalseM(settings).solve(op, projector, cv, omega, mu);
+    EXPECT_TRUE(counters.nonFinite);
+    EXPECT_FALSE(counters.converged);
+    EXPECT_LE(op.applications(), poisonFrom + 2) << "iterations went on after the NaN";
+  }
 }

@@ -38,6 +38,7 @@ struct MpgpCounters {
   long long operatorApplications = 0;  ///< products with A
   double projectedGradientNorm = 0.0;  ///< ||g^P|| at return
   bool converged = false;
+  bool nonFinite = false;              ///< stopped: ||g^P|| was NaN or infinite (never "converged")
 };
 
 class Mpgp {

@@ -64,6 +64,7 @@ struct SmalseCounters {
   double equalityResidual = 0.0;       ///< ||A|| ||Q mu|| / ||c|| at return
   double normA = 0.0;
   bool converged = false;
+  bool nonFinite = false;  ///< stopped on a NaN or infinite norm (||PFP||, ||g^P||, ||G mu||)
 };
 
 /// Called after every outer iteration with (k, mu, ||g^P||/||c||, ||A|| ||Q mu||/||c||,
