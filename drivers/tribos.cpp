@@ -445,8 +445,10 @@ int main(int argc, char** argv) {
       std::cerr << "tribos: internal error on rank " << rank << ": " << e.what() << "\n";
       status = core::kExitInternal;
     }
-    // A rank that failed alone would leave the others waiting in a collective.
-    if (status != core::kExitOk && size > 1) MPI_Abort(MPI_COMM_WORLD, status);
+    // A rank that failed alone would leave the others waiting in a collective. "Not
+    // converged" is reached by every rank together after the results are written: a normal
+    // exit (mpirun returns 3), not an abort.
+    if (status != core::kExitOk && status != core::kExitNotConverged && size > 1) MPI_Abort(MPI_COMM_WORLD, status);
   }
   MPI_Finalize();
   return status;

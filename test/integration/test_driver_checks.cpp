@@ -86,3 +86,4 @@ TEST(tribosDriver, theConsolePrintsEveryKktResidual) {
     EXPECT_LE(printed, tolerance);
   }
 }
+
