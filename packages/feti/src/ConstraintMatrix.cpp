@@ -14,6 +14,7 @@
 #include <tuple>
 
 #include "tribos/core/Errors.hpp"
+#include "tribos/core/Format.hpp"
 #include "tribos/mesh/ContactSearch.hpp"
 #include "tribos/mesh/MortarCoupling.hpp"
 
@@ -32,14 +33,8 @@ Vec3 minus(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2
 double norm(const Vec3& v) { return std::sqrt(dot(v, v)); }
 Vec3 scaled(const Vec3& v, double s) { return {v[0] * s, v[1] * s, v[2] * s}; }
 
-/// Numbers in error messages: std::to_string prints 1e-7 as "0.000000".
-std::string str(double x) {
-  std::ostringstream os;
-  os.precision(10);
-  os << x;
-  return os.str();
-}
-std::string str(const Vec3& x) { return "(" + str(x[0]) + ", " + str(x[1]) + ", " + str(x[2]) + ")"; }
+std::string str(double x) { return core::formatNumber(x); }
+std::string str(const Vec3& x) { return core::formatPoint(x); }
 
 /// One copy of a global node: the subdomain and the node's local index there.
 struct Copy {

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "tribos/core/Errors.hpp"
+#include "tribos/core/Format.hpp"
 
 namespace tribos::mesh {
 
@@ -21,13 +22,8 @@ double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[
 Vec3 minus(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
 double norm(const Vec3& v) { return std::sqrt(dot(v, v)); }
 
-std::string str(double x) {
-  std::ostringstream os;
-  os.precision(10);
-  os << x;
-  return os.str();
-}
-std::string str(const Vec3& x) { return "(" + str(x[0]) + ", " + str(x[1]) + ", " + str(x[2]) + ")"; }
+std::string str(double x) { return core::formatNumber(x); }
+std::string str(const Vec3& x) { return core::formatPoint(x); }
 
 struct Box {
   Vec3 low, high;
