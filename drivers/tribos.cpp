@@ -18,6 +18,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -197,6 +198,36 @@ void addResultsToSummary(const stack::StressResults& stress, const stack::ForceB
   summary["force_balance"] = balance.relativeImbalance;
 }
 
+// Output files are written under this suffix and renamed when complete: a run that fails
+// while writing leaves no file that looks valid.
+constexpr const char* kPartialSuffix = ".tribos-partial";
+
+// Before any work: rank 0 checks that it can create `path` (a trial file next to it, removed
+// at once), every rank learns the answer, and all throw the same input error; a run is never
+// lost to an unwritable output path after the solve.
+void requireWritable(const std::string& path, const std::string& option, int rank) {
+  if (path.empty()) return;
+  int ok = 1;
+  if (rank == 0) {
+    const std::string trial = path + kPartialSuffix;
+    std::ofstream probe(trial);
+    ok = probe ? 1 : 0;
+    probe.close();
+    std::remove(trial.c_str());
+  }
+  MPI_Bcast(&ok, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  if (!ok)
+    throw core::InputError(path + ": cannot write this file (" + option +
+                           "): check that its directory exists and is writable");
+}
+
+// Moves the completed `path` + kPartialSuffix to `path`.
+void commitOutput(const std::string& path) {
+  std::error_code error;
+  std::filesystem::rename(path + kPartialSuffix, path, error);
+  if (error) throw std::runtime_error(path + ": cannot rename the completed output into place: " + error.message());
+}
+
 int run(int argc, char** argv, int rank) {
   core::Stopwatch total;
   // (1) Command line.
@@ -211,6 +242,9 @@ int run(int argc, char** argv, int rank) {
     if (rank == 0) std::cout << core::describeParameters(*valid);
     return core::kExitOk;
   }
+
+  requireWritable(cl.output, "--output", rank);
+  requireWritable(cl.summary, "--summary", rank);
 
   // (2) Scene parameters: XML, command-line overrides, validation against every component.
   Teuchos::ParameterList params = readSceneXml(cl.input, rank);
@@ -377,13 +411,18 @@ int run(int argc, char** argv, int rank) {
     if (!cl.output.empty()) {
       output.globals = globalValues(summary);
       output.info = infoRecords(argc, argv, params);
-      writeOutput(cl.output, scene, output);
+      writeOutput(cl.output + kPartialSuffix, scene, output);
+      commitOutput(cl.output);
       std::cout << "  wrote " << cl.output << "\n";
     }
     if (!cl.summary.empty()) {
-      std::ofstream out(cl.summary);
-      if (!out) throw core::InputError(cl.summary + ": cannot write the summary file");
-      out << summary.dump(2) << "\n";
+      {
+        std::ofstream out(cl.summary + kPartialSuffix);
+        if (!out) throw core::InputError(cl.summary + ": cannot write the summary file");
+        out << summary.dump(2) << "\n";
+        if (!out) throw core::InputError(cl.summary + ": writing the summary file failed");
+      }
+      commitOutput(cl.summary);
       std::cout << "  wrote " << cl.summary << "\n";
     }
   }

@@ -3,6 +3,7 @@
 // in dry runs too); after it, the console line with every KKT residual of the discrete
 // problem, the same numbers as the summary's.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <nlohmann/json.hpp>
 
@@ -87,3 +88,30 @@ TEST(tribosDriver, theConsolePrintsEveryKktResidual) {
   }
 }
 
+
+TEST(tribosDriver, unwritableOutputsAreInputErrorsBeforeAnyWorkAndOutputsAreAtomic) {
+  const auto dir = std::filesystem::temp_directory_path() / ("tribos_outputs_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const auto exo = (dir / "r.exo").string(), summary = (dir / "s.json").string();
+  const std::string scene = quote(input("two_bricks.xml")) + " --set Solver/Verbose=false";
+  // An unwritable summary path: exit 2 naming it and the option, before the solve, and the
+  // (writable) Exodus result is not written either.
+  auto run = runCommand(kDriver + " --input " + scene + " --output " + quote(exo) + " --summary " +
+                        quote((dir / "missing" / "s.json").string()));
+  EXPECT_EQ(run.status, 2) << run.output;
+  EXPECT_NE(run.output.find("missing/s.json"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("--summary"), std::string::npos) << run.output;
+  EXPECT_EQ(run.output.find("SMALSE-M"), std::string::npos) << "it solved first:\n" << run.output;
+  EXPECT_FALSE(std::filesystem::exists(exo));
+  run = runCommand(kDriver + " --input " + scene + " --output " + quote((dir / "missing" / "r.exo").string()));
+  EXPECT_EQ(run.status, 2) << run.output;
+  EXPECT_NE(run.output.find("--output"), std::string::npos) << run.output;
+  // A normal run: both files, and nothing left under the partial name.
+  run = runCommand(kDriver + " --input " + scene + " --output " + quote(exo) + " --summary " + quote(summary));
+  EXPECT_EQ(run.status, 0) << run.output;
+  EXPECT_TRUE(std::filesystem::exists(exo));
+  EXPECT_TRUE(std::filesystem::exists(summary));
+  for (const auto& entry : std::filesystem::directory_iterator(dir))
+    EXPECT_EQ(entry.path().string().find("partial"), std::string::npos) << entry.path();
+  std::filesystem::remove_all(dir);
+}
