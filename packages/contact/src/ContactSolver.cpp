@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <sstream>
 
 #include "tribos/core/Errors.hpp"
@@ -27,6 +28,27 @@ class ProjectedDualOperator : public qp::SymmetricOperator {
 
  private:
   const feti::TotalFeti& feti_;
+  Teuchos::RCP<DualVector> tmp_;
+};
+
+/// P D P with D the lumped (B K B^T) or Dirichlet (B S B^T) dual preconditioner: an
+/// approximate inverse of PFP on Ker G, for MPGP's preconditioning in face.
+class ProjectedDualPreconditioner : public qp::SymmetricOperator {
+ public:
+  ProjectedDualPreconditioner(const feti::TotalFeti& feti, bool dirichlet)
+      : feti_(feti), dirichlet_(dirichlet), tmp_(feti.createDualVector()) {}
+  void apply(const qp::Vector& x, qp::Vector& y) const override {
+    feti_.project(x, *tmp_);
+    if (dirichlet_)
+      feti_.applyDirichlet(*tmp_, y);
+    else
+      feti_.applyLumped(*tmp_, y);
+    feti_.project(y, y);
+  }
+
+ private:
+  const feti::TotalFeti& feti_;
+  bool dirichlet_;
   Teuchos::RCP<DualVector> tmp_;
 };
 
@@ -124,7 +146,8 @@ struct FixedPointDiverged {
 }  // namespace
 
 ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMatrix& B,
-                           const FrictionSettings& friction, const qp::SmalseSettings& smalseSettings) {
+                           const FrictionSettings& friction, const qp::SmalseSettings& smalseSettings,
+                           const std::string& preconditioner) {
   const auto& comm = *feti.comm();
   const int rank = comm.getRank();
   const bool frictional = friction.model != "None";
@@ -219,6 +242,7 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
     s.expansionSteps += k.expansionSteps;
     s.proportioningSteps += k.proportioningSteps;
     s.operatorApplications += k.operatorApplications;
+    s.preconditionerApplications += k.preconditionerApplications;
     applicationsBefore = s.operatorApplications;
     s.projectedGradient = k.projectedGradient;
     s.equalityResidual = k.equalityResidual;
@@ -234,6 +258,14 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
     return p;
   };
   qp::SmalseSettings settings = smalseSettings;
+  if (preconditioner != "None" && preconditioner != "Lumped" && preconditioner != "Dirichlet")
+    throw core::InputError("FETI/Preconditioner: \"" + preconditioner + "\" is not a preconditioner (None, Lumped, "
+                           "Dirichlet)");
+  std::unique_ptr<ProjectedDualPreconditioner> M;
+  if (preconditioner != "None") {
+    M = std::make_unique<ProjectedDualPreconditioner>(feti, preconditioner == "Dirichlet");
+    settings.preconditioner = M.get();
+  }
   if (friction.progress)
     settings.monitor = [&](const qp::SmalseProgress& p) {
       friction.progress(withEarlierRuns(p), result.fixedPointChange);
@@ -397,7 +429,10 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
     const LO r = lc.normalRow[k];
     const double gap = bu(r, 0) - B.c[first + r];  // N u - c <= 0
     penetration = std::max(penetration, gap);
-    complementarity += lam(r, 0) * gap;
+    // Multipliers below the status tests' resolution count as zero (the node is out of
+    // contact): a round-off lambda_nu ~ 1e-14 over an open gap is no violation, and
+    // normalised by its own size it would read as one.
+    complementarity += (lam(r, 0) > tinyForce ? lam(r, 0) : 0.0) * gap;
     lambdaNu2 += lam(r, 0) * lam(r, 0);
     negative = std::max(negative, -lam(r, 0));
     ContactNodeResult out;
@@ -447,7 +482,7 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
   }
   kkt.nonPenetration = std::max(globalMax(comm, penetration), 0.0) / uScale;
   kkt.complementarity = std::abs(globalSum(comm, complementarity)) /
-                        (std::sqrt(globalSum(comm, lambdaNu2)) * uScale + std::numeric_limits<double>::min());
+                        (std::max(std::sqrt(globalSum(comm, lambdaNu2)), tinyForce) * uScale);
   kkt.normalSign = globalMax(comm, negative) / lScale;
   kkt.frictionAdmissibility = std::max(globalMax(comm, admissibility), 0.0) / lScale;
   kkt.slipRule = globalMax(comm, slipRule);

@@ -261,6 +261,30 @@ void SeparableSet::splitGradient(const Vector& x, const Vector& g, Vector& phi, 
   }
 }
 
+double SeparableSet::boundaryCurvature(const Vector& x, const Vector& g, const Vector& d) const {
+  auto xv = x.getLocalViewHost(Tpetra::Access::ReadOnly);
+  auto gv = g.getLocalViewHost(Tpetra::Access::ReadOnly);
+  auto dv = d.getLocalViewHost(Tpetra::Access::ReadOnly);
+  double sum = 0.0;
+  for (size_t k = 0; k < ellipseIndex_.size(); ++k) {
+    const auto [i, j] = ellipseIndex_[k];
+    const auto a = effectiveAxes(k);
+    if (!(a[0] > 0.0) || !(a[1] > 0.0)) continue;  // intervals and points: flat
+    const std::array<double, 2> y{at(xv, i) - center_[k][0], at(xv, j) - center_[k][1]};
+    if (ellipseNorm(y, a) < 1.0 - kActiveTolerance) continue;
+    // Curvature of (y1/a1)^2 + (y2/a2)^2 = 1 at y: 1 / (a1^2 a2^2 (y1^2/a1^4 + y2^2/a2^4)^(3/2)).
+    const double q = y[0] * y[0] / (a[0] * a[0] * a[0] * a[0]) + y[1] * y[1] / (a[1] * a[1] * a[1] * a[1]);
+    const double kappa = 1.0 / (a[0] * a[0] * a[1] * a[1] * q * std::sqrt(q));
+    const std::array<double, 2> n{y[0] / (a[0] * a[0]), y[1] / (a[1] * a[1])};
+    const double nn = std::hypot(n[0], n[1]);
+    const double pressing = std::max(-(n[0] * at(gv, i) + n[1] * at(gv, j)) / nn, 0.0);
+    sum += kappa * pressing * (at(dv, i) * at(dv, i) + at(dv, j) * at(dv, j));
+  }
+  double global = 0.0;
+  Teuchos::reduceAll(*x.getMap()->getComm(), Teuchos::REDUCE_SUM, 1, &sum, &global);
+  return global;
+}
+
 void SeparableSet::reducedFreeGradient(const Vector& x, const Vector& phi, double alpha, Vector& out) const {
   // phi~ = (x - P(x - alpha phi)) / alpha.
   out.update(1.0, x, -alpha, phi, 0.0);

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include "tribos/core/Errors.hpp"
 #include "tribos/core/Parameters.hpp"
@@ -28,6 +29,26 @@ class PenalisedOperator : public SymmetricOperator {
 
  private:
   const SymmetricOperator& A_;
+  const EqualityProjector& Q_;
+  double rho_;
+  mutable Vector tmp_;
+};
+
+/// M^-1 + Q / rho: the inner preconditioner of A_rho (paper (19)) from one of PFP on Ker G.
+class PenalisedPreconditioner : public SymmetricOperator {
+ public:
+  PenalisedPreconditioner(const SymmetricOperator& M, const EqualityProjector& Q, double rho,
+                          const Teuchos::RCP<const Map>& map)
+      : M_(M), Q_(Q), rho_(rho), tmp_(map) {}
+  void setRho(double rho) { rho_ = rho; }
+  void apply(const Vector& x, Vector& y) const override {
+    M_.apply(x, y);
+    Q_.applyQ(x, tmp_);
+    y.update(1.0 / rho_, tmp_, 1.0);
+  }
+
+ private:
+  const SymmetricOperator& M_;
   const EqualityProjector& Q_;
   double rho_;
   mutable Vector tmp_;
@@ -79,6 +100,11 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
   int outer = 0;
   double innerGmu = 0.0, innerBound = 0.0;
   MpgpSettings mpgpSettings = s.mpgp;
+  std::unique_ptr<PenalisedPreconditioner> preconditioner;
+  if (s.preconditioner) {
+    preconditioner = std::make_unique<PenalisedPreconditioner>(*s.preconditioner, Q, rho, map);
+    mpgpSettings.preconditioner = preconditioner.get();
+  }
   if (s.innerMonitor)
     mpgpSettings.progress = [&](const MpgpCounters& inner) {
       s.innerMonitor({outer, inner.iterations, inner.projectedGradientNorm / normC, counters.normA * innerGmu / normC,
@@ -130,6 +156,7 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
     counters.expansionSteps += inner.expansionSteps;
     counters.proportioningSteps += inner.proportioningSteps;
     counters.operatorApplications += inner.operatorApplications;
+    counters.preconditionerApplications += inner.preconditionerApplications;
     const double gp = inner.projectedGradientNorm;
     const double gmu = equalityNorm(mu);
     counters.projectedGradient = gp / normC;
@@ -150,6 +177,7 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
       rho *= s.rhoGrowth;
       normArho = 1.02 * std::max(counters.normA, rho);
       Arho.setRho(rho);
+      if (preconditioner) preconditioner->setRho(rho);
     }
     previousGmu = gmu;
     // Coulomb: the slip bound update (inexact successive approximations) may veto the stop.

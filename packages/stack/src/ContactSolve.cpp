@@ -43,6 +43,7 @@ qp::SmalseSettings smalseSettings(const Teuchos::ParameterList& tribos) {
   s.mpgp.gamma = mp.get<double>("Gamma");
   s.mpgp.maxIterations = mp.get<int>("max iterations");
   s.mpgp.optimalExpansion = mp.get<bool>("optimal expansion");
+  s.mpgp.choppedProportioning = mp.get<bool>("chopped proportioning");
   return s;
 }
 
@@ -55,7 +56,9 @@ std::string describeContactChain(const Teuchos::ParameterList& tribos) {
         << fetiList.get<std::string>("Dual Operator") << " F, coarse projector P = I - G^T (G G^T)^-1 G) -> SMALSE-M (eps "
         << smalse.tolerance << ", rho " << smalse.rho << " ||PFP||, M0 " << smalse.M0 << " ||PFP||, eta " << smalse.eta
         << " ||Ph||, beta " << smalse.betaM << ", " << smalse.equalityTest << " test) -> MPGP (alpha_bar "
-        << smalse.mpgp.stepScale << "/||A||, Gamma " << smalse.mpgp.gamma << ") -> " << friction.model;
+        << smalse.mpgp.stepScale << "/||A||, Gamma " << smalse.mpgp.gamma << ", preconditioned in face: "
+        << fetiList.get<std::string>("Preconditioner") << (smalse.mpgp.choppedProportioning ? ", chopped proportioning" : "")
+        << ") -> " << friction.model;
   if (friction.model == "Coulomb")
     chain << " (" << friction.fixedPoint << " successive approximations, F1 " << friction.F1 << ", F2 " << friction.F2
           << ")";
@@ -168,6 +171,8 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
   feti::TotalFetiSettings settings;
   settings.factorization = fetiList.get<std::string>("Factorization");
   settings.explicitF = fetiList.get<std::string>("Dual Operator") == "Explicit";
+  const std::string preconditioner = fetiList.get<std::string>("Preconditioner");
+  settings.dirichletPreconditioner = preconditioner == "Dirichlet";
   auto friction = frictionSettings(tribos);
   auto smalse = smalseSettings(tribos);
   if (rank == 0) attachProgress(tribos.sublist("Solver"), friction, smalse, out.history);
@@ -178,7 +183,7 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
                              Teuchos::rcp(new Teuchos::MpiComm<int>(comm)), settings);
   out.factorizationSeconds = feti.factorizationSeconds();
   core::Stopwatch watch;
-  out.contact = contact::solveContact(feti, B, friction, smalse);
+  out.contact = contact::solveContact(feti, B, friction, smalse, preconditioner);
   out.solveSeconds = watch.seconds();
   out.fApplications = feti.fApplications();
   out.displacement = gatherDisplacement(scene, feti.firstOwnedSubdomain(), out.contact.displacement, comm);

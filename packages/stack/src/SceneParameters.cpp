@@ -132,9 +132,10 @@ void fetiParameters(ParameterList& pl) {
       "\"Explicit\" (dense local F_s assembled once, then dense matrix-vector products)",
       Teuchos::tuple<std::string>("Implicit", "Explicit"), &pl);
   Teuchos::setStringToIntegralParameter<int>(
-      "Preconditioner", "None",
-      "linear (bonded / no contact) solves: projected CG preconditioner \"None\", \"Lumped\" "
-      "(P B K B^T P) or \"Dirichlet\" (P B S B^T P, S the Schur complement on the constrained dofs)",
+      "Preconditioner", "Dirichlet",
+      "dual preconditioner P D P: \"None\", \"Lumped\" (D = B K B^T) or \"Dirichlet\" (D = B S B^T, S the "
+      "Schur complement on the constrained dofs); linear solves: projected CG; contact: MPGP's CG steps "
+      "preconditioned in face (restricted to the free set)",
       Teuchos::tuple<std::string>("None", "Lumped", "Dirichlet"), &pl);
   pl.set("Max Iterations", 1000, "linear solves: cap on projected CG iterations", atLeast<int>(1));
 }
@@ -178,6 +179,10 @@ void solverParameters(ParameterList& pl) {
   mpgp.set("optimal expansion", false,
            "expansion steps try the exact minimiser along the free gradient (projected, monotone safeguard) "
            "before the fixed alpha_bar step");
+  mpgp.set("chopped proportioning", true,
+           "a proportioning step that follows another goes along the chopped gradient with the exact step length "
+           "on the constraint boundary (MPRGP's step, the ellipses' curvature included, projected), instead of "
+           "the gradient projection step with alpha_bar (doc/smalse_parameters.md)");
 }
 
 void parallelParameters(ParameterList& pl) {

@@ -109,9 +109,13 @@ TEST(SmalseM, distributedMatchesOneRank) {
     EXPECT_TRUE(d.smalseCounters.converged);
     EXPECT_LE(test::maxDifference(d.mpgp, s.mpgp), 1e-10) << "seed " << seed;
     EXPECT_LE(test::maxDifference(d.smalse, s.smalse), 1e-10) << "seed " << seed;
-    EXPECT_EQ(d.mpgpCounters.iterations, s.mpgpCounters.iterations) << "seed " << seed;
-    EXPECT_EQ(d.smalseCounters.outerIterations, s.smalseCounters.outerIterations) << "seed " << seed;
-    EXPECT_EQ(d.smalseCounters.operatorApplications, s.smalseCounters.operatorApplications) << "seed " << seed;
+    // Counts within 2 % (issue 11's bound) and one outer iteration: the reductions sum in
+    // another order on two ranks, and MPGP's step choices (the proportioning test, the
+    // acceptance of a chopped-gradient step) compare round-off-close numbers.
+    auto near = [](double a, double b) { return std::abs(a - b) <= 0.02 * std::max(a, b) + 1.0; };
+    EXPECT_PRED2(near, d.mpgpCounters.iterations, s.mpgpCounters.iterations) << "seed " << seed;
+    EXPECT_LE(std::abs(d.smalseCounters.outerIterations - s.smalseCounters.outerIterations), 1) << "seed " << seed;
+    EXPECT_PRED2(near, d.smalseCounters.operatorApplications, s.smalseCounters.operatorApplications) << "seed " << seed;
     // The one-rank solutions agree between the ranks too (each solved it alone).
     const auto comm = test::worldComm();
     double local = s.smalse[seed % n], maxv = 0.0, minv = 0.0;

@@ -84,8 +84,10 @@ struct ContactResult {
 };
 
 /// Solves the contact problem. B's contact rows must have tangential rows unless model is
-/// "None". Collective.
+/// "None". `preconditioner`: "None", "Lumped" or "Dirichlet" (then feti must have been built
+/// with dirichletPreconditioner): MPGP's preconditioning in face by P D P. Collective.
 ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMatrix& B,
-                           const FrictionSettings& friction, const qp::SmalseSettings& smalse);
+                           const FrictionSettings& friction, const qp::SmalseSettings& smalse,
+                           const std::string& preconditioner = "None");
 
 }  // namespace tribos::contact

@@ -25,6 +25,16 @@ struct MpgpSettings {
   /// Expansion steps: try the exact minimiser along the free gradient (projected, with a
   /// monotonicity safeguard) before the fixed alpha_bar step (ALGORITHMS.md 5: adapted step).
   bool optimalExpansion = false;
+  /// A proportioning step right after another goes along the chopped gradient with the
+  /// exact step length on the boundary arc (MPRGP's step; beta^T A beta plus the ellipses'
+  /// curvature term), projected on Omega and kept if f decreases, instead of the gradient
+  /// projection step with alpha_bar.
+  bool choppedProportioning = true;
+  /// Preconditioning in face: CG steps use z = chi_F M^-1 phi (M^-1 applied to the free
+  /// gradient, then restricted to the free set F of the current face) instead of phi. Must be
+  /// symmetric positive definite on the free set; null: no preconditioner (z = phi).
+  /// Expansion and proportioning steps are not preconditioned.
+  const SymmetricOperator* preconditioner = nullptr;
   /// Progress of long solves: called after every `progressEvery` iterations with the
   /// counters so far (projectedGradientNorm: ||g^P|| of the current iterate). The iterations
   /// are collective, so every rank that sets it calls it at the same iteration; it must do no
@@ -36,6 +46,7 @@ struct MpgpSettings {
 struct MpgpCounters {
   int iterations = 0, cgSteps = 0, expansionSteps = 0, proportioningSteps = 0;
   long long operatorApplications = 0;  ///< products with A
+  long long preconditionerApplications = 0;  ///< products with the preconditioner M^-1
   double projectedGradientNorm = 0.0;  ///< ||g^P|| at return
   bool converged = false;
   bool nonFinite = false;              ///< stopped: ||g^P|| was NaN or infinite (never "converged")

@@ -38,6 +38,11 @@ class SeparableSet {
   /// and chopped gradient beta (on active blocks: g - min(n^T g, 0) n with n the outer unit
   /// normal; 0 elsewhere). g^P = phi + beta is the projected gradient.
   void splitGradient(const Vector& x, const Vector& g, Vector& phi, Vector& beta) const;
+  /// sum over the active smooth ellipse blocks of kappa_k |n_k^T g_k| ||d_k||^2, with kappa_k
+  /// the boundary's curvature at x along the tangent and n_k the outer normal: the second
+  /// derivative that the constraint adds to f along an arc of the boundary tangent to d (the
+  /// Lagrange multiplier |n^T g| times the curvature). 0 on bounds and free blocks.
+  double boundaryCurvature(const Vector& x, const Vector& g, const Vector& d) const;
   /// Reduced free gradient phi~ = (x - P_Omega(x - alpha phi)) / alpha.
   void reducedFreeGradient(const Vector& x, const Vector& phi, double alpha, Vector& out) const;
 

@@ -43,6 +43,10 @@ struct SmalseSettings {
   /// (M_0 relative, so the paper's eps M_0 = 1e-11 needs a tolerance above round-off).
   std::string equalityTest = "Conventional";
   MpgpSettings mpgp;
+  /// Preconditioning in face for the inner CG steps: M^-1 ~ A^+ on Ker G (T-FETI: P D P with
+  /// the lumped or Dirichlet D). SMALSE-M preconditions A_rho = A + rho Q by M^-1 + Q / rho
+  /// (exact on Im G^T, where A_rho = rho I). Null: none. Overrides mpgp.preconditioner.
+  const SymmetricOperator* preconditioner = nullptr;
   int powerIterations = 50;    ///< for ||A||
   double rhoGrowth = 1.0;      ///< > 1: rho *= rhoGrowth when ||G mu|| fell by less than rhoTargetRatio
   double rhoTargetRatio = 0.5;
@@ -60,6 +64,7 @@ struct SmalseSettings {
 struct SmalseCounters {
   int outerIterations = 0, innerIterations = 0, cgSteps = 0, expansionSteps = 0, proportioningSteps = 0;
   long long operatorApplications = 0;  ///< products with A (each = one F application in T-FETI), incl. power method
+  long long preconditionerApplications = 0;  ///< products with the inner preconditioner
   double projectedGradient = 0.0;      ///< ||g^P|| / ||c|| at return
   double equalityResidual = 0.0;       ///< ||A|| ||Q mu|| / ||c|| at return
   double normA = 0.0;
