@@ -12,7 +12,6 @@
 
 #include <Tpetra_Core.hpp>
 #include <Teuchos_ParameterList.hpp>
-#include <Teuchos_XMLParameterListHelpers.hpp>
 
 #include <unistd.h>
 
@@ -30,6 +29,7 @@
 #include "tribos/core/Parallel.hpp"
 #include "tribos/core/Parameters.hpp"
 #include "tribos/core/Timer.hpp"
+#include "tribos/core/XmlParameters.hpp"
 #include "tribos/mesh/ExodusIO.hpp"
 #include "tribos/feti/ConstraintMatrix.hpp"
 #include "tribos/feti/Solvability.hpp"
@@ -60,12 +60,9 @@ Teuchos::ParameterList readSceneXml(const std::string& path, int rank) {
   if (length < 0) throw core::InputError(path + ": cannot open the scene file");
   text.resize(static_cast<size_t>(length));
   MPI_Bcast(text.data(), static_cast<int>(length), MPI_CHAR, 0, MPI_COMM_WORLD);
-  Teuchos::RCP<Teuchos::ParameterList> list;
-  try {
-    list = Teuchos::getParametersFromXmlString(text);
-  } catch (const std::exception& e) {
-    throw core::InputError(path + ": not a valid Teuchos XML parameter list: " + e.what());
-  }
+  // Strict: duplicate names, values that do not read as their type, non-finite numbers and
+  // deep nesting are input errors naming the file and the parameter.
+  const auto list = core::parameterListFromXml(text, path);
   list->setName("Tribos");  // Teuchos does not keep the top-level name; its contents are validated
   return *list;
 }
@@ -167,9 +164,7 @@ std::vector<std::string> infoRecords(int argc, char** argv, const Teuchos::Param
   std::string command = "tribos";
   for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
   std::vector<std::string> info = {"Tribos result", command};
-  std::ostringstream xml;
-  Teuchos::writeParameterListToXmlOStream(params, xml);
-  std::istringstream lines(xml.str());
+  std::istringstream lines(core::parameterListToXml(params));
   for (std::string line; std::getline(lines, line);) info.push_back(line);
   return info;
 }
@@ -248,8 +243,12 @@ int run(int argc, char** argv, int rank) {
 
   // (2) Scene parameters: XML, command-line overrides, validation against every component.
   Teuchos::ParameterList params = readSceneXml(cl.input, rank);
-  for (const auto& assignment : cl.overrides) core::applyOverride(params, *valid, assignment);
   core::validateAndSetDefaults(params, *valid, cl.input);
+  // Each override is validated on its own, so that a bad value names the --set that gave it.
+  for (const auto& assignment : cl.overrides) {
+    core::applyOverride(params, *valid, assignment);
+    core::validateAndSetDefaults(params, *valid, "--set \"" + assignment + "\"");
+  }
   if (const int threads = params.sublist("Parallel").get<int>("Threads"); threads > 0)
     core::setNumThreads(threads);
 
