@@ -10,40 +10,17 @@
 
 #include "tribos/core/Timer.hpp"
 #include "tribos/feti/TotalFeti.hpp"
+#include "tribos/qp/SolverParameters.hpp"
+#include "tribos/stack/SceneParameters.hpp"
 
 namespace tribos::stack {
 
 contact::FrictionSettings frictionSettings(const Teuchos::ParameterList& tribos) {
-  const auto& c = tribos.sublist("Contact");
-  contact::FrictionSettings f;
-  f.model = c.get<std::string>("Friction Model");
-  f.F1 = c.get<double>("F1");
-  f.F2 = c.get<double>("F2");
-  f.slipBound = c.get<double>("Slip Bound");
-  f.fixedPoint = c.get<std::string>("Fixed Point");
-  f.maxFixedPointIterations = c.get<int>("Max Fixed Point Iterations");
-  return f;
+  return readFrictionParameters(tribos.sublist("Contact"));
 }
 
 qp::SmalseSettings smalseSettings(const Teuchos::ParameterList& tribos) {
-  const auto& solver = tribos.sublist("Solver");
-  const auto& sm = solver.sublist("SMALSE-M");
-  const auto& mp = solver.sublist("MPGP");
-  qp::SmalseSettings s;
-  s.tolerance = solver.get<double>("Tolerance");
-  s.maxOuterIterations = solver.get<int>("Max Outer Iterations");
-  s.eta = sm.get<double>("eta");
-  s.rho = sm.get<double>("rho");
-  s.M0 = sm.get<double>("initial M");
-  s.betaM = sm.get<double>("beta");
-  s.equalityTest = sm.get<std::string>("equality test");
-  s.powerIterations = sm.get<int>("power iterations");
-  s.rhoGrowth = sm.get<double>("rho growth");
-  s.mpgp.stepScale = mp.get<double>("step scale");
-  s.mpgp.gamma = mp.get<double>("Gamma");
-  s.mpgp.maxIterations = mp.get<int>("max iterations");
-  s.mpgp.optimalExpansion = mp.get<bool>("optimal expansion");
-  return s;
+  return qp::readSolverParameters(tribos.sublist("Solver"));
 }
 
 std::string describeContactChain(const Teuchos::ParameterList& tribos) {
