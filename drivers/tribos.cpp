@@ -38,6 +38,7 @@
 #include "tribos/stack/Results.hpp"
 #include "tribos/stack/Scene.hpp"
 #include "tribos/stack/SceneParameters.hpp"
+#include "tribos/stack/SceneSize.hpp"
 
 namespace {
 using namespace tribos;
@@ -249,6 +250,7 @@ int run(int argc, char** argv, int rank) {
     core::applyOverride(params, *valid, assignment);
     core::validateAndSetDefaults(params, *valid, "--set \"" + assignment + "\"");
   }
+  stack::requireSceneFitsInMemory(params, cl.input, MPI_COMM_WORLD);
   if (const int threads = params.sublist("Parallel").get<int>("Threads"); threads > 0)
     core::setNumThreads(threads);
 
