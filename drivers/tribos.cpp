@@ -21,6 +21,7 @@
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
 #include "CommandLine.hpp"
@@ -454,6 +455,25 @@ void lineBufferedOutput() {
 void reportCommandLineError(const driver::CommandLineError& e, int rank) {
   if (rank == 0) std::cerr << "tribos: error: " << e.what() << "\n\n" << driver::usage();
 }
+// Kokkos parses its options inside initialize() and throws std::invalid_argument on a bad
+// count (--kokkos-threads=abc): std::terminate, signal 6. Check them first (exit 2 naming
+// the option), and turn whatever Kokkos still refuses into the same command-line error.
+int startKokkos(std::optional<Tpetra::ScopeGuard>& guard, int& kokkosArgc, char**& kokkosArgv, int argc,
+                char** argv, int rank) {
+  try {
+    driver::requireValidKokkosArguments(argc, argv);
+    guard.emplace(&kokkosArgc, &kokkosArgv);
+  } catch (const driver::CommandLineError& e) {
+    reportCommandLineError(e, rank);
+    return core::kExitBadInput;
+  } catch (const std::exception& e) {
+    reportCommandLineError(driver::CommandLineError(std::string("command line: Kokkos refused its options: ") +
+                                                    e.what()),
+                           rank);
+    return core::kExitBadInput;
+  }
+  return core::kExitOk;
+}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -465,15 +485,15 @@ int main(int argc, char** argv) {
   MPI_Comm_size(MPI_COMM_WORLD, &size);
   int status = core::kExitOk;
   {
-    // Kokkos gets argv without --help / --version: those are Tribos's (Kokkos would print
-    // its own help first); --kokkos-help still reaches it.
+    // Kokkos gets only its --kokkos-* options (--kokkos-help included).
     std::vector<char*> kokkosArgv = driver::kokkosArguments(argc, argv);
     int kokkosArgc = static_cast<int>(kokkosArgv.size()) - 1;
     char** kokkosArgvData = kokkosArgv.data();
-    Tpetra::ScopeGuard tpetra(&kokkosArgc, &kokkosArgvData);  // Kokkos too; MPI is already up
-    core::warmUpKokkosForThreads();
+    std::optional<Tpetra::ScopeGuard> tpetra;  // Kokkos too; MPI is already up
+    status = startKokkos(tpetra, kokkosArgc, kokkosArgvData, argc, argv, rank);
+    if (status == core::kExitOk) core::warmUpKokkosForThreads();
     try {
-      status = run(argc, argv, rank);
+      if (status == core::kExitOk) status = run(argc, argv, rank);
     } catch (const driver::CommandLineError& e) {
       reportCommandLineError(e, rank);
       status = core::kExitBadInput;
