@@ -361,7 +361,8 @@ int run(int argc, char** argv, int rank) {
                 << contactSolve.solveSeconds << " s\n";
   } else {
     const double tolerance = params.sublist("Solver").get<double>("Tolerance");
-    linear = stack::solveLinearFeti(scene, std::move(systems), B, params.sublist("FETI"), tolerance, MPI_COMM_WORLD);
+    linear = stack::solveLinearFeti(scene, std::move(systems), B, params.sublist("FETI"), tolerance, MPI_COMM_WORLD,
+                                    params.sublist("Solver").get<double>("Max Seconds"));
     output.displacement = &linear.displacement;
     output.reaction = &linear.reaction;
     appliedLoad = linear.appliedLoad;
@@ -369,6 +370,7 @@ int run(int argc, char** argv, int rank) {
     summary["solver"] = "linear T-FETI (projected CG, preconditioner " +
                         params.sublist("FETI").get<std::string>("Preconditioner") + ")";
     summary["converged"] = linear.converged;
+    summary["message"] = linear.message;
     summary["tolerance"] = tolerance;
     summary["outer_iterations"] = linear.iterations;
     summary["pfp_applications"] = linear.fApplications;
@@ -380,7 +382,7 @@ int run(int argc, char** argv, int rank) {
     summary["times"]["factorization_s"] = linear.factorizationSeconds;
     summary["times"]["solve_s"] = linear.solveSeconds;
     if (rank == 0)
-      std::cout << "  projected CG: " << (linear.converged ? "converged" : "NOT CONVERGED") << " in "
+      std::cout << "  projected CG: " << (linear.converged ? "converged" : "NOT CONVERGED (" + linear.message + ")") << " in "
                 << linear.iterations << " iterations (" << linear.fApplications << " F applications), "
                 << "||Pr||/||Ph|| = " << linear.relativeResidual << ", kappa ~ " << linear.conditionEstimate
                 << "\n  KKT: equilibrium " << linear.equilibriumResidual << ", ||Bu - c||/||u|| "

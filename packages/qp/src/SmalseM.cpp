@@ -110,7 +110,7 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
     const auto inner = mpgp.solve(Arho, b, omega, normArho, mu, g, [&](double gp, const Vector& x) {
       innerGmu = equalityNorm(x);
       innerBound = std::max(std::min(M * innerGmu, eta), s.innerFloor * eps);
-      return gp <= innerBound || smalseConverged(gp, innerGmu, x);
+      return gp <= innerBound || smalseConverged(gp, innerGmu, x) || (s.stopRequested && s.stopRequested());
     });
     counters.outerIterations = k + 1;
     counters.innerIterations += inner.iterations;
@@ -156,6 +156,7 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
       counters.converged = true;
       break;
     }
+    if (s.stopRequested && s.stopRequested()) break;
   }
   return counters;
 }

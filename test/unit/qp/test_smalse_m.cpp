@@ -291,6 +291,45 @@ TEST(SmalseM, monitorsSeeEveryOuterIterationAndTheInnerProgressInBetween) {
   }
 }
 
+TEST(SmalseM, aStopRequestEndsTheSolveAtOnceNotConverged) {
+  // The budget hook (stopRequested): once it answers true, the inner solve in progress ends
+  // and so does the outer loop, not converged; a request that never fires changes nothing.
+  std::mt19937 gen(31);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const int n = 12;
+  const Dense M = test::randomSpd(n, 300.0, 31);
+  std::vector<double> b(n);
+  for (double& v : b) v = u(gen);
+  test::BlockSet blocks;
+  for (int i = 0; i < n; i += 2) {
+    blocks.boundIndex.push_back(i);
+    blocks.lower.push_back(0.1 * u(gen));
+  }
+  std::vector<double> x0(n, 0.0);
+  blocks.project(x0);
+  const auto qp = test::makeEqualityQp(M, randomRowsVanishingAt(x0, gen), b);
+  auto solve = [&](int fireAfter, int& asked) {
+    auto settings = paperSettings();
+    settings.stopRequested = [&asked, fireAfter] { return ++asked > fireAfter; };
+    auto map = test::makeMap(n, test::selfComm());
+    auto omega = blocks.build(*map);
+    test::DenseOperator op(qp.A);
+    test::DenseProjector projector(qp.Q);
+    qp::Vector cv(map), mu(map);
+    test::scatter(qp.c, cv);
+    return qp::SmalseM(settings).solve(op, projector, cv, omega, mu);
+  };
+  int asked = 0;
+  const auto free = solve(1 << 30, asked);
+  ASSERT_TRUE(free.converged);
+  ASSERT_GT(free.innerIterations, 6);
+  asked = 0;
+  const auto stopped = solve(5, asked);
+  EXPECT_FALSE(stopped.converged);
+  EXPECT_EQ(stopped.outerIterations, 1);
+  EXPECT_LE(stopped.innerIterations, 5);
+}
+
 TEST(SmalseM, zeroRightHandSide) {
   const int n = 6;
   const Dense M = test::randomSpd(n, 10.0, 5);

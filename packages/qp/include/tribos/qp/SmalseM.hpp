@@ -57,6 +57,11 @@ struct SmalseSettings {
   /// with A as they stand); collective-safe under the rule of MpgpSettings::progress, which it
   /// replaces. May be empty.
   std::function<void(const SmalseProgress&)> innerMonitor;
+  /// A budget (wall clock, ...): asked at every inner stopping test and after every outer
+  /// iteration; true ends the inner solve and then the outer loop (not converged). Called on
+  /// every rank at the same points, so it may communicate to reach one verdict; once true it
+  /// must stay true. May be empty.
+  std::function<bool()> stopRequested;
 };
 
 struct SmalseCounters {
