@@ -16,7 +16,7 @@ Usage: [mpirun -np N] tribos --input SCENE.xml [options]
                       dimensions and stop
   --summary FILE      write the JSON summary (dimensions, counts, times)
   --output FILE       write the results (mesh, element variable "subdomain") to Exodus II
-  --list-parameters   print every valid parameter with its default and documentation
+  --list-parameters   print every valid parameter: type, default, range, documentation
   --help              this text
   --version           git revision and dependency versions
   --kokkos-help       Kokkos's own options (--kokkos-threads=N, ...; accepted and passed on)
@@ -29,7 +29,8 @@ Progress (Solver/Verbose): one line per SMALSE-M outer iteration, and a line ins
 inner solves every Solver/Progress Interval seconds (default 2).
 
 Exit status: 0 success, 1 internal error, 2 bad input (the message names the file or
-parameter), 3 the solver did not converge (results still written, flagged).
+parameter), 3 the solver did not converge or a limit ended it (Solver/Max Seconds, an
+iteration cap; the message names it; results still written, flagged).
 
 Examples:
   tribos --input input/two_bricks.xml --dry-run
