@@ -493,24 +493,29 @@ int main(int argc, char** argv) {
     char** kokkosArgvData = kokkosArgv.data();
     std::optional<Tpetra::ScopeGuard> tpetra;  // Kokkos too; MPI is already up
     status = startKokkos(tpetra, kokkosArgc, kokkosArgvData, argc, argv, rank);
-    if (status == core::kExitOk) core::warmUpKokkosForThreads();
-    try {
-      if (status == core::kExitOk) status = run(argc, argv, rank);
-    } catch (const driver::CommandLineError& e) {
-      reportCommandLineError(e, rank);
-      status = core::kExitBadInput;
-    } catch (const core::InputError& e) {
-      // Input errors are the same on every rank (every rank parses the same input).
-      if (rank == 0) std::cerr << "tribos: error: " << e.what() << "\n";
-      status = core::kExitBadInput;
-    } catch (const std::exception& e) {
-      std::cerr << "tribos: internal error on rank " << rank << ": " << e.what() << "\n";
-      status = core::kExitInternal;
+    // Every rank sees the same argv: a bad Kokkos option stops them all here, together.
+    const bool started = status == core::kExitOk;
+    if (started) {
+      core::warmUpKokkosForThreads();
+      try {
+        status = run(argc, argv, rank);
+      } catch (const driver::CommandLineError& e) {
+        reportCommandLineError(e, rank);
+        status = core::kExitBadInput;
+      } catch (const core::InputError& e) {
+        // Input errors are the same on every rank (every rank parses the same input).
+        if (rank == 0) std::cerr << "tribos: error: " << e.what() << "\n";
+        status = core::kExitBadInput;
+      } catch (const std::exception& e) {
+        std::cerr << "tribos: internal error on rank " << rank << ": " << e.what() << "\n";
+        status = core::kExitInternal;
+      }
     }
     // A rank that failed alone would leave the others waiting in a collective. "Not
     // converged" is reached by every rank together after the results are written: a normal
     // exit (mpirun returns 3), not an abort.
-    if (status != core::kExitOk && status != core::kExitNotConverged && size > 1) MPI_Abort(MPI_COMM_WORLD, status);
+    if (started && status != core::kExitOk && status != core::kExitNotConverged && size > 1)
+      MPI_Abort(MPI_COMM_WORLD, status);
   }
   MPI_Finalize();
   return status;
