@@ -28,13 +28,14 @@ struct SmalseProgress {
   double innerTarget = 0.0;         ///< the inner stopping bound / ||c|| (innerMonitor only)
 };
 
+/// The defaults are the solver stack's (measured, doc/parameters.md), not the paper's (rho 1,
+/// M0 1e-6, betaM 0.1); src/SolverParameters.cpp declares each value below (not the
+/// callbacks) as a parameter.
 struct SmalseSettings {
   /// epsilon: stop when ||g^P|| <= eps ||c|| and the equality test holds. ||G mu|| is
   /// measured as ||Q mu|| (rows of G orthonormal) and, to be scale-free, enters the
   /// Conventional test and the reports multiplied by ||A||: the paper's tests hold for the
   /// problem scaled to ||PFP|| = 1.
-  /// The defaults are the solver stack's (measured, doc/parameters.md), not the paper's
-  /// (rho 1, M0 1e-6, betaM 0.1); src/SolverParameters.cpp declares them as parameters.
   double tolerance = 1e-5;
   double eta = 1.0;            ///< eta, relative to ||c|| (the paper: eta = ||P h||)
   double rho = 10.0;           ///< rho, relative to ||A|| (the paper: rho = ||P F P||, i.e. 1)
