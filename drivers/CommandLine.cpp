@@ -16,7 +16,7 @@ Usage: [mpirun -np N] tribos --input SCENE.xml [options]
                       dimensions and stop
   --summary FILE      write the JSON summary (dimensions, counts, times)
   --output FILE       write the results (mesh, element variable "subdomain") to Exodus II
-  --list-parameters   print every valid parameter with its default and documentation
+  --list-parameters   print every valid parameter: type, default, range, documentation
   --help              this text
   --version           git revision and dependency versions
   --kokkos-help       Kokkos's own options (--kokkos-threads=N, ...; accepted and passed on)
@@ -29,7 +29,8 @@ Progress (Solver/Verbose): one line per SMALSE-M outer iteration, and a line ins
 inner solves every Solver/Progress Interval seconds (default 2).
 
 Exit status: 0 success, 1 internal error, 2 bad input (the message names the file or
-parameter), 3 the solver did not converge (results still written, flagged).
+parameter), 3 the solver did not converge or a limit ended it (Solver/Max Seconds, an
+iteration cap; the message names it; results still written, flagged).
 
 Examples:
   tribos --input input/two_bricks.xml --dry-run
@@ -71,10 +72,47 @@ std::vector<char*> kokkosArguments(int argc, char** argv) {
   std::vector<char*> kept;
   for (int i = 0; i < argc; ++i) {
     const std::string arg = argv[i];
-    if (i == 0 || (arg != "--help" && arg != "-h" && arg != "--version")) kept.push_back(argv[i]);
+    if (i == 0 || arg.rfind("--kokkos", 0) == 0) kept.push_back(argv[i]);
   }
   kept.push_back(nullptr);  // argv[argc] is a null pointer by convention
   return kept;
+}
+
+namespace {
+// "123": digits only, within int.
+bool isCount(const std::string& text) {
+  if (text.empty() || text.size() > 9) return false;
+  for (char c : text)
+    if (c < '0' || c > '9') return false;
+  return true;
+}
+
+// Kokkos's options that take an integer ("--kokkos-threads=4"); --kokkos-num-devices takes
+// "N" or "N,M". Both Kokkos 3 and Kokkos 4 spellings.
+constexpr const char* kKokkosCountOptions[] = {"--kokkos-threads", "--kokkos-num-threads", "--kokkos-numa",
+                                               "--kokkos-device",  "--kokkos-device-id",   "--kokkos-skip-device"};
+constexpr const char* kKokkosDeviceCountOptions[] = {"--kokkos-num-devices", "--kokkos-ndevices"};
+}  // namespace
+
+void requireValidKokkosArguments(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg.rfind("--kokkos-", 0) != 0) continue;
+    const auto eq = arg.find('=');
+    const std::string flag = arg.substr(0, eq), value = eq == std::string::npos ? "" : arg.substr(eq + 1);
+    for (const char* option : kKokkosCountOptions)
+      if (flag == option && !isCount(value))
+        throw CommandLineError("command line: " + flag + " needs =N with N a non-negative integer, got \"" + arg +
+                               "\"");
+    for (const char* option : kKokkosDeviceCountOptions) {
+      const auto comma = value.find(',');
+      const bool ok = comma == std::string::npos ? isCount(value)
+                                                 : isCount(value.substr(0, comma)) && isCount(value.substr(comma + 1));
+      if (flag == option && !ok)
+        throw CommandLineError("command line: " + flag + " needs =N or =N,M with non-negative integers, got \"" + arg +
+                               "\"");
+    }
+  }
 }
 
 }  // namespace tribos::driver

@@ -12,7 +12,6 @@
 
 #include <Tpetra_Core.hpp>
 #include <Teuchos_ParameterList.hpp>
-#include <Teuchos_XMLParameterListHelpers.hpp>
 
 #include <unistd.h>
 
@@ -22,6 +21,7 @@
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
 #include "CommandLine.hpp"
@@ -30,6 +30,7 @@
 #include "tribos/core/Parallel.hpp"
 #include "tribos/core/Parameters.hpp"
 #include "tribos/core/Timer.hpp"
+#include "tribos/core/XmlParameters.hpp"
 #include "tribos/mesh/ExodusIO.hpp"
 #include "tribos/feti/ConstraintMatrix.hpp"
 #include "tribos/feti/Solvability.hpp"
@@ -38,6 +39,7 @@
 #include "tribos/stack/Results.hpp"
 #include "tribos/stack/Scene.hpp"
 #include "tribos/stack/SceneParameters.hpp"
+#include "tribos/stack/SceneSize.hpp"
 
 namespace {
 using namespace tribos;
@@ -60,12 +62,9 @@ Teuchos::ParameterList readSceneXml(const std::string& path, int rank) {
   if (length < 0) throw core::InputError(path + ": cannot open the scene file");
   text.resize(static_cast<size_t>(length));
   MPI_Bcast(text.data(), static_cast<int>(length), MPI_CHAR, 0, MPI_COMM_WORLD);
-  Teuchos::RCP<Teuchos::ParameterList> list;
-  try {
-    list = Teuchos::getParametersFromXmlString(text);
-  } catch (const std::exception& e) {
-    throw core::InputError(path + ": not a valid Teuchos XML parameter list: " + e.what());
-  }
+  // Strict: duplicate names, values that do not read as their type, non-finite numbers and
+  // deep nesting are input errors naming the file and the parameter.
+  const auto list = core::parameterListFromXml(text, path);
   list->setName("Tribos");  // Teuchos does not keep the top-level name; its contents are validated
   return *list;
 }
@@ -167,9 +166,7 @@ std::vector<std::string> infoRecords(int argc, char** argv, const Teuchos::Param
   std::string command = "tribos";
   for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
   std::vector<std::string> info = {"Tribos result", command};
-  std::ostringstream xml;
-  Teuchos::writeParameterListToXmlOStream(params, xml);
-  std::istringstream lines(xml.str());
+  std::istringstream lines(core::parameterListToXml(params));
   for (std::string line; std::getline(lines, line);) info.push_back(line);
   return info;
 }
@@ -248,8 +245,13 @@ int run(int argc, char** argv, int rank) {
 
   // (2) Scene parameters: XML, command-line overrides, validation against every component.
   Teuchos::ParameterList params = readSceneXml(cl.input, rank);
-  for (const auto& assignment : cl.overrides) core::applyOverride(params, *valid, assignment);
   core::validateAndSetDefaults(params, *valid, cl.input);
+  // Each override is validated on its own, so that a bad value names the --set that gave it.
+  for (const auto& assignment : cl.overrides) {
+    core::applyOverride(params, *valid, assignment);
+    core::validateAndSetDefaults(params, *valid, "--set \"" + assignment + "\"");
+  }
+  stack::requireSceneFitsInMemory(params, cl.input, MPI_COMM_WORLD);
   if (const int threads = params.sublist("Parallel").get<int>("Threads"); threads > 0)
     core::setNumThreads(threads);
 
@@ -359,7 +361,8 @@ int run(int argc, char** argv, int rank) {
                 << contactSolve.solveSeconds << " s\n";
   } else {
     const double tolerance = params.sublist("Solver").get<double>("Tolerance");
-    linear = stack::solveLinearFeti(scene, std::move(systems), B, params.sublist("FETI"), tolerance, MPI_COMM_WORLD);
+    linear = stack::solveLinearFeti(scene, std::move(systems), B, params.sublist("FETI"), tolerance, MPI_COMM_WORLD,
+                                    params.sublist("Solver").get<double>("Max Seconds"));
     output.displacement = &linear.displacement;
     output.reaction = &linear.reaction;
     appliedLoad = linear.appliedLoad;
@@ -367,6 +370,7 @@ int run(int argc, char** argv, int rank) {
     summary["solver"] = "linear T-FETI (projected CG, preconditioner " +
                         params.sublist("FETI").get<std::string>("Preconditioner") + ")";
     summary["converged"] = linear.converged;
+    summary["message"] = linear.message;
     summary["tolerance"] = tolerance;
     summary["outer_iterations"] = linear.iterations;
     summary["pfp_applications"] = linear.fApplications;
@@ -378,7 +382,7 @@ int run(int argc, char** argv, int rank) {
     summary["times"]["factorization_s"] = linear.factorizationSeconds;
     summary["times"]["solve_s"] = linear.solveSeconds;
     if (rank == 0)
-      std::cout << "  projected CG: " << (linear.converged ? "converged" : "NOT CONVERGED") << " in "
+      std::cout << "  projected CG: " << (linear.converged ? "converged" : "NOT CONVERGED (" + linear.message + ")") << " in "
                 << linear.iterations << " iterations (" << linear.fApplications << " F applications), "
                 << "||Pr||/||Ph|| = " << linear.relativeResidual << ", kappa ~ " << linear.conditionEstimate
                 << "\n  KKT: equilibrium " << linear.equilibriumResidual << ", ||Bu - c||/||u|| "
@@ -453,6 +457,25 @@ void lineBufferedOutput() {
 void reportCommandLineError(const driver::CommandLineError& e, int rank) {
   if (rank == 0) std::cerr << "tribos: error: " << e.what() << "\n\n" << driver::usage();
 }
+// Kokkos parses its options inside initialize() and throws std::invalid_argument on a bad
+// count (--kokkos-threads=abc): std::terminate, signal 6. Check them first (exit 2 naming
+// the option), and turn whatever Kokkos still refuses into the same command-line error.
+int startKokkos(std::optional<Tpetra::ScopeGuard>& guard, int& kokkosArgc, char**& kokkosArgv, int argc,
+                char** argv, int rank) {
+  try {
+    driver::requireValidKokkosArguments(argc, argv);
+    guard.emplace(&kokkosArgc, &kokkosArgv);
+  } catch (const driver::CommandLineError& e) {
+    reportCommandLineError(e, rank);
+    return core::kExitBadInput;
+  } catch (const std::exception& e) {
+    reportCommandLineError(driver::CommandLineError(std::string("command line: Kokkos refused its options: ") +
+                                                    e.what()),
+                           rank);
+    return core::kExitBadInput;
+  }
+  return core::kExitOk;
+}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -464,30 +487,35 @@ int main(int argc, char** argv) {
   MPI_Comm_size(MPI_COMM_WORLD, &size);
   int status = core::kExitOk;
   {
-    // Kokkos gets argv without --help / --version: those are Tribos's (Kokkos would print
-    // its own help first); --kokkos-help still reaches it.
+    // Kokkos gets only its --kokkos-* options (--kokkos-help included).
     std::vector<char*> kokkosArgv = driver::kokkosArguments(argc, argv);
     int kokkosArgc = static_cast<int>(kokkosArgv.size()) - 1;
     char** kokkosArgvData = kokkosArgv.data();
-    Tpetra::ScopeGuard tpetra(&kokkosArgc, &kokkosArgvData);  // Kokkos too; MPI is already up
-    core::warmUpKokkosForThreads();
-    try {
-      status = run(argc, argv, rank);
-    } catch (const driver::CommandLineError& e) {
-      reportCommandLineError(e, rank);
-      status = core::kExitBadInput;
-    } catch (const core::InputError& e) {
-      // Input errors are the same on every rank (every rank parses the same input).
-      if (rank == 0) std::cerr << "tribos: error: " << e.what() << "\n";
-      status = core::kExitBadInput;
-    } catch (const std::exception& e) {
-      std::cerr << "tribos: internal error on rank " << rank << ": " << e.what() << "\n";
-      status = core::kExitInternal;
+    std::optional<Tpetra::ScopeGuard> tpetra;  // Kokkos too; MPI is already up
+    status = startKokkos(tpetra, kokkosArgc, kokkosArgvData, argc, argv, rank);
+    // Every rank sees the same argv: a bad Kokkos option stops them all here, together.
+    const bool started = status == core::kExitOk;
+    if (started) {
+      core::warmUpKokkosForThreads();
+      try {
+        status = run(argc, argv, rank);
+      } catch (const driver::CommandLineError& e) {
+        reportCommandLineError(e, rank);
+        status = core::kExitBadInput;
+      } catch (const core::InputError& e) {
+        // Input errors are the same on every rank (every rank parses the same input).
+        if (rank == 0) std::cerr << "tribos: error: " << e.what() << "\n";
+        status = core::kExitBadInput;
+      } catch (const std::exception& e) {
+        std::cerr << "tribos: internal error on rank " << rank << ": " << e.what() << "\n";
+        status = core::kExitInternal;
+      }
     }
     // A rank that failed alone would leave the others waiting in a collective. "Not
     // converged" is reached by every rank together after the results are written: a normal
     // exit (mpirun returns 3), not an abort.
-    if (status != core::kExitOk && status != core::kExitNotConverged && size > 1) MPI_Abort(MPI_COMM_WORLD, status);
+    if (started && status != core::kExitOk && status != core::kExitNotConverged && size > 1)
+      MPI_Abort(MPI_COMM_WORLD, status);
   }
   MPI_Finalize();
   return status;

@@ -3,11 +3,13 @@
 #include <Teuchos_Array.hpp>
 #include <Teuchos_ParameterList.hpp>
 
+#include <cmath>
 #include <cstdlib>
 #include <sstream>
 #include <vector>
 
 #include "tribos/core/Errors.hpp"
+#include "tribos/core/Validators.hpp"
 
 namespace tribos::core {
 
@@ -102,16 +104,50 @@ void validateLevel(Teuchos::ParameterList& user, const Teuchos::ParameterList& v
   }
 }
 
+// The default as a user would write it: "0.3", "{1, 0, 0}", "true", "\"\"" for an empty
+// string, "none (required)" for a placeholder NaN (a template entry without a default).
+std::string defaultText(const Teuchos::ParameterEntry& entry) {
+  const auto& any = entry.getAny(false);
+  if (any.type() == typeid(double)) {
+    const double x = Teuchos::any_cast<double>(any);
+    return std::isnan(x) ? "none (required)" : formatShortest(x);
+  }
+  if (any.type() == typeid(bool)) return Teuchos::any_cast<bool>(any) ? "true" : "false";
+  if (any.type() == typeid(std::string)) {
+    const auto& s = Teuchos::any_cast<std::string>(any);
+    return s.empty() ? "\"\"" : s;
+  }
+  if (any.type() == typeid(Teuchos::Array<double>)) {
+    std::string text;
+    for (double x : Teuchos::any_cast<Teuchos::Array<double>>(any)) text += (text.empty() ? "" : ", ") + formatShortest(x);
+    return "{" + text + "}";
+  }
+  if (any.type() == typeid(Teuchos::Array<std::string>)) {
+    std::string text;
+    for (const auto& x : Teuchos::any_cast<Teuchos::Array<std::string>>(any)) text += (text.empty() ? "" : ", ") + x;
+    return "{" + text + "}";
+  }
+  std::ostringstream out;
+  out << any;
+  return out.str();
+}
+
+// The parameters of a level first, then its sublists: a component's own settings read
+// together, before the components it embeds.
 void describeLevel(const Teuchos::ParameterList& valid, const std::string& prefix,
                    std::ostringstream& out) {
-  for (auto it = valid.begin(); it != valid.end(); ++it) {
-    const auto& entry = valid.entry(it);
-    const std::string path = prefix.empty() ? valid.name(it) : prefix + "/" + valid.name(it);
-    if (entry.isList()) {
-      describeLevel(Teuchos::getValue<Teuchos::ParameterList>(entry), path, out);
-    } else {
-      out << path << "  (" << entry.getAny(false).typeName() << ", default "
-          << entry.getAny(false) << ")\n      " << entry.docString() << "\n";
+  for (const bool lists : {false, true}) {
+    for (auto it = valid.begin(); it != valid.end(); ++it) {
+      const auto& entry = valid.entry(it);
+      if (entry.isList() != lists) continue;
+      const std::string path = prefix.empty() ? valid.name(it) : prefix + "/" + valid.name(it);
+      if (lists) {
+        describeLevel(Teuchos::getValue<Teuchos::ParameterList>(entry), path, out);
+        continue;
+      }
+      const std::string range = describeRange(entry);
+      out << path << "  (" << entry.getAny(false).typeName() << ", default " << defaultText(entry)
+          << (range.empty() ? "" : ", range " + range) << ")\n      " << entry.docString() << "\n";
     }
   }
 }
@@ -137,6 +173,8 @@ double parseDouble(const std::string& text, const std::string& context) {
   char* end = nullptr;
   const double v = std::strtod(text.c_str(), &end);
   if (text.empty() || *end != '\0') throw InputError(context + ": \"" + text + "\" is not a number");
+  // strtod reads "inf", "nan" and overflows to Inf: every Tribos parameter is finite.
+  if (!std::isfinite(v)) throw InputError(context + ": \"" + text + "\" is not a finite number");
   return v;
 }
 
@@ -162,6 +200,27 @@ std::vector<std::string> splitArray(std::string text) {
   while (std::getline(in, item, ',')) items.push_back(trim(item));
   if (items.size() == 1 && items[0].empty()) items.clear();
   return items;
+}
+// `text` read as a value of the type of `valid`.
+Teuchos::any parseAs(const Teuchos::any& valid, const std::string& text, const std::string& context) {
+  if (valid.type() == typeid(int)) return Teuchos::any(parseInt(text, context));
+  if (valid.type() == typeid(double)) return Teuchos::any(parseDouble(text, context));
+  if (valid.type() == typeid(bool)) {
+    if (text != "true" && text != "false") throw InputError(context + ": expected true or false");
+    return Teuchos::any(text == "true");
+  }
+  if (valid.type() == typeid(std::string)) return Teuchos::any(text);
+  if (valid.type() == typeid(Teuchos::Array<double>)) {
+    Teuchos::Array<double> a;
+    for (const auto& item : splitArray(text)) a.push_back(parseDouble(item, context));
+    return Teuchos::any(a);
+  }
+  if (valid.type() == typeid(Teuchos::Array<std::string>)) {
+    Teuchos::Array<std::string> a;
+    for (const auto& item : splitArray(text)) a.push_back(item);
+    return Teuchos::any(a);
+  }
+  throw InputError(context + ": parameters of type " + valid.typeName() + " cannot be set from the command line");
 }
 }  // namespace
 
@@ -192,27 +251,11 @@ void applyOverride(Teuchos::ParameterList& user, const Teuchos::ParameterList& v
   if (!validLevel->isParameter(name) || validLevel->isSublist(name))
     throw InputError(context + ": no parameter \"" + name + "\" there; valid names are:\n" + listValid(*validLevel));
 
-  const auto& any = validLevel->getEntry(name).getAny(false);
-  if (any.type() == typeid(int)) {
-    userLevel->set(name, parseInt(value, context));
-  } else if (any.type() == typeid(double)) {
-    userLevel->set(name, parseDouble(value, context));
-  } else if (any.type() == typeid(bool)) {
-    if (value != "true" && value != "false") throw InputError(context + ": expected true or false");
-    userLevel->set(name, value == "true");
-  } else if (any.type() == typeid(std::string)) {
-    userLevel->set(name, value);
-  } else if (any.type() == typeid(Teuchos::Array<double>)) {
-    Teuchos::Array<double> a;
-    for (const auto& item : splitArray(value)) a.push_back(parseDouble(item, context));
-    userLevel->set(name, a);
-  } else if (any.type() == typeid(Teuchos::Array<std::string>)) {
-    Teuchos::Array<std::string> a;
-    for (const auto& item : splitArray(value)) a.push_back(item);
-    userLevel->set(name, a);
-  } else {
-    throw InputError(context + ": parameters of type " + any.typeName() + " cannot be set from the command line");
-  }
+  // Stored without the valid entry's validator: the caller validates the whole list next
+  // (a value out of range is then an InputError naming this override).
+  Teuchos::ParameterEntry entry;
+  entry.setAnyValue(parseAs(validLevel->getEntry(name).getAny(false), value, context));
+  userLevel->setEntry(name, entry);
 }
 
 }  // namespace tribos::core

@@ -64,7 +64,8 @@ ProjectedCgResult solveProjectedCg(const TotalFeti& feti, DualVector& lambda, co
   std::vector<double> alphas, betas;
   double relative = 1.0;
   int it = 0;
-  for (; it < settings.maxIterations && relative > settings.tolerance; ++it) {
+  auto stopRequested = [&] { return settings.stopRequested && settings.stopRequested(); };
+  for (; it < settings.maxIterations && relative > settings.tolerance && !stopRequested(); ++it) {
     feti.applyF(*p, *q);
     feti.project(*q, *q);
     const double pq = p->dot(*q);

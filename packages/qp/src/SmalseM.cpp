@@ -1,16 +1,10 @@
 #include "tribos/qp/SmalseM.hpp"
 
-#include <Teuchos_ParameterList.hpp>
-#include <Teuchos_StandardParameterEntryValidators.hpp>
 #include <Tpetra_Vector.hpp>
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <memory>
-
-#include "tribos/core/Errors.hpp"
-#include "tribos/core/Parameters.hpp"
 
 namespace tribos::qp {
 
@@ -142,7 +136,7 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
     const auto inner = mpgp.solve(Arho, b, omega, normArho, mu, g, [&](double gp, const Vector& x) {
       innerGmu = equalityNorm(x);
       innerBound = std::max(std::min(M * innerGmu, eta), s.innerFloor * eps);
-      return gp <= innerBound || smalseConverged(gp, innerGmu, x);
+      return gp <= innerBound || smalseConverged(gp, innerGmu, x) || (s.stopRequested && s.stopRequested());
     });
     counters.outerIterations = k + 1;
     counters.innerIterations += inner.iterations;
@@ -190,91 +184,9 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
       counters.converged = true;
       break;
     }
+    if (s.stopRequested && s.stopRequested()) break;
   }
   return counters;
-}
-
-namespace {
-template <class T>
-Teuchos::RCP<Teuchos::EnhancedNumberValidator<T>> range(T min, T max) {
-  return Teuchos::rcp(new Teuchos::EnhancedNumberValidator<T>(min, max));
-}
-}  // namespace
-
-Teuchos::RCP<const Teuchos::ParameterList> SmalseM::getValidParameters() {
-  static const Teuchos::RCP<const Teuchos::ParameterList> valid = [] {
-    const SmalseSettings d;
-    const double big = std::numeric_limits<double>::max();
-    auto pl = Teuchos::rcp(new Teuchos::ParameterList("qp"));
-    auto& sm = pl->sublist("SMALSE-M", false, "semi-monotonic augmented Lagrangian (paper Section 5, ALGORITHMS.md 4)");
-    sm.set("tolerance", d.tolerance,
-           "epsilon > 0: stop when ||g^P|| <= epsilon ||c|| and the equality test holds", range(0.0, big));
-    sm.set("eta", d.eta, "eta > 0, relative to ||c||: cap of the inner stopping bound min(M_k ||G mu||, eta)",
-           range(0.0, big));
-    sm.set("rho", d.rho, "rho > 0, relative to ||A||: penalty of A_rho = A + rho Q", range(0.0, big));
-    sm.set("initial M", d.M0, "M_0 > 0, relative to ||A||: inner precision control M_k ||G mu||", range(0.0, big));
-    sm.set("beta", d.betaM,
-           "0 < beta_M < 1: M_{k+1} = beta_M M_k when the Lagrangian grew by less than rho/2 ||G mu||^2",
-           range(0.0, 1.0));
-    sm.set("max outer iterations", d.maxOuterIterations, "k_max >= 1: cap on outer iterations", range(1, 1 << 30));
-    Teuchos::setStringToIntegralParameter<int>(
-        "equality test", d.equalityTest,
-        "outer test on ||G mu|| = ||Q mu||: \"Conventional\" (||A|| ||Q mu|| <= epsilon ||c||) or \"Paper\" "
-        "(||Q mu|| <= epsilon M_0 ||mu||)",
-        Teuchos::tuple<std::string>("Conventional", "Paper"), &sm);
-    sm.set("power iterations", d.powerIterations, ">= 1: products with A in the power method for ||A||",
-           range(1, 1 << 30));
-    sm.set("rho growth", d.rhoGrowth,
-           ">= 1: rho is multiplied by it after an outer iteration that reduced ||G mu|| by less than the target "
-           "ratio (1: fixed rho, the paper's algorithm)",
-           range(1.0, big));
-    sm.set("rho target ratio", d.rhoTargetRatio, "in (0, 1]: the reduction of ||G mu|| that rho growth asks for",
-           range(0.0, 1.0));
-    sm.set("inner floor", d.innerFloor,
-           "in [0, 1]: inner solves stop at ||g^P|| <= (inner floor) epsilon ||c|| at the latest", range(0.0, 1.0));
-    auto& mp = pl->sublist("MPGP", false, "inner solver for bounds and ellipses (ALGORITHMS.md 5)");
-    mp.set("step scale", d.mpgp.stepScale, "in (0, 2): alpha_bar = (step scale) / ||A_rho||", range(0.0, 2.0));
-    mp.set("Gamma", d.mpgp.gamma, "Gamma > 0: proportioning test ||beta||^2 <= Gamma^2 phi~^T phi", range(0.0, big));
-    mp.set("max iterations", d.mpgp.maxIterations, ">= 1: cap on MPGP iterations per inner solve", range(1, 1 << 30));
-    mp.set("optimal expansion", d.mpgp.optimalExpansion,
-           "expansion steps try the exact minimiser along the free gradient (projected, monotone safeguard) before "
-           "the fixed alpha_bar step");
-    return Teuchos::rcp_const_cast<const Teuchos::ParameterList>(pl);
-  }();
-  return valid;
-}
-
-SmalseSettings SmalseM::settingsFromParameters(Teuchos::ParameterList& pl) {
-  core::validateAndSetDefaults(pl, *getValidParameters(), "tribos::qp::SmalseM parameters");
-  const auto& sm = pl.sublist("SMALSE-M");
-  const auto& mp = pl.sublist("MPGP");
-  SmalseSettings s;
-  s.tolerance = sm.get<double>("tolerance");
-  s.eta = sm.get<double>("eta");
-  s.rho = sm.get<double>("rho");
-  s.M0 = sm.get<double>("initial M");
-  s.betaM = sm.get<double>("beta");
-  s.maxOuterIterations = sm.get<int>("max outer iterations");
-  s.equalityTest = sm.get<std::string>("equality test");
-  s.powerIterations = sm.get<int>("power iterations");
-  s.rhoGrowth = sm.get<double>("rho growth");
-  s.rhoTargetRatio = sm.get<double>("rho target ratio");
-  s.innerFloor = sm.get<double>("inner floor");
-  s.mpgp.stepScale = mp.get<double>("step scale");
-  s.mpgp.gamma = mp.get<double>("Gamma");
-  s.mpgp.maxIterations = mp.get<int>("max iterations");
-  s.mpgp.optimalExpansion = mp.get<bool>("optimal expansion");
-  // The validators' ranges are closed; the open ends are checked here.
-  const std::string where = "tribos::qp::SmalseM parameters: ";
-  core::requireInput(s.tolerance > 0.0, where + "SMALSE-M/tolerance must be > 0");
-  core::requireInput(s.eta > 0.0, where + "SMALSE-M/eta must be > 0");
-  core::requireInput(s.rho > 0.0, where + "SMALSE-M/rho must be > 0");
-  core::requireInput(s.M0 > 0.0, where + "SMALSE-M/initial M must be > 0");
-  core::requireInput(s.betaM > 0.0 && s.betaM < 1.0, where + "SMALSE-M/beta must lie in (0, 1)");
-  core::requireInput(s.rhoTargetRatio > 0.0, where + "SMALSE-M/rho target ratio must be > 0");
-  core::requireInput(s.mpgp.stepScale > 0.0 && s.mpgp.stepScale < 2.0, where + "MPGP/step scale must lie in (0, 2)");
-  core::requireInput(s.mpgp.gamma > 0.0, where + "MPGP/Gamma must be > 0");
-  return s;
 }
 
 }  // namespace tribos::qp

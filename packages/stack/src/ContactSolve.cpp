@@ -10,41 +10,18 @@
 
 #include "tribos/core/Timer.hpp"
 #include "tribos/feti/TotalFeti.hpp"
+#include "tribos/qp/SolverParameters.hpp"
+#include "tribos/stack/SceneParameters.hpp"
+#include "tribos/stack/SolveBudget.hpp"
 
 namespace tribos::stack {
 
 contact::FrictionSettings frictionSettings(const Teuchos::ParameterList& tribos) {
-  const auto& c = tribos.sublist("Contact");
-  contact::FrictionSettings f;
-  f.model = c.get<std::string>("Friction Model");
-  f.F1 = c.get<double>("F1");
-  f.F2 = c.get<double>("F2");
-  f.slipBound = c.get<double>("Slip Bound");
-  f.fixedPoint = c.get<std::string>("Fixed Point");
-  f.maxFixedPointIterations = c.get<int>("Max Fixed Point Iterations");
-  return f;
+  return readFrictionParameters(tribos.sublist("Contact"));
 }
 
 qp::SmalseSettings smalseSettings(const Teuchos::ParameterList& tribos) {
-  const auto& solver = tribos.sublist("Solver");
-  const auto& sm = solver.sublist("SMALSE-M");
-  const auto& mp = solver.sublist("MPGP");
-  qp::SmalseSettings s;
-  s.tolerance = solver.get<double>("Tolerance");
-  s.maxOuterIterations = solver.get<int>("Max Outer Iterations");
-  s.eta = sm.get<double>("eta");
-  s.rho = sm.get<double>("rho");
-  s.M0 = sm.get<double>("initial M");
-  s.betaM = sm.get<double>("beta");
-  s.equalityTest = sm.get<std::string>("equality test");
-  s.powerIterations = sm.get<int>("power iterations");
-  s.rhoGrowth = sm.get<double>("rho growth");
-  s.mpgp.stepScale = mp.get<double>("step scale");
-  s.mpgp.gamma = mp.get<double>("Gamma");
-  s.mpgp.maxIterations = mp.get<int>("max iterations");
-  s.mpgp.optimalExpansion = mp.get<bool>("optimal expansion");
-  s.mpgp.choppedProportioning = mp.get<bool>("chopped proportioning");
-  return s;
+  return qp::readSolverParameters(tribos.sublist("Solver"));
 }
 
 std::string describeContactChain(const Teuchos::ParameterList& tribos) {
@@ -118,6 +95,55 @@ void attachProgress(const Teuchos::ParameterList& solver, contact::FrictionSetti
   smalse.innerMonitor = innerProgress(clock, solver.get<double>("Progress Interval"), history);
 }
 
+// What every rank records of the SMALSE-M runs, to say which limit ended a solve that did
+// not converge: the outer iteration the last run reached, and the inner solves that ended at
+// the MPGP cap.
+struct RunRecord {
+  int lastOuterIteration = 0;
+  int innerSolvesAtCap = 0;
+};
+
+void attachRunRecord(std::shared_ptr<RunRecord> runs, int mpgpCap, contact::FrictionSettings& friction) {
+  friction.progress = [runs, mpgpCap, print = friction.progress](const qp::SmalseProgress& p, double change) {
+    runs->lastOuterIteration = p.outerIteration;
+    if (p.innerIterations >= mpgpCap) ++runs->innerSolvesAtCap;
+    if (print) print(p, change);
+  };
+}
+
+std::string relativeResiduals(const qp::SmalseCounters& c, double eps) {
+  std::ostringstream text;
+  text << "(||g^P||/||Ph|| = " << c.projectedGradient << ", ||G mu||/||Ph|| = " << c.equalityResidual
+       << ", epsilon = " << eps << ")";
+  return text.str();
+}
+
+// A solve that a budget or an iteration cap ended says which one, in the words of its
+// parameter (the contact solver's own message says only that a limit was reached). Every
+// rank reaches the same message: the counts are global.
+void nameTheLimit(const WallClockBudget& budget, const RunRecord& runs, const qp::SmalseSettings& smalse,
+                  const contact::FrictionSettings& friction, contact::ContactResult& result) {
+  if (result.converged || result.counters.nonFinite) return;
+  const bool exact = friction.model == "Coulomb" && friction.fixedPoint == "Exact";
+  std::string message;
+  if (budget.ranOut()) {
+    message = budget.message();
+  } else if (!result.counters.converged && runs.lastOuterIteration >= smalse.maxOuterIterations) {
+    message = capMessage("Solver/Max Outer Iterations", smalse.maxOuterIterations,
+                         relativeResiduals(result.counters, smalse.tolerance));
+  } else if (exact && result.counters.converged && result.fixedPointIterations >= friction.maxFixedPointIterations) {
+    std::ostringstream detail;
+    detail << "(slip bound change " << result.fixedPointChange << ", epsilon = " << smalse.tolerance << ")";
+    message = capMessage("Contact/Max Fixed Point Iterations", friction.maxFixedPointIterations, detail.str());
+  } else {
+    return;  // another reason (divergence, a KKT residual): the contact solver's message says it
+  }
+  if (runs.innerSolvesAtCap > 0)
+    message += "; " + std::to_string(runs.innerSolvesAtCap) + " inner solve(s) ended at Solver/MPGP/max iterations = " +
+               std::to_string(smalse.mpgp.maxIterations);
+  result.message = message;
+}
+
 /// Contact fields on the global mesh (rank 0): every contact node's rows belong to one rank,
 /// which sends its forces, status and opening; the geometry (gap, normal, master) is in B on
 /// every rank.
@@ -175,7 +201,11 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
   settings.dirichletPreconditioner = preconditioner == "Dirichlet";
   auto friction = frictionSettings(tribos);
   auto smalse = smalseSettings(tribos);
+  WallClockBudget budget(tribos.sublist("Solver").get<double>("Max Seconds"), comm);
+  smalse.stopRequested = budget.stopRequest();
   if (rank == 0) attachProgress(tribos.sublist("Solver"), friction, smalse, out.history);
+  auto runs = std::make_shared<RunRecord>();
+  attachRunRecord(runs, smalse.mpgp.maxIterations, friction);
   out.chain = describeContactChain(tribos);
 
   out.appliedLoad = totalLoad(owned, comm);
@@ -185,6 +215,7 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
   core::Stopwatch watch;
   out.contact = contact::solveContact(feti, B, friction, smalse, preconditioner);
   out.solveSeconds = watch.seconds();
+  nameTheLimit(budget, *runs, smalse, friction, out.contact);
   out.fApplications = feti.fApplications();
   out.displacement = gatherDisplacement(scene, feti.firstOwnedSubdomain(), out.contact.displacement, comm);
 

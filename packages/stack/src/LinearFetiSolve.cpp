@@ -5,9 +5,11 @@
 #include <Tpetra_Vector.hpp>
 
 #include <cmath>
+#include <sstream>
 
 #include "tribos/core/Timer.hpp"
 #include "tribos/stack/GlobalFields.hpp"
+#include "tribos/stack/SolveBudget.hpp"
 #include "tribos/feti/ProjectedCg.hpp"
 #include "tribos/feti/TotalFeti.hpp"
 
@@ -28,10 +30,24 @@ feti::ConstraintSpec constraintSpec(const Scene& scene) {
   return spec;
 }
 
+namespace {
+// Why projected CG stopped, naming the limit that ended it when it did not converge.
+std::string linearSolveMessage(const feti::ProjectedCgResult& solve, const feti::ProjectedCgSettings& cg,
+                               const WallClockBudget& budget) {
+  if (solve.converged) return "converged";
+  std::ostringstream detail;
+  detail << "(||P r||/||P h|| = " << solve.relativeResidual << ", tolerance " << cg.tolerance << ")";
+  if (budget.ranOut()) return budget.message() + " " + detail.str();
+  if (solve.iterations >= cg.maxIterations) return capMessage("FETI/Max Iterations", cg.maxIterations, detail.str());
+  return "projected CG broke down: P F P is not positive on Ker G " + detail.str();
+}
+}  // namespace
+
 LinearFetiResult solveLinearFeti(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
                                  const feti::ConstraintMatrix& B, const Teuchos::ParameterList& fetiList,
-                                 double tolerance, MPI_Comm comm) {
+                                 double tolerance, MPI_Comm comm, double maxSeconds) {
   LinearFetiResult result;
+  WallClockBudget budget(maxSeconds, comm);  // from the set-up of the solver, factorisation included
   auto teuchosComm = Teuchos::rcp(new Teuchos::MpiComm<int>(comm));
   const int rank = teuchosComm->getRank();
 
@@ -56,12 +72,14 @@ LinearFetiResult solveLinearFeti(const Scene& scene, std::vector<fem::SubdomainS
   cg.tolerance = tolerance;
   cg.maxIterations = fetiList.get<int>("Max Iterations");
   cg.preconditioner = fetiList.get<std::string>("Preconditioner");
+  cg.stopRequested = budget.stopRequest();
   auto lambda = feti.createDualVector();
   const auto solve = feti::solveProjectedCg(feti, *lambda, cg);
   const auto alpha = feti.rigidBodyCoefficients(*lambda);
   const auto u = feti.recoverDisplacements(*lambda, alpha);
   result.solveSeconds = watch.seconds();
   result.converged = solve.converged;
+  result.message = linearSolveMessage(solve, cg, budget);
   result.iterations = solve.iterations;
   result.relativeResidual = solve.relativeResidual;
   result.conditionEstimate = solve.conditionEstimate;

@@ -3,16 +3,49 @@
 #include <Teuchos_Array.hpp>
 #include <Teuchos_StandardParameterEntryValidators.hpp>
 
+#include <limits>
+
+#include "tribos/contact/ContactSolver.hpp"
+#include "tribos/core/ParameterTable.hpp"
+#include "tribos/core/Validators.hpp"
+#include "tribos/qp/SolverParameters.hpp"
+
 namespace tribos::stack {
 
 namespace {
 using Teuchos::ParameterList;
+constexpr int kMaxCount = 1000000000;  // iteration caps: any int a run could reach
 
-template <class T>
-Teuchos::RCP<Teuchos::EnhancedNumberValidator<T>> atLeast(T min) {
-  auto v = Teuchos::rcp(new Teuchos::EnhancedNumberValidator<T>());
-  v->setMin(min);
-  return v;
+// A template entry ("Materials/*/...") that has no default: the user gives it or leaves it
+// out. The placeholder NaN never passes the validator, so it can never reach the solver, and
+// --list-parameters prints it as "none (required)". (ParameterList::set would validate it.)
+void setWithoutDefault(ParameterList& pl, const std::string& name, const std::string& doc,
+                       const Teuchos::RCP<const Teuchos::ParameterEntryValidator>& validator) {
+  pl.setEntry(name, Teuchos::ParameterEntry(std::numeric_limits<double>::quiet_NaN(), false, false, doc, validator));
+}
+
+// The friction law, bound to contact::FrictionSettings (its member initialisers are the
+// defaults): declared in the Contact list and read back by readFrictionParameters.
+const core::ParameterTable<contact::FrictionSettings>& frictionTable() {
+  using F = contact::FrictionSettings;
+  static const auto table =
+      core::ParameterTable<F>()
+          .add("Friction Model", &F::model,
+               "\"None\" (frictionless), \"Tresca\" (given slip bound), \"Coulomb\" (successive "
+               "approximations on the slip bound), \"Bonded\" (contact rows as equalities)",
+               {"None", "Tresca", "Coulomb", "Bonded"})
+          .add("F1", &F::F1, "friction coefficient along t1 (isotropic when F1 = F2)", core::atLeast(0.0))
+          .add("F2", &F::F2, "friction coefficient along t2", core::atLeast(0.0))
+          .add("Slip Bound", &F::slipBound, "Tresca: the given slip bound g as a nodal force [force]",
+               core::atLeast(0.0))
+          .add("Fixed Point", &F::fixedPoint,
+               "Coulomb: \"Inexact\" updates the slip bound g := lambda_nu after every SMALSE-M outer iteration "
+               "(the paper's choice); \"Exact\" solves every Tresca problem to Solver/Tolerance first",
+               {"Inexact", "Exact"})
+          .add("Max Fixed Point Iterations", &F::maxFixedPointIterations,
+               "Coulomb, Exact: cap on the Tresca solves; reaching it ends the solve as not converged (exit 3)",
+               core::intRange(1, kMaxCount));
+  return table;
 }
 
 void meshParameters(ParameterList& pl) {
@@ -24,18 +57,21 @@ void meshParameters(ParameterList& pl) {
   pl.set("Subdomains Per Brick", std::string("2x1x1"),
          "Two Bricks: subdomain grid NXxNYxNZ of each brick, cubic subdomains (NX = 2 NY = 2 NZ); "
          "the paper's s = NX*NY*NZ (Table 1: 2x1x1, 4x2x2, 6x3x3, 8x4x4, 10x5x5)");
-  pl.set("H Over h", 2, "Two Bricks: elements per subdomain edge, H/h >= 1", atLeast<int>(1));
+  pl.set("H Over h", 2,
+         "Two Bricks: elements per subdomain edge H/h (a scene that cannot fit in memory is refused before the "
+         "mesh is built)",
+         core::intRange(1, 1000));
   pl.set("Initial Gap", 0.0,
-         "Two Bricks: initial gap d >= 0 [length] between the bricks (the steel brick is lifted by it); "
+         "Two Bricks: initial gap d [length] between the bricks (the steel brick is lifted by it); "
          "set Contact/Search Distance above it so that the contact nodes pair",
-         atLeast<double>(0.0));
+         core::atLeast(0.0));
   pl.set("File", std::string(""),
          "Exodus: path of the Exodus II mesh (linear tetrahedra); relative paths are relative to the scene file "
          "(gmsh meshes: convert with tribos-msh2exo)");
   pl.set("Subdomains", 4,
          "Exodus, or Decomposition = METIS: number of subdomains (METIS parts, split among bodies "
          "in proportion to their element counts; at least one per body)",
-         atLeast<int>(1));
+         core::intRange(1, 1000000));
   Teuchos::setStringToIntegralParameter<int>(
       "Decomposition", "Structured",
       "\"Structured\": the brick grid of Subdomains Per Brick (Two Bricks only); \"METIS\": "
@@ -48,10 +84,12 @@ void materialParameters(ParameterList& pl) {
   ParameterList& body = pl.sublist("*", false,
                                    "one sublist per element block (body), named after the block; "
                                    "give either the Lame constants or (E, nu)");
-  body.set("Lame Lambda", 0.0, "Lame's first parameter lambda [stress], with Lame Mu");
-  body.set("Lame Mu", 0.0, "shear modulus mu > 0 [stress], with Lame Lambda");
-  body.set("Young Modulus", 0.0, "E > 0 [stress], with Poisson Ratio (instead of Lame constants)");
-  body.set("Poisson Ratio", 0.0, "-1 < nu < 0.5, with Young Modulus");
+  setWithoutDefault(body, "Lame Lambda", "Lame's first parameter lambda [stress], with Lame Mu (3 lambda + 2 mu > 0)",
+                    core::finite());
+  setWithoutDefault(body, "Lame Mu", "shear modulus mu [stress], with Lame Lambda", core::greaterThan(0.0));
+  setWithoutDefault(body, "Young Modulus", "E [stress], with Poisson Ratio (instead of Lame constants)",
+                    core::greaterThan(0.0));
+  setWithoutDefault(body, "Poisson Ratio", "nu, with Young Modulus", core::openInterval(-1.0, 0.5));
 }
 
 void loadParameters(ParameterList& pl) {
@@ -62,9 +100,10 @@ void loadParameters(ParameterList& pl) {
   load.set("Node Set", std::string(""),
            "instead of Side Set: the traction acts on the boundary faces whose three nodes all lie in this node set "
            "(meshes with node sets only, e.g. written by meshio)");
-  load.set("Traction", Teuchos::Array<double>(3, 0.0), "{px, py, pz}: traction density [stress]");
+  load.set("Traction", Teuchos::Array<double>(3, 0.0), "{px, py, pz}: traction density [stress]",
+           core::finiteArray(3));
   load.set("Element Block", std::string(""), "element block that carries the volume force");
-  load.set("Volume Force", Teuchos::Array<double>(3, 0.0), "{bx, by, bz}: force per volume");
+  load.set("Volume Force", Teuchos::Array<double>(3, 0.0), "{bx, by, bz}: force per volume", core::finiteArray(3));
 }
 
 void boundaryParameters(ParameterList& pl) {
@@ -79,17 +118,12 @@ void boundaryParameters(ParameterList& pl) {
   condition.set("Components", std::string("xyz"),
                 "the prescribed components, any of x, y, z once each (e.g. \"x\" for a symmetry plane x = const)");
   condition.set("Displacement", Teuchos::Array<double>(3, 0.0),
-                "{ux, uy, uz} [length]: the values of the prescribed components (the others are ignored)");
+                "{ux, uy, uz} [length]: the values of the prescribed components (the others are ignored)",
+                core::finiteArray(3));
 }
 
 void contactParameters(ParameterList& pl) {
-  Teuchos::setStringToIntegralParameter<int>(
-      "Friction Model", "Coulomb",
-      "\"None\" (frictionless), \"Tresca\" (given slip bound), \"Coulomb\" (successive "
-      "approximations on the slip bound), \"Bonded\" (contact rows as equalities)",
-      Teuchos::tuple<std::string>("None", "Tresca", "Coulomb", "Bonded"), &pl);
-  pl.set("F1", 0.3, "friction coefficient along t1 (isotropic when F1 = F2), >= 0", atLeast<double>(0.0));
-  pl.set("F2", 0.3, "friction coefficient along t2, >= 0", atLeast<double>(0.0));
+  frictionTable().declare(pl);
   pl.set("Slave Side Set", std::string(""),
          "contact surface of the slave body (its nodes are projected on the master surface); empty with an "
          "empty Master Side Set: no contact (the paper's pair: contact_aluminium). Without a side set of this name, "
@@ -97,16 +131,10 @@ void contactParameters(ParameterList& pl) {
   pl.set("Master Side Set", std::string(""),
          "contact surface of the master body (the paper's: contact_steel); a node set of this name also serves, "
          "as for the Slave Side Set");
-  pl.set("Slip Bound", 0.0, "Tresca: the given slip bound g as a nodal force [force], >= 0", atLeast<double>(0.0));
-  Teuchos::setStringToIntegralParameter<int>(
-      "Fixed Point", "Inexact",
-      "Coulomb: \"Inexact\" updates the slip bound g := lambda_nu after every SMALSE-M outer iteration "
-      "(the paper's choice); \"Exact\" solves every Tresca problem to Solver/Tolerance first",
-      Teuchos::tuple<std::string>("Inexact", "Exact"), &pl);
-  pl.set("Max Fixed Point Iterations", 50, "Coulomb, Exact: cap on the Tresca solves", atLeast<int>(1));
   pl.set("T1 Direction", Teuchos::Array<double>(Teuchos::tuple<double>(1.0, 0.0, 0.0)),
          "{x, y, z}: the first tangential direction t1 (F1 acts along it), projected on each node's "
-         "tangent plane");
+         "tangent plane",
+         core::finiteArray(3));
   Teuchos::setStringToIntegralParameter<int>(
       "Discretization", "Mortar",
       "contact rows of a slave node: \"Mortar\" (dual mortar weights of the master nodes, integrated over the "
@@ -118,7 +146,7 @@ void contactParameters(ParameterList& pl) {
          "(set it above the largest initial gap that may close); a slave node with no master face that near "
          "gets no contact rows (it cannot touch). The initial gap d is the signed distance along the master "
          "normal (negative: initial overlap)",
-         atLeast<double>(0.0));
+         core::atLeast(0.0));
 }
 
 void fetiParameters(ParameterList& pl) {
@@ -137,58 +165,31 @@ void fetiParameters(ParameterList& pl) {
       "Schur complement on the constrained dofs); linear solves: projected CG; contact: MPGP's CG steps "
       "preconditioned in face (restricted to the free set)",
       Teuchos::tuple<std::string>("None", "Lumped", "Dirichlet"), &pl);
-  pl.set("Max Iterations", 1000, "linear solves: cap on projected CG iterations", atLeast<int>(1));
+  pl.set("Max Iterations", 1000,
+         "linear solves: cap on projected CG iterations; reaching it ends the solve as not converged (exit 3)",
+         core::intRange(1, kMaxCount));
 }
 
 void solverParameters(ParameterList& pl) {
-  pl.set("Tolerance", 1e-5,
-         "the paper's epsilon > 0: SMALSE-M stops when ||g^P|| and ||G mu|| are <= epsilon ||P h|| (and "
-         "Coulomb's slip bound moved by <= epsilon); linear solves: ||P r|| <= epsilon ||P h||",
-         atLeast<double>(0.0));
-  pl.set("Max Outer Iterations", 100, "cap on SMALSE-M outer iterations", atLeast<int>(1));
+  // SMALSE-M and MPGP declare their own parameters (qp/SolverParameters.hpp): Tolerance,
+  // Max Outer Iterations and the sublists SMALSE-M and MPGP. The rest is the stack's.
+  qp::declareSolverParameters(pl);
+  pl.set("Max Seconds", 0.0,
+         "wall-clock budget of the solve [s], on the clock of the progress lines (from the set-up of the solver "
+         "stack, factorisation included); when it runs out the iterations stop and the run ends as not converged "
+         "(exit 3, results written, the message names the budget); 0: no budget",
+         core::atLeast(0.0));
   pl.set("Verbose", true, "print the solver chain and one progress line per outer iteration (rank 0)");
   pl.set("Progress Interval", 2.0,
          "Verbose: inside a long inner solve, a progress line (MPGP iterations, ||g^P||, F applications, time) "
          "whenever this many seconds passed without one [s]; 0: every 10 MPGP iterations",
-         atLeast<double>(0.0));
-  ParameterList& smalse = pl.sublist("SMALSE-M", false, "augmented Lagrangian (paper Section 5)");
-  smalse.set("eta", 1.0, "eta > 0, relative to ||P h||: cap of the inner stopping bound min(M ||G mu||, eta)",
-             atLeast<double>(0.0));
-  smalse.set("rho", 10.0,
-             "rho > 0, relative to ||PFP||: penalty of A_rho = PFP + rho Q (the paper: 1; 10 needs far fewer "
-             "outer iterations here, doc/smalse_parameters.md)", atLeast<double>(0.0));
-  smalse.set("initial M", 1.0,
-             "M_0 > 0, relative to ||PFP||: inner precision control (the paper: 1e-6; doc/smalse_parameters.md)", atLeast<double>(0.0));
-  smalse.set("beta", 0.5,
-             "0 < beta_M < 1: M is multiplied by it when the Lagrangian does not grow enough (the paper: 0.1; "
-             "PERMON: 0.5)",
-             atLeast<double>(0.0));
-  Teuchos::setStringToIntegralParameter<int>(
-      "equality test", "Conventional",
-      "outer test on ||G mu||: \"Conventional\" (<= epsilon ||P h||) or \"Paper\" (<= epsilon M_0 ||mu||)",
-      Teuchos::tuple<std::string>("Conventional", "Paper"), &smalse);
-  smalse.set("rho growth", 1.0,
-             ">= 1: rho is multiplied by it after an outer iteration that reduced ||G mu|| by less than half "
-             "(1: fixed rho, the paper's algorithm)",
-             atLeast<double>(1.0));
-  smalse.set("power iterations", 50, "products with PFP in the power method for ||PFP||", atLeast<int>(1));
-  ParameterList& mpgp = pl.sublist("MPGP", false, "inner solver for the bound and elliptic-cone constraints");
-  mpgp.set("step scale", 1.9, "alpha_bar = step scale / ||A_rho||, in (0, 2)", atLeast<double>(0.0));
-  mpgp.set("Gamma", 1.0, "Gamma > 0: proportioning parameter", atLeast<double>(0.0));
-  mpgp.set("max iterations", 100000, "cap on MPGP iterations per inner solve", atLeast<int>(1));
-  mpgp.set("optimal expansion", false,
-           "expansion steps try the exact minimiser along the free gradient (projected, monotone safeguard) "
-           "before the fixed alpha_bar step");
-  mpgp.set("chopped proportioning", true,
-           "a proportioning step that follows another goes along the chopped gradient with the exact step length "
-           "on the constraint boundary (MPRGP's step, the ellipses' curvature included, projected), instead of "
-           "the gradient projection step with alpha_bar (doc/smalse_parameters.md)");
+         core::atLeast(0.0));
 }
 
 void parallelParameters(ParameterList& pl) {
   pl.set("Threads", 0,
          "threads per MPI rank over its subdomains; 0 = OMP_NUM_THREADS (or all cores)",
-         atLeast<int>(0));
+         core::intRange(0, 4096));
 }
 }  // namespace
 
@@ -206,12 +207,18 @@ Teuchos::RCP<const Teuchos::ParameterList> sceneValidParameters() {
     contactParameters(pl->sublist("Contact", false,
                                   "contact pair and friction law; without side sets the scene has no contact and "
                                   "is solved by linear T-FETI"));
-    solverParameters(pl->sublist("Solver", false, "SMALSE-M outer loop"));
+    solverParameters(pl->sublist("Solver", false, "stopping, budgets and progress of the solve; SMALSE-M and MPGP"));
     fetiParameters(pl->sublist("FETI", false, "T-FETI operators and the linear (projected CG) solver"));
     parallelParameters(pl->sublist("Parallel", false, "hybrid MPI + threads"));
     return Teuchos::rcp_const_cast<const ParameterList>(pl);
   }();
   return valid;
+}
+
+contact::FrictionSettings readFrictionParameters(const Teuchos::ParameterList& contactList) {
+  contact::FrictionSettings friction;
+  frictionTable().read(contactList, friction);
+  return friction;
 }
 
 }  // namespace tribos::stack

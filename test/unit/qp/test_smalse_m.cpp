@@ -36,13 +36,18 @@ Dense randomRowsVanishingAt(const std::vector<double>& x0, std::mt19937& gen) {
 }
 
 qp::SmalseSettings paperSettings() {
-  qp::SmalseSettings s;  // the defaults: rho = ||A||, M0 = 1e-6 ||A||, beta_M = 0.1, eta = ||c||
+  qp::SmalseSettings s;  // the paper's: rho = ||A||, M0 = 1e-6 ||A||, beta_M = 0.1, eta = ||c||
   s.tolerance = 1e-10;
   s.powerIterations = 100;
+  s.rho = 1.0;
+  s.M0 = 1e-6;
+  s.betaM = 0.1;
+  s.eta = 1.0;
+  s.mpgp.maxIterations = 10000;
   return s;
 }
 qp::SmalseSettings tunedSettings() {
-  qp::SmalseSettings s = paperSettings();  // the solver stack's defaults
+  qp::SmalseSettings s = paperSettings();  // the solver stack's defaults (SmalseSettings{})
   s.rho = 10.0;
   s.M0 = 1.0;
   s.betaM = 0.5;
@@ -286,6 +291,45 @@ TEST(SmalseM, monitorsSeeEveryOuterIterationAndTheInnerProgressInBetween) {
   }
 }
 
+TEST(SmalseM, aStopRequestEndsTheSolveAtOnceNotConverged) {
+  // The budget hook (stopRequested): once it answers true, the inner solve in progress ends
+  // and so does the outer loop, not converged; a request that never fires changes nothing.
+  std::mt19937 gen(31);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const int n = 12;
+  const Dense M = test::randomSpd(n, 300.0, 31);
+  std::vector<double> b(n);
+  for (double& v : b) v = u(gen);
+  test::BlockSet blocks;
+  for (int i = 0; i < n; i += 2) {
+    blocks.boundIndex.push_back(i);
+    blocks.lower.push_back(0.1 * u(gen));
+  }
+  std::vector<double> x0(n, 0.0);
+  blocks.project(x0);
+  const auto qp = test::makeEqualityQp(M, randomRowsVanishingAt(x0, gen), b);
+  auto solve = [&](int fireAfter, int& asked) {
+    auto settings = paperSettings();
+    settings.stopRequested = [&asked, fireAfter] { return ++asked > fireAfter; };
+    auto map = test::makeMap(n, test::selfComm());
+    auto omega = blocks.build(*map);
+    test::DenseOperator op(qp.A);
+    test::DenseProjector projector(qp.Q);
+    qp::Vector cv(map), mu(map);
+    test::scatter(qp.c, cv);
+    return qp::SmalseM(settings).solve(op, projector, cv, omega, mu);
+  };
+  int asked = 0;
+  const auto free = solve(1 << 30, asked);
+  ASSERT_TRUE(free.converged);
+  ASSERT_GT(free.innerIterations, 6);
+  asked = 0;
+  const auto stopped = solve(5, asked);
+  EXPECT_FALSE(stopped.converged);
+  EXPECT_EQ(stopped.outerIterations, 1);
+  EXPECT_LE(stopped.innerIterations, 5);
+}
+
 TEST(SmalseM, zeroRightHandSide) {
   const int n = 6;
   const Dense M = test::randomSpd(n, 10.0, 5);
@@ -314,15 +358,23 @@ TEST(SmalseM, parametersAreDocumentedAndValidated) {
     for (auto it = sub.begin(); it != sub.end(); ++it)
       EXPECT_FALSE(sub.entry(it).docString().empty()) << name << "/" << sub.name(it);
   }
-  // An empty list gives the defaults of SmalseSettings.
+  // An empty list gives the defaults of SmalseSettings, which are the solver stack's.
   Teuchos::ParameterList empty;
   const auto defaults = qp::SmalseM::settingsFromParameters(empty);
   const qp::SmalseSettings reference;
+  EXPECT_EQ(defaults.tolerance, reference.tolerance);
+  EXPECT_EQ(defaults.maxOuterIterations, reference.maxOuterIterations);
   EXPECT_EQ(defaults.rho, reference.rho);
   EXPECT_EQ(defaults.M0, reference.M0);
   EXPECT_EQ(defaults.betaM, reference.betaM);
   EXPECT_EQ(defaults.equalityTest, reference.equalityTest);
+  EXPECT_EQ(defaults.rhoTargetRatio, reference.rhoTargetRatio);
+  EXPECT_EQ(defaults.innerFloor, reference.innerFloor);
   EXPECT_EQ(defaults.mpgp.stepScale, reference.mpgp.stepScale);
+  EXPECT_EQ(defaults.mpgp.maxIterations, reference.mpgp.maxIterations);
+  EXPECT_EQ(reference.rho, 10.0);
+  EXPECT_EQ(reference.M0, 1.0);
+  EXPECT_EQ(reference.betaM, 0.5);
   // Values are read, and out-of-range or unknown names are errors.
   Teuchos::ParameterList pl;
   pl.sublist("SMALSE-M").set("rho", 10.0);
@@ -341,6 +393,20 @@ TEST(SmalseM, parametersAreDocumentedAndValidated) {
   Teuchos::ParameterList step;
   step.sublist("MPGP").set("step scale", 2.0);
   EXPECT_THROW(qp::SmalseM::settingsFromParameters(step), core::InputError);
+  // The open ends, NaN and Inf are refused too; an int is accepted for a real.
+  const std::pair<const char*, double> refused[] = {{"rho", 0.0}, {"beta", 0.0}, {"beta", 15.0},
+      {"eta", std::numeric_limits<double>::quiet_NaN()}, {"initial M", std::numeric_limits<double>::infinity()}};
+  for (const auto& [name, value] : refused) {
+    Teuchos::ParameterList pl2;
+    pl2.sublist("SMALSE-M").set(name, value);
+    EXPECT_THROW(qp::SmalseM::settingsFromParameters(pl2), core::InputError) << name << " = " << value;
+  }
+  Teuchos::ParameterList zeroTolerance;
+  zeroTolerance.set("Tolerance", 0.0);
+  EXPECT_THROW(qp::SmalseM::settingsFromParameters(zeroTolerance), core::InputError);
+  Teuchos::ParameterList intForReal;
+  intForReal.sublist("SMALSE-M").set("rho", 3);
+  EXPECT_EQ(qp::SmalseM::settingsFromParameters(intForReal).rho, 3.0);
 }
 
 namespace {

@@ -19,7 +19,10 @@ namespace tribos::core {
 void validateAndSetDefaults(Teuchos::ParameterList& user, const Teuchos::ParameterList& valid,
                             const std::string& where, int depth = 1000);
 
-/// One line per parameter: "Path/Name  (type, default value)  doc", recursing into sublists.
+/// Two lines per parameter, "Path/Name  (type, default D, range R)" and its documentation
+/// indented, the parameters of a list before its sublists (`tribos --list-parameters`;
+/// doc/tools/make_parameters_md.sh turns it into doc/parameters.md). The range is the
+/// validator's (core/Validators.hpp); a NaN default means "no default: give it".
 std::string describeParameters(const Teuchos::ParameterList& valid, const std::string& prefix = "");
 
 }  // namespace tribos::core

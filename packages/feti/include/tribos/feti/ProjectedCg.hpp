@@ -7,6 +7,7 @@
 /// (paper Section 4.2; Farhat-Mandel-Roux's projected CG). A Belos solver cannot carry
 /// the projector inside the preconditioner application the way the method needs (P M P
 /// with the projected residual), so this projected CG is our own.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,9 @@ struct ProjectedCgSettings {
   double tolerance = 1e-8;          ///< stop when ||P r|| <= tolerance ||P h||, h = d~ - F lambda_Im
   int maxIterations = 1000;
   std::string preconditioner = "None";  ///< "None" | "Lumped" | "Dirichlet"
+  /// A budget asked before every iteration; true stops the iterations (not converged).
+  /// Called on every rank at the same iterations (it may communicate). May be empty.
+  std::function<bool()> stopRequested;
 };
 
 struct ProjectedCgResult {

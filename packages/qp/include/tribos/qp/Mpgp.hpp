@@ -21,7 +21,7 @@ struct MpgpCounters;
 struct MpgpSettings {
   double stepScale = 1.9;   ///< alpha_bar = stepScale / ||A||, in (0, 2)
   double gamma = 1.0;       ///< Gamma > 0: proportioning test ||beta||^2 <= Gamma^2 phi~^T phi
-  int maxIterations = 10000;
+  int maxIterations = 100000;  ///< per inner solve
   /// Expansion steps: try the exact minimiser along the free gradient (projected, with a
   /// monotonicity safeguard) before the fixed alpha_bar step (ALGORITHMS.md 5: adapted step).
   bool optimalExpansion = false;

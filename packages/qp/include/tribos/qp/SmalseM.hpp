@@ -28,6 +28,9 @@ struct SmalseProgress {
   double innerTarget = 0.0;         ///< the inner stopping bound / ||c|| (innerMonitor only)
 };
 
+/// The defaults are the solver stack's (measured, doc/parameters.md), not the paper's (rho 1,
+/// M0 1e-6, betaM 0.1); src/SolverParameters.cpp declares each value below (not the
+/// callbacks) as a parameter.
 struct SmalseSettings {
   /// epsilon: stop when ||g^P|| <= eps ||c|| and the equality test holds. ||G mu|| is
   /// measured as ||Q mu|| (rows of G orthonormal) and, to be scale-free, enters the
@@ -35,9 +38,9 @@ struct SmalseSettings {
   /// problem scaled to ||PFP|| = 1.
   double tolerance = 1e-5;
   double eta = 1.0;            ///< eta, relative to ||c|| (the paper: eta = ||P h||)
-  double rho = 1.0;            ///< rho, relative to ||A|| (the paper: rho = ||P F P||)
-  double M0 = 1e-6;            ///< M_0 > 0, relative to ||A|| (M has the units of A); paper: 1e-6
-  double betaM = 0.1;          ///< M_{k+1} = betaM M_k when the Lagrangian does not grow enough
+  double rho = 10.0;           ///< rho, relative to ||A|| (the paper: rho = ||P F P||, i.e. 1)
+  double M0 = 1.0;             ///< M_0 > 0, relative to ||A|| (M has the units of A); paper: 1e-6
+  double betaM = 0.5;          ///< M_{k+1} = betaM M_k when the Lagrangian does not grow enough (paper: 0.1)
   int maxOuterIterations = 100;
   /// "Conventional": ||A|| ||Q mu|| <= eps ||c||;  "Paper": ||Q mu|| <= eps M_0 ||mu||
   /// (M_0 relative, so the paper's eps M_0 = 1e-11 needs a tolerance above round-off).
@@ -59,6 +62,11 @@ struct SmalseSettings {
   /// with A as they stand); collective-safe under the rule of MpgpSettings::progress, which it
   /// replaces. May be empty.
   std::function<void(const SmalseProgress&)> innerMonitor;
+  /// A budget (wall clock, ...): asked at every inner stopping test and after every outer
+  /// iteration; true ends the inner solve and then the outer loop (not converged). Called on
+  /// every rank at the same points, so it may communicate to reach one verdict; once true it
+  /// must stay true. May be empty.
+  std::function<bool()> stopRequested;
 };
 
 struct SmalseCounters {
@@ -91,15 +99,16 @@ class SmalseM {
   SmalseCounters solve(const SymmetricOperator& A, const EqualityProjector& Q, const Vector& c, SeparableSet& omega,
                        Vector& mu, const OuterHook& hook = nullptr) const;
 
-  /// The valid parameters (STYLE.md 3): sublist "SMALSE-M" (tolerance, eta, rho, initial M,
-  /// beta, max outer iterations, equality test, power iterations, rho growth, rho target
-  /// ratio, inner floor) and sublist "MPGP" (step scale, Gamma, max iterations, optimal
-  /// expansion), each with a doc string giving the symbol and its range. The defaults are
-  /// those of SmalseSettings / MpgpSettings (the paper's values where it gives them).
+  /// The valid parameters (STYLE.md 3), a list shaped like the scene's "Solver":
+  /// "Tolerance", "Max Outer Iterations", sublist "SMALSE-M" (eta, rho, initial M, beta,
+  /// equality test, rho growth, rho target ratio, power iterations, inner floor) and sublist
+  /// "MPGP" (step scale, Gamma, max iterations, optimal expansion), each with a doc string
+  /// and its validated range. The defaults are those of SmalseSettings / MpgpSettings.
+  /// Declared in src/SolverParameters.cpp (qp/SolverParameters.hpp).
   static Teuchos::RCP<const Teuchos::ParameterList> getValidParameters();
   /// Validates `pl` against getValidParameters() (unknown or mistyped names and values out
   /// of range throw core::InputError), fills in the defaults and returns the settings. The
-  /// monitor is left empty.
+  /// monitors are left empty.
   static SmalseSettings settingsFromParameters(Teuchos::ParameterList& pl);
 
  private:

@@ -23,6 +23,7 @@ feti::ConstraintSpec constraintSpec(const Scene& scene);
 
 struct LinearFetiResult {
   bool converged = false;
+  std::string message;              ///< "converged", or which limit ended the iterations
   int iterations = 0;
   long long fApplications = 0;
   double relativeResidual = 0.0;    ///< ||P r|| / ||P h||
@@ -41,9 +42,10 @@ struct LinearFetiResult {
 
 /// Solves the linear T-FETI problem. `owned` are this rank's assembled subdomain systems
 /// (stack::assembleOwnedSubdomains), consumed. `feti` is the validated "FETI" sublist.
+/// `maxSeconds` > 0: wall-clock budget (Solver/Max Seconds) from the start of this call.
 /// Collective over `comm`.
 LinearFetiResult solveLinearFeti(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
                                  const feti::ConstraintMatrix& B, const Teuchos::ParameterList& feti,
-                                 double tolerance, MPI_Comm comm);
+                                 double tolerance, MPI_Comm comm, double maxSeconds = 0.0);
 
 }  // namespace tribos::stack

@@ -1,0 +1,35 @@
+#pragma once
+/// \file SceneSize.hpp
+/// Sizes that cannot work, refused before any allocation: a generated mesh whose elements,
+/// nodes and subdomain matrices cannot fit in the machines' memory (or in 32-bit local
+/// indices) is an input error with the numbers, not a std::bad_alloc after minutes.
+#include <mpi.h>
+
+#include <string>
+
+namespace Teuchos {
+class ParameterList;
+}
+
+namespace tribos::stack {
+
+/// Lower bounds of what a Two Bricks scene allocates (zero for meshes read from a file,
+/// whose size the file bounds).
+struct SceneSize {
+  double tetrahedra = 0.0, nodes = 0.0;  ///< of the global mesh, which every rank holds
+  double primalUnknowns = 0.0;           ///< 3 per node at least (subdomain copies add more)
+  /// Bytes on one machine running `ranksHere` of `ranks` ranks: each rank its own copy of
+  /// the mesh and its share of the subdomain matrices.
+  double bytesPerMachine(int ranksHere, int ranks) const;
+};
+
+/// The estimate for a validated "Tribos" list.
+SceneSize estimateSceneSize(const Teuchos::ParameterList& tribos);
+
+/// Throws core::InputError (naming `source`, Mesh/H Over h and Mesh/Subdomains Per Brick and
+/// the numbers) when the scene needs more memory than the machine with the least memory has,
+/// or more elements or nodes than 32-bit local indices count. Collective over `comm`: every
+/// rank reaches the same verdict.
+void requireSceneFitsInMemory(const Teuchos::ParameterList& tribos, const std::string& source, MPI_Comm comm);
+
+}  // namespace tribos::stack
