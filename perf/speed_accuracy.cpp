@@ -37,8 +37,10 @@ int main(int argc, char** argv) {
     Tpetra::ScopeGuard tpetra(&argc, &argv);
     core::warmUpKokkosForThreads();
     const std::string grid = argc > 1 ? argv[1] : "4x2x2", h = argc > 2 ? argv[2] : "3";
-    const std::vector<std::string> cell = {"Mesh/Subdomains Per Brick=" + grid, "Mesh/H Over h=" + h,
-                                           "Solver/Verbose=false"};
+    std::vector<std::string> cell = {"Mesh/Subdomains Per Brick=" + grid, "Mesh/H Over h=" + h,
+                                     "Solver/Verbose=false"};
+    // Further arguments: overrides "Path=value" of a solver variant (e.g. FETI/Preconditioner=None).
+    for (int i = 3; i < argc; ++i) cell.push_back(argv[i]);
     std::printf("model,epsilon,outer,pfp_applications,solve_s,relative_error,kkt_equilibrium,kkt_complementarity,kkt_friction\n");
     for (const std::string model : {"None", "Coulomb"}) {
       auto base = cell;
