@@ -55,7 +55,7 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
   SmalseCounters counters;
   const auto map = mu.getMap();
   // Scale-free parameters: rho and M relative to ||A||, eta relative to ||c|| (= ||P h||).
-  counters.normA = powerMethod(A, *map, s.powerIterations, 1e-4, &counters.operatorApplications);
+  counters.normA = lanczosNorm(A, *map, s.normEstimateSteps, 1e-4, &counters.operatorApplications);
   double normC = c.norm2();
   if (!std::isfinite(counters.normA) || !std::isfinite(normC)) {
     counters.nonFinite = true;  // a NaN / Inf in A or c: nothing to iterate on

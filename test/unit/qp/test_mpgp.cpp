@@ -38,6 +38,22 @@ TEST(powerMethod, estimatesTheNormFromBelowAndCountsProducts) {
   }
 }
 
+TEST(lanczosNorm, estimatesTheNormFromBelowInFewerProductsThanThePowerMethod) {
+  for (unsigned seed = 1; seed <= 5; ++seed) {
+    const Dense A = test::randomSpd(40, 1000.0, seed);
+    test::DenseOperator op(A);
+    auto map = test::makeMap(40, test::selfComm());
+    long long lanczos = 0, power = 0;
+    const double estimate = qp::lanczosNorm(op, *map, 100, 1e-6, &lanczos);
+    qp::powerMethod(op, *map, 500, 1e-6, &power);
+    EXPECT_EQ(lanczos, op.applications - power);
+    EXPECT_LE(estimate, 1000.0 * (1 + 1e-12)) << "seed " << seed;  // a Ritz value never exceeds lambda_max
+    EXPECT_NEAR(estimate, 1000.0, 1000.0 * 1e-5) << "seed " << seed;
+    EXPECT_LT(lanczos, power) << "seed " << seed;
+    EXPECT_EQ(qp::lanczosNorm(op, *map, 100, 1e-6, nullptr), estimate);  // deterministic
+  }
+}
+
 TEST(Mpgp, matchesActiveSetEnumerationOnBoundConstrainedQps) {
   int activeBounds = 0;
   for (unsigned seed = 1; seed <= 30; ++seed) {

@@ -38,7 +38,7 @@ Dense randomRowsVanishingAt(const std::vector<double>& x0, std::mt19937& gen) {
 qp::SmalseSettings paperSettings() {
   qp::SmalseSettings s;  // the paper's: rho = ||A||, M0 = 1e-6 ||A||, beta_M = 0.1, eta = ||c||
   s.tolerance = 1e-10;
-  s.powerIterations = 100;
+  s.normEstimateSteps = 100;
   s.rho = 1.0;
   s.M0 = 1e-6;
   s.betaM = 0.1;

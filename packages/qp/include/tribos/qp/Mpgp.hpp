@@ -76,4 +76,11 @@ class Mpgp {
 double powerMethod(const SymmetricOperator& A, const Map& map, int iterations, double tolerance,
                    long long* applications);
 
+/// ||A|| (A symmetric positive semidefinite) as the largest Ritz value of at most `maxSteps`
+/// Lanczos steps from the same deterministic start, stopping when it changes by at most
+/// `tolerance` (relative) or the Krylov space is invariant. A lower bound of ||A||, like the
+/// power method's, reached in far fewer products; NaN when A produced a non-finite value.
+double lanczosNorm(const SymmetricOperator& A, const Map& map, int maxSteps, double tolerance,
+                   long long* applications);
+
 }  // namespace tribos::qp

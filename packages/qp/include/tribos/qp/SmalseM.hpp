@@ -50,7 +50,7 @@ struct SmalseSettings {
   /// the lumped or Dirichlet D). SMALSE-M preconditions A_rho = A + rho Q by M^-1 + Q / rho
   /// (exact on Im G^T, where A_rho = rho I). Null: none. Overrides mpgp.preconditioner.
   const SymmetricOperator* preconditioner = nullptr;
-  int powerIterations = 50;    ///< for ||A||
+  int normEstimateSteps = 50;  ///< cap on the Lanczos steps for ||A||
   double rhoGrowth = 1.0;      ///< > 1: rho *= rhoGrowth when ||G mu|| fell by less than rhoTargetRatio
   double rhoTargetRatio = 0.5;
   double innerFloor = 0.1;     ///< inner solves stop at ||g^P|| <= innerFloor eps ||c|| at the latest
@@ -101,7 +101,7 @@ class SmalseM {
 
   /// The valid parameters (STYLE.md 3), a list shaped like the scene's "Solver":
   /// "Tolerance", "Max Outer Iterations", sublist "SMALSE-M" (eta, rho, initial M, beta,
-  /// equality test, rho growth, rho target ratio, power iterations, inner floor) and sublist
+  /// equality test, rho growth, rho target ratio, norm estimate steps, inner floor) and sublist
   /// "MPGP" (step scale, Gamma, max iterations, optimal expansion), each with a doc string
   /// and its validated range. The defaults are those of SmalseSettings / MpgpSettings.
   /// Declared in src/SolverParameters.cpp (qp/SolverParameters.hpp).
