@@ -13,8 +13,10 @@
 #include <Tpetra_Core.hpp>
 #include <Teuchos_ParameterList.hpp>
 
+#include <sys/resource.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -23,6 +25,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
+#include <vector>
 
 #include "CommandLine.hpp"
 #include "tribos/stack/SubdomainSetup.hpp"
@@ -218,6 +221,22 @@ void requireWritable(const std::string& path, const std::string& option, int ran
                            "): check that its directory exists and is writable");
 }
 
+// This process's peak resident set size in KiB (getrusage: ru_maxrss is in KiB on Linux).
+long peakRssKb() {
+  struct rusage usage {};
+  return getrusage(RUSAGE_SELF, &usage) == 0 ? static_cast<long>(usage.ru_maxrss) : 0L;
+}
+
+// Every rank's peak resident set size so far, gathered on rank 0 (collective; empty elsewhere).
+std::vector<long> gatherPeakRssKb(int rank) {
+  int size = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  const long mine = peakRssKb();
+  std::vector<long> all(rank == 0 ? static_cast<size_t>(size) : 0);
+  MPI_Gather(&mine, 1, MPI_LONG, all.data(), 1, MPI_LONG, 0, MPI_COMM_WORLD);
+  return all;
+}
+
 // Moves the completed `path` + kPartialSuffix to `path`.
 void commitOutput(const std::string& path) {
   std::error_code error;
@@ -411,6 +430,9 @@ int run(int argc, char** argv, int rank) {
               << appliedLoad[1] << ", " << appliedLoad[2] << "), |reactions + load| / |load| = "
               << balance.relativeImbalance << "\n";
   }
+  // Peak memory per rank (KiB) after the solve and the stresses; rank 0's own figure is read
+  // again after writing the Exodus result, just before the summary.
+  std::vector<long> maxRssPerRankKb = gatherPeakRssKb(rank);
   if (rank == 0) {
     if (!cl.output.empty()) {
       output.globals = globalValues(summary);
@@ -420,6 +442,8 @@ int run(int argc, char** argv, int rank) {
       std::cout << "  wrote " << cl.output << "\n";
     }
     if (!cl.summary.empty()) {
+      maxRssPerRankKb[0] = std::max(maxRssPerRankKb[0], peakRssKb());
+      summary["max_rss_per_rank_kb"] = maxRssPerRankKb;
       {
         std::ofstream out(cl.summary + kPartialSuffix);
         if (!out) throw core::InputError(cl.summary + ": cannot write the summary file");

@@ -2,7 +2,8 @@
 // summary's reactions balance the applied load to 1e-8; the block, held by contact only,
 // hands its whole load to the plate, whose clamp takes it (reactions = -load, contact force
 // on the master block = -load); the Exodus result carries the stress, reaction and contact
-// fields, the per-step global variables and the input parameters as info records.
+// fields, the per-step global variables and the input parameters as info records; the
+// summary gives every rank's peak memory (max_rss_per_rank_kb).
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -58,6 +59,12 @@ TEST(resultOutputs, blockOnPlateReactionsEqualTheLoadAndTheResultSaysHowItWasMad
     EXPECT_NEAR(j["reaction_total"][c].get<double>(), plate[c].get<double>(), 1e-12 * scale);
   }
   EXPECT_GT(j["strain_energy"].get<double>(), 0.0);
+  // Peak memory: one positive figure (KiB) per rank.
+  ASSERT_TRUE(j.contains("max_rss_per_rank_kb"));
+  const auto& rss = j["max_rss_per_rank_kb"];
+  ASSERT_TRUE(rss.is_array());
+  ASSERT_EQ(rss.size(), j["n_ranks"].get<size_t>());
+  for (const auto& kb : rss) EXPECT_GT(kb.get<long>(), 0);
 
   const auto data = tribos::mesh::readExodus(exo);
   ASSERT_EQ(data.steps.size(), 1u);
