@@ -33,6 +33,21 @@ void applyBlock(const SubdomainBlock& b, const double* y, double* out) {
   }
 }
 
+// The same two products with the dofs of B_s renumbered (`dof[k]` for entry k): F works in
+// the factor's order (SubdomainSolver::permutation).
+void applyBlockTranspose(const SubdomainBlock& b, const std::vector<LO>& dof, const double* lambda, double* x, LO n) {
+  std::fill(x, x + n, 0.0);
+  for (size_t i = 0; i + 1 < b.rowPtr.size(); ++i)
+    for (LO k = b.rowPtr[i]; k < b.rowPtr[i + 1]; ++k) x[dof[k]] += b.value[k] * lambda[i];
+}
+void applyBlock(const SubdomainBlock& b, const std::vector<LO>& dof, const double* y, double* out) {
+  for (size_t i = 0; i + 1 < b.rowPtr.size(); ++i) {
+    double s = 0.0;
+    for (LO k = b.rowPtr[i]; k < b.rowPtr[i + 1]; ++k) s += b.value[k] * y[dof[k]];
+    out[i] = s;
+  }
+}
+
 // Extracts K_ii (rows and columns `interior`, ascending) from K.
 fem::CsrMatrix principalSubmatrix(const fem::CsrMatrix& K, const std::vector<LO>& keep) {
   std::vector<LO> position(K.n, -1);
@@ -61,6 +76,7 @@ struct TotalFeti::Local {
   int subdomain = 0;
   const SubdomainBlock* block = nullptr;
   std::vector<LO> overlapIndex;  ///< local index in the overlap map of each block row
+  std::vector<LO> factorDof;     ///< per entry of the block: its dof in the factor's order
   fem::SubdomainSystem system;
   SubdomainSolver solver;
   std::vector<double> denseF;    ///< explicit F_s (m x m, column-major) when requested
@@ -158,6 +174,11 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
     std::vector<std::array<double, 3>> coords;
     for (LO node : decomposition.subdomains[L.subdomain].nodes) coords.push_back(mesh.coords[node]);
     L.solver.compute(L.system, coords, settings_.factorization);
+    std::vector<LO> position(L.n());
+    const std::vector<LO>& perm = L.solver.permutation();
+    for (LO k = 0; k < L.n(); ++k) position[perm[k]] = k;
+    L.factorDof.resize(L.block->dof.size());
+    for (size_t k = 0; k < L.factorDof.size(); ++k) L.factorDof[k] = position[L.block->dof[k]];
     if (settings_.dirichletPreconditioner) buildInteriorFactor(L, settings_.factorization);
     if (settings_.explicitF) {
       // F_s = B_s K^dagger B_s^T, column by column of B_s^T (ALGORITHMS.md 3, explicit F).
@@ -454,9 +475,10 @@ void TotalFeti::applyF(const DualVector& x, DualVector& y) const {
       }
       return;
     }
-    applyBlockTranspose(*L.block, L.in.data(), L.x.data(), L.n());
-    L.solver.applyPseudoInverse(L.x.data(), L.y.data());
-    applyBlock(*L.block, L.y.data(), L.out.data());
+    // Two triangular solves in the factor's order: B_s^T scatters into it, B_s gathers from it.
+    applyBlockTranspose(*L.block, L.factorDof, L.in.data(), L.x.data(), L.n());
+    L.solver.applyPseudoInversePermuted(L.x.data());
+    applyBlock(*L.block, L.factorDof, L.x.data(), L.out.data());
   });
 }
 
