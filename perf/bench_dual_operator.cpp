@@ -116,10 +116,11 @@ int main(int argc, char** argv) {
     };
     for (auto& timing : timings) timing.wall = medianSeconds(repeats, timing.call, &timing.cpu);
     if (rank == 0) {
-      std::printf("grid,h,ranks,threads,subdomains,n_dual,factorization_s");
+      std::printf("grid,h,ranks,threads,subdomains,n_dual,factor_nonzeros,bytes_per_f_application,factorization_s");
       for (const auto& timing : timings) std::printf(",%s_ms,%s_cpu_ms", timing.name, timing.name);
-      std::printf("\n%s,%s,%d,%d,%d,%lld,%.3f", grid.c_str(), h.c_str(), size, core::numThreads(), feti.numCoarse() / 6,
-                  static_cast<long long>(feti.numDual()), feti.factorizationSeconds());
+      std::printf("\n%s,%s,%d,%d,%d,%lld,%lld,%.0f,%.3f", grid.c_str(), h.c_str(), size, core::numThreads(),
+                  feti.numCoarse() / 6, static_cast<long long>(feti.numDual()), feti.factorNonzeros(),
+                  feti.bytesPerFApplication(), feti.factorizationSeconds());
       for (const auto& timing : timings) std::printf(",%.3f,%.3f", 1e3 * timing.wall, 1e3 * timing.cpu);
       std::printf("\n");
     }

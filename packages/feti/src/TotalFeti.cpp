@@ -207,6 +207,8 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
                            e.what() + "); check Boundary/Dirichlet Node Sets and the contact surfaces");
   }
 
+  measureTraffic();
+
   // (5) e = R^T f, d~ = B K^dagger f - c, lambda_Im = G^T (G G^T)^{-1} e.
   e_.assign(numCoarse(), 0.0);
   std::vector<double> eLocal(numCoarse(), 0.0);
@@ -339,6 +341,35 @@ void TotalFeti::buildCoarseRows() {
   coarseLocal_.assign(numCoarse(), 0.0);
   coarseVector_.assign(numCoarse(), 0.0);
   coarseRhs_.assign(numCoarse(), 0.0);
+}
+
+void TotalFeti::measureTraffic() {
+  // The least each product with P F P must move between memory and the cores: every array
+  // below is read (or written) once per use, the n_s-sized work vectors of a subdomain
+  // staying in cache. doc/performance.md divides it by the triad bandwidth.
+  constexpr double kDouble = sizeof(double), kIndex = sizeof(LO);
+  double f = 0.0, factorEntries = 0.0;
+  for (const auto& L : local_) {
+    const double entries = static_cast<double>(L->block->value.size()), rows = L->m();
+    if (settings_.explicitF) {
+      f += kDouble * rows * rows;  // the dense F_s
+    } else {
+      // the factor (both substitutions) and R (either side); B_s^T and B_s (values, dofs,
+      // row pointers), its dofs in the factor's order
+      f += static_cast<double>(L->solver.pseudoInverseBytes()) + 2 * (entries * (kDouble + 2 * kIndex) + rows * kIndex);
+    }
+    f += rows * (2 * kIndex + 3 * kDouble);  // overlap indices in and out; x gathered, y added
+    factorEntries += static_cast<double>(L->solver.factor().factorNonzeros());
+  }
+  const double owned = static_cast<double>(G_->numRows), gEntries = static_cast<double>(G_->rowSubdomain.size());
+  f += owned * kDouble;  // y cleared before the sum
+  // One projection: G x by subdomain and G^T a by row (g, row or subdomain index, row
+  // pointers), x read twice, y written.
+  const double projection = gEntries * 2 * (6 * kDouble + kIndex) + owned * (kIndex + 3 * kDouble);
+  double local[2] = {f + 2 * projection, factorEntries}, global[2] = {0.0, 0.0};
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, 2, local, global);
+  bytesPerFApplication_ = global[0];
+  factorNonzeros_ = static_cast<long long>(global[1]);
 }
 
 fem::CsrMatrix TotalFeti::assembleCoarse(const std::vector<char>* rowMask) const {
@@ -547,7 +578,8 @@ void subtractGt(const TotalFeti::CoarseRows& G, const double* a, const double* x
       for (LO e = G.rowStart[r]; e < G.rowStart[r + 1]; ++e) {
         const double* g = &G.rowG[6 * static_cast<size_t>(e)];
         const double* as = a + 6 * G.rowSubdomain[e];
-        for (int j = 0; j < 6; ++j) sum += g[j] * as[j];
+        // Pairwise, not one running sum: three short dependency chains instead of six.
+        sum += (g[0] * as[0] + g[1] * as[1]) + (g[2] * as[2] + g[3] * as[3]) + (g[4] * as[4] + g[5] * as[5]);
       }
       y[r] = x[r] - sum;
     }

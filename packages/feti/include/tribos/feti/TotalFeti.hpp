@@ -102,6 +102,14 @@ class TotalFeti {
   int numOwnedSubdomains() const { return static_cast<int>(local_.size()); }
   const SubdomainSolver& subdomainSolver(int i) const;
   double factorizationSeconds() const { return factorizationSeconds_; }
+  /// Stored entries of the subdomain factors, all ranks (the summary's factor_nonzeros).
+  long long factorNonzeros() const { return factorNonzeros_; }
+  /// Bytes one product with P F P moves at least (the summary's bytes_per_f_application,
+  /// one F application per PFP product): the factors (both substitutions), R_s on either
+  /// side of each solve, B_s^T and B_s, the dual entries in and out, and two projections
+  /// (G read by subdomain and by row). All ranks. Divided by the memory bandwidth it bounds
+  /// the time of one product from below (doc/performance.md).
+  double bytesPerFApplication() const { return bytesPerFApplication_; }
 
   struct Local;       ///< one owned subdomain (implementation detail, defined in TotalFeti.cpp)
   struct CoarseRows;  ///< G on the owned rows (implementation detail, defined in TotalFeti.cpp)
@@ -129,6 +137,8 @@ class TotalFeti {
   fem::CsrMatrix assembleCoarse(const std::vector<char>* rowMask) const;
   /// g_{s,r} for the owned rows, from the owners of the subdomains (one import at set-up).
   void buildCoarseRows();
+  /// Sets factorNonzeros_ and bytesPerFApplication_ (collective).
+  void measureTraffic();
   /// The part of G x that this rank's owned rows contribute (length l, not reduced).
   void applyGOwnedRows(const double* x, double* gx) const;
 
@@ -140,6 +150,8 @@ class TotalFeti {
   Teuchos::RCP<DualVector> dTilde_, lambdaIm_;
   mutable long long fApplications_ = 0;
   double factorizationSeconds_ = 0.0;
+  long long factorNonzeros_ = 0;
+  double bytesPerFApplication_ = 0.0;
 };
 
 }  // namespace tribos::feti
