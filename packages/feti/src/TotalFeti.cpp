@@ -168,6 +168,7 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
     L->y.assign(L->n(), 0.0);
     local_[i] = std::move(L);
   }
+  gatherOverlapContributions();
   core::Stopwatch watch;
   core::forEachSubdomain(numOwned, [&](int i) {
     Local& L = *local_[i];
@@ -469,6 +470,21 @@ const double* TotalFeti::overlapValues(const DualVector& x) const {
   return readOnly(*xOverlap_);
 }
 
+void TotalFeti::gatherOverlapContributions() {
+  // For each overlap row, the entries of the subdomains' `out` that add into it, in
+  // ascending subdomain order (the order the sequential sum used): a row's sum is then one
+  // thread's business, and the same bits for any number of threads.
+  const LO numOverlap = static_cast<LO>(overlapMap_->getNodeNumElements());
+  contributionStart_.assign(numOverlap + 1, 0);
+  for (const auto& L : local_)
+    for (LO index : L->overlapIndex) ++contributionStart_[index + 1];
+  for (LO o = 0; o < numOverlap; ++o) contributionStart_[o + 1] += contributionStart_[o];
+  contribution_.resize(contributionStart_.back());
+  std::vector<LO> fill(contributionStart_.begin(), contributionStart_.end() - 1);
+  for (const auto& L : local_)
+    for (LO r = 0; r < L->m(); ++r) contribution_[fill[L->overlapIndex[r]]++] = &L->out[r];
+}
+
 template <class LocalOp>
 void TotalFeti::applyBlockwise(const DualVector& x, DualVector& y, LocalOp op) const {
   // Import (main thread), per-subdomain work on threads with raw pointers only, then a
@@ -481,11 +497,19 @@ void TotalFeti::applyBlockwise(const DualVector& x, DualVector& y, LocalOp op) c
     for (LO r = 0; r < L.m(); ++r) L.in[r] = xo[L.overlapIndex[r]];
     op(L, true);
   });
+  // Every overlap row has a contribution (that is what puts it in the overlap), so the
+  // gather overwrites the whole vector.
   DualVector& sum = overlapIsOwned_ ? y : *yOverlap_;
-  sum.putScalar(0.0);
-  double* yo = readWrite(sum);
-  for (const auto& L : local_)
-    for (LO r = 0; r < L->m(); ++r) yo[L->overlapIndex[r]] += L->out[r];
+  double* yo = sum.getLocalViewHost(Tpetra::Access::OverwriteAll).data();
+  const LO numOverlap = static_cast<LO>(contributionStart_.size()) - 1;
+  core::forEachSubdomain((numOverlap + kRowChunk - 1) / kRowChunk, [&](int chunk) {
+    const LO end = std::min<LO>(numOverlap, (chunk + 1) * kRowChunk);
+    for (LO o = chunk * kRowChunk; o < end; ++o) {
+      double total = 0.0;
+      for (LO k = contributionStart_[o]; k < contributionStart_[o + 1]; ++k) total += *contribution_[k];
+      yo[o] = total;
+    }
+  });
   if (overlapIsOwned_) return;
   y.putScalar(0.0);
   y.doExport(*yOverlap_, *importer_, Tpetra::ADD);

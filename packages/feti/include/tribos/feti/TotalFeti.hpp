@@ -118,6 +118,8 @@ class TotalFeti {
   // x (owned) -> overlap values -> per-subdomain op -> export-add into y (owned).
   template <class LocalOp>
   void applyBlockwise(const DualVector& x, DualVector& y, LocalOp op) const;
+  /// Builds contributionStart_/contribution_ from the subdomains' overlap indices.
+  void gatherOverlapContributions();
   /// x on the overlap rows (x's own values when the overlap is the owned rows).
   const double* overlapValues(const DualVector& x) const;
 
@@ -133,6 +135,10 @@ class TotalFeti {
   Teuchos::RCP<const Tpetra::Import<LO, GO>> importer_;
   bool overlapIsOwned_ = false;  ///< one rank: the overlap map is the owned map
   Teuchos::RCP<DualVector> xOverlap_, yOverlap_;  ///< applyBlockwise's, allocated once
+  /// Per overlap row, where its sum comes from: contribution_[k] for k in
+  /// [contributionStart_[row], contributionStart_[row + 1]) points into a subdomain's `out`.
+  std::vector<LO> contributionStart_;
+  std::vector<const double*> contribution_;
   /// G_I G_I^T over the rows with mask != 0 (all rows: G G^T), replicated on every rank.
   fem::CsrMatrix assembleCoarse(const std::vector<char>* rowMask) const;
   /// g_{s,r} for the owned rows, from the owners of the subdomains (one import at set-up).
