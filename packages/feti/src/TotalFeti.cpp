@@ -515,9 +515,19 @@ void TotalFeti::applyBlockwise(const DualVector& x, DualVector& y, LocalOp op) c
   y.doExport(*yOverlap_, *importer_, Tpetra::ADD);
 }
 
-void TotalFeti::applyF(const DualVector& x, DualVector& y) const {
+void TotalFeti::applyF(const DualVector& x, DualVector& y) const { applyF(x, y, true); }
+
+void TotalFeti::applyPF(const DualVector& x, DualVector& y) const {
+  // For x in Ker G, B_s^T x is orthogonal to R_s (G x = 0 block by block), and P removes
+  // what B_s R_s R_s^T adds on the way out (P G^T = 0): P F x = P B K^+ B^T x, without the
+  // two kernel projections of K^dagger.
+  applyF(x, y, settings_.explicitF);
+  project(y, y);
+}
+
+void TotalFeti::applyF(const DualVector& x, DualVector& y, bool removeKernel) const {
   ++fApplications_;
-  applyBlockwise(x, y, [this](Local& L, bool) {
+  applyBlockwise(x, y, [this, removeKernel](Local& L, bool) {
     if (settings_.explicitF) {
       // out = F_s in, column-major. A plain loop: Debian's serial OpenBLAS is not safe to
       // call from several threads at once (doc/factorization.md).
@@ -532,7 +542,10 @@ void TotalFeti::applyF(const DualVector& x, DualVector& y) const {
     }
     // Two triangular solves in the factor's order: B_s^T scatters into it, B_s gathers from it.
     applyBlockTranspose(*L.block, L.factorDof, L.in.data(), L.x.data(), L.n());
-    L.solver.applyPseudoInversePermuted(L.x.data());
+    if (removeKernel)
+      L.solver.applyPseudoInversePermuted(L.x.data());
+    else
+      L.solver.applyGeneralizedInversePermuted(L.x.data());
     applyBlock(*L.block, L.factorDof, L.x.data(), L.out.data());
   });
 }

@@ -35,6 +35,8 @@ class SubdomainSolver {
   /// v := K^dagger v for v in the order of permutation(). No allocation; like every method
   /// here, one thread at a time per object.
   void applyPseudoInversePermuted(double* v) const;
+  /// v := K^+ v (the factor alone, Lemma 1's generalised inverse) in the same order.
+  void applyGeneralizedInversePermuted(double* v) const { factor_->solveInPlace(v); }
   /// Bytes one applyPseudoInversePermuted reads: the factor (both substitutions) and R
   /// (once on either side of the solve).
   long long pseudoInverseBytes() const;

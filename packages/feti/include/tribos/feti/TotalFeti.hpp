@@ -56,6 +56,10 @@ class TotalFeti {
 
   /// y = F x. Counts one F application.
   void applyF(const DualVector& x, DualVector& y) const;
+  /// y = P F x for x in Ker G (G x = 0 to round-off, e.g. x = P z): computed as P B K^+ B^T x,
+  /// which is the same there and skips the kernel projections of K^dagger (one pass over
+  /// R_s on either side of every solve). P F P z = applyPF(P z). Counts one F application.
+  void applyPF(const DualVector& x, DualVector& y) const;
   /// gx = G x (length l, replicated).
   void applyG(const DualVector& x, std::vector<double>& gx) const;
   /// y = G^T a (a of length l, replicated).
@@ -118,6 +122,8 @@ class TotalFeti {
   // x (owned) -> overlap values -> per-subdomain op -> export-add into y (owned).
   template <class LocalOp>
   void applyBlockwise(const DualVector& x, DualVector& y, LocalOp op) const;
+  /// y = B K^dagger B^T x, or B K^+ B^T x without `removeKernel` (implicit F only).
+  void applyF(const DualVector& x, DualVector& y, bool removeKernel) const;
   /// Builds contributionStart_/contribution_ from the subdomains' overlap indices.
   void gatherOverlapContributions();
   /// x on the overlap rows (x's own values when the overlap is the owned rows).
