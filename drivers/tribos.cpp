@@ -341,6 +341,8 @@ int run(int argc, char** argv, int rank) {
     summary["proportioning_steps"] = r.counters.proportioningSteps;
     summary["pfp_applications"] = r.counters.operatorApplications;
     summary["f_applications"] = contactSolve.fApplications;
+    summary["factor_nonzeros"] = contactSolve.factorNonzeros;
+    summary["bytes_per_f_application"] = contactSolve.bytesPerFApplication;
     summary["fixed_point_iterations"] = r.fixedPointIterations;
     summary["fixed_point_change"] = r.fixedPointChange;
     summary["energy"] = r.energy;
@@ -393,6 +395,8 @@ int run(int argc, char** argv, int rank) {
     summary["tolerance"] = tolerance;
     summary["outer_iterations"] = linear.iterations;
     summary["pfp_applications"] = linear.fApplications;
+    summary["factor_nonzeros"] = linear.factorNonzeros;
+    summary["bytes_per_f_application"] = linear.bytesPerFApplication;
     summary["condition_estimate"] = linear.conditionEstimate;
     summary["kkt"] = {{"projected_residual", linear.relativeResidual},
                       {"equilibrium", linear.equilibriumResidual},

@@ -1,9 +1,14 @@
-// SparseCholesky by CHOLMOD (SuiteSparse): supernodal LL^T with a METIS nested-dissection
-// ordering computed here (METIS_NodeND) and passed as CHOLMOD_GIVEN.
+// SparseCholesky by CHOLMOD (SuiteSparse): LL^T with a METIS nested-dissection ordering
+// computed here (METIS_NodeND) and passed as CHOLMOD_GIVEN; the numeric factor is then
+// copied into a PackedFactor and CHOLMOD's freed: the solves are tribos's own loops
+// (PackedFactor.hpp), which read fewer bytes than CHOLMOD's solves and need no BLAS.
 //
-// Inside a team of threads the factor is simplicial (no BLAS, so truly concurrent); alone it
-// is supernodal and BLAS calls hold blasMutex() (see SparseCholeskyImpl.hpp). Supernodal or
-// not, every object works from any thread, one thread at a time.
+// The factorisation is simplicial (no BLAS, so truly concurrent) below kSupernodalFromDofs
+// rows and supernodal (BLAS calls under blasMutex(), see SparseCholeskyImpl.hpp) above, by
+// the size of the matrix alone: the same factor, to the bit, on any number of ranks and
+// threads (it used to depend on whether the call came from a team of threads, and with it
+// the rounding and the iteration counts). Every object works from any thread, one thread at
+// a time.
 //
 // Debian's CHOLMOD runs OpenMP loops with 4 threads inside supernodal factorisation; on
 // small subdomain matrices that is many times slower than one thread. We never want that
@@ -15,16 +20,24 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <mutex>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "PackedFactor.hpp"
 #include "SparseCholeskyImpl.hpp"
 
 namespace tribos::feti {
 
 namespace {
+/// Matrices of at least this many rows are factorised supernodally. Measured (doc/factorization.md):
+/// the solves cost the same in both modes; the supernodal factorisation is faster from
+/// ~2000 rows on one thread, but serialised by blasMutex() in a team of two threads it
+/// catches up with two concurrent simplicial ones only at ~4000-6500 rows.
+constexpr LO kSupernodalFromDofs = 4000;
+
 /// Runs f with OpenMP parallel regions disabled unless already inside an active one.
 template <class F>
 void withoutNestedThreads(F&& f) {
@@ -43,13 +56,62 @@ void withoutNestedThreads(F&& f) {
   omp_set_max_active_levels(saved);
 }
 
+/// Whether CHOLMOD factorises A supernodally: by the matrix alone, never by the thread that
+/// asks, so that the factor (and every result computed with it) is the same for any number
+/// of ranks and threads. TRIBOS_CHOLMOD_MODE=simplicial|supernodal overrides it (for the
+/// measurements of doc/performance.md).
+bool supernodalFactor(const fem::CsrMatrix& A) {
+  if (const char* mode = std::getenv("TRIBOS_CHOLMOD_MODE")) return std::string(mode) == "supernodal";
+  return A.n >= kSupernodalFromDofs;
+}
+
+/// The numeric factor as a PackedFactor: supernodal panels as they are; simplicial columns
+/// merged into fundamental supernodes (consecutive columns whose row sets nest).
+PackedFactor packFactor(const cholmod_factor& L) {
+  PackedFactor packed;
+  const LO n = static_cast<LO>(L.n);
+  const LO* perm = static_cast<const LO*>(L.Perm);
+  packed.setPermutation(std::vector<LO>(perm, perm + n));
+  const double* x = static_cast<const double*>(L.x);
+  std::vector<LO> rows;
+  if (L.is_super) {
+    const LO* super = static_cast<const LO*>(L.super);
+    const LO* pi = static_cast<const LO*>(L.pi);
+    const LO* px = static_cast<const LO*>(L.px);
+    const LO* s = static_cast<const LO*>(L.s);
+    for (size_t k = 0; k < L.nsuper; ++k) {
+      const LO first = super[k], nc = super[k + 1] - first, nsrow = pi[k + 1] - pi[k];
+      rows.assign(s + pi[k] + nc, s + pi[k + 1]);
+      const double* panel = x + px[k];
+      packed.appendSupernode(first, nc, rows, [&](LO i, LO j) { return panel[static_cast<size_t>(j) * nsrow + i]; });
+    }
+    return packed;
+  }
+  const LO* Lp = static_cast<const LO*>(L.p);
+  const LO* Li = static_cast<const LO*>(L.i);
+  const LO* Lnz = static_cast<const LO*>(L.nz);
+  // Column j + 1 continues the supernode of column j when its rows are column j's minus j.
+  auto continues = [&](LO j) {
+    if (Lnz[j] != Lnz[j + 1] + 1 || Lnz[j] < 2 || Li[Lp[j] + 1] != j + 1) return false;
+    return std::equal(Li + Lp[j] + 2, Li + Lp[j] + Lnz[j], Li + Lp[j + 1] + 1);
+  };
+  for (LO first = 0; first < n;) {
+    LO last = first;
+    while (last + 1 < n && continues(last)) ++last;
+    const LO nc = last - first + 1;
+    if (!std::is_sorted(Li + Lp[last], Li + Lp[last] + Lnz[last]) || Li[Lp[last]] != last)
+      throw std::logic_error("tribos::feti::CholmodCholesky: unsorted simplicial factor column");
+    rows.assign(Li + Lp[last] + 1, Li + Lp[last] + Lnz[last]);
+    packed.appendSupernode(first, nc, rows, [&](LO i, LO j) { return x[Lp[first + j] + (i - j)]; });
+    first = last + 1;
+  }
+  return packed;
+}
+
 class CholmodCholesky final : public SparseCholesky {
  public:
   CholmodCholesky() { cholmod_start(&common_); }
-  ~CholmodCholesky() override {
-    if (factor_) cholmod_free_factor(&factor_, &common_);
-    cholmod_finish(&common_);
-  }
+  ~CholmodCholesky() override { cholmod_finish(&common_); }
 
   void factorize(const fem::CsrMatrix& A) override {
     n_ = A.n;
@@ -70,66 +132,54 @@ class CholmodCholesky final : public SparseCholesky {
     common_.nmethods = 1;
     common_.method[0].ordering = CHOLMOD_GIVEN;
     common_.postorder = 1;
-    // Supernodal factors call BLAS, and Debian's serial OpenBLAS is not safe to call from
-    // several threads at once (measured: wrong, "not positive definite" factors). Inside a
-    // team of threads (core::forEachSubdomain with > 1 thread) the factor is simplicial,
-    // which needs no BLAS and is as fast up to ~1000 dofs (Table 1's subdomains have at
-    // most 648); alone, it is supernodal (4x faster factorisation at 10^4 dofs).
-    // A supernodal factor made outside a team still holds blasMutex(), so that it is safe
-    // beside any other BLAS user on another thread (a Tacho factor, for instance).
-    common_.supernodal = omp_get_num_threads() > 1 ? CHOLMOD_SIMPLICIAL : CHOLMOD_SUPERNODAL;
+    common_.final_ll = 1;  // L L^T, the form PackedFactor stores, in both modes
+    // One mode per matrix, whatever the thread (supernodalFactor). Supernodal factors call
+    // BLAS, and Debian's serial OpenBLAS is not safe to call from several threads at once
+    // (measured: wrong, "not positive definite" factors), so they hold blasMutex(): inside a
+    // team of threads, supernodal factorisations run one at a time. Simplicial ones need no
+    // BLAS and run concurrently.
+    common_.supernodal = supernodalFactor(A) ? CHOLMOD_SUPERNODAL : CHOLMOD_SIMPLICIAL;
     common_.print = 0;
-    if (factor_) cholmod_free_factor(&factor_, &common_);
+    cholmod_factor* L = nullptr;
     withoutNestedThreads([&] {
-      factor_ = cholmod_analyze_p(&S, const_cast<LO*>(perm.data()), nullptr, 0, &common_);
-      if (!factor_) return;
-      if (factor_->is_super) {
+      L = cholmod_analyze_p(&S, const_cast<LO*>(perm.data()), nullptr, 0, &common_);
+      if (!L) return;
+      if (L->is_super) {
         std::lock_guard<std::mutex> lock(blasMutex());
-        cholmod_factorize(&S, factor_, &common_);
+        cholmod_factorize(&S, L, &common_);
       } else {
-        cholmod_factorize(&S, factor_, &common_);
+        cholmod_factorize(&S, L, &common_);
       }
     });
-    if (!factor_ || common_.status != CHOLMOD_OK || factor_->minor < factor_->n)
+    const bool failed = !L || common_.status != CHOLMOD_OK || L->minor < L->n || !L->is_ll;
+    if (!failed) packed_ = packFactor(*L);  // the solves use the packed copy only
+    if (L) cholmod_free_factor(&L, &common_);
+    if (failed)
       throw std::runtime_error("CHOLMOD: the matrix (n = " + std::to_string(A.n) +
                                ") is not positive definite or the factorisation failed (status " +
                                std::to_string(common_.status) + ")");
+    work_.assign(packed_.workSize(), 0.0);
   }
 
   void solve(const double* b, double* x, int nrhs) const override {
-    cholmod_dense B{};
-    B.nrow = static_cast<size_t>(n_);
-    B.ncol = static_cast<size_t>(nrhs);
-    B.nzmax = B.nrow * B.ncol;
-    B.d = B.nrow;
-    B.x = const_cast<double*>(b);
-    B.xtype = CHOLMOD_REAL;
-    B.dtype = CHOLMOD_DOUBLE;
-    cholmod_dense* X = nullptr;
-    withoutNestedThreads([&] {
-      if (factor_->is_super) {  // dtrsv/dgemv, or dtrsm/dgemm for several columns
-        std::lock_guard<std::mutex> lock(blasMutex());
-        X = cholmod_solve(CHOLMOD_A, factor_, &B, &common_);
-      } else {
-        X = cholmod_solve(CHOLMOD_A, factor_, &B, &common_);
-      }
-    });
-    if (!X) throw std::runtime_error("CHOLMOD: solve failed");
-    const double* xs = static_cast<const double*>(X->x);
-    std::copy(xs, xs + B.nzmax, x);
-    cholmod_free_dense(&X, &common_);
+    // Plain loops over the packed factor: no BLAS, no lock, no allocation (work_ is this
+    // object's: one thread at a time per object, SparseCholesky.hpp).
+    for (int j = 0; j < nrhs; ++j)
+      packed_.solve(b + static_cast<size_t>(j) * n_, x + static_cast<size_t>(j) * n_, work_.data());
   }
 
+  const std::vector<LO>& permutation() const override { return packed_.permutation(); }
+  void solveInPlace(double* v) const override { packed_.solvePermuted(v, work_.data()); }
+
   LO size() const override { return n_; }
-  long long factorNonzeros() const override {
-    if (!factor_) return 0;
-    return factor_->is_super ? static_cast<long long>(factor_->xsize) : static_cast<long long>(factor_->nzmax);
-  }
+  long long factorNonzeros() const override { return packed_.storedValues(); }
+  long long solveBytes() const override { return packed_.solveBytes(); }
   std::string name() const override { return "CHOLMOD"; }
 
  private:
   mutable cholmod_common common_{};
-  cholmod_factor* factor_ = nullptr;
+  PackedFactor packed_;
+  mutable std::vector<double> work_;
   LO n_ = 0;
 };
 }  // namespace

@@ -345,6 +345,14 @@ ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decom
     }
   }
   for (int p = 0; p < numRanks; ++p) B.firstRowOfRank[p + 1] += B.firstRowOfRank[p];
+  // Row ids: the position in the order by key alone (keys are unique), i.e. the numbering
+  // that one rank uses.
+  std::vector<size_t> byKey(order);
+  std::sort(byKey.begin(), byKey.end(), [&](size_t a, size_t b) { return rows[a].key < rows[b].key; });
+  std::vector<GO> numberOf(rows.size());
+  for (size_t r = 0; r < order.size(); ++r) numberOf[order[r]] = static_cast<GO>(r);
+  B.rowId.resize(rows.size());
+  for (size_t k = 0; k < byKey.size(); ++k) B.rowId[numberOf[byKey[k]]] = static_cast<GO>(k);
   // Contact nodes in row order (the header's contract).
   std::sort(B.contact.begin(), B.contact.end(),
             [](const ContactNode& a, const ContactNode& b) { return a.normalRow < b.normalRow; });

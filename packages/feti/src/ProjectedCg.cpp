@@ -66,8 +66,7 @@ ProjectedCgResult solveProjectedCg(const TotalFeti& feti, DualVector& lambda, co
   int it = 0;
   auto stopRequested = [&] { return settings.stopRequested && settings.stopRequested(); };
   for (; it < settings.maxIterations && relative > settings.tolerance && !stopRequested(); ++it) {
-    feti.applyF(*p, *q);
-    feti.project(*q, *q);
+    feti.applyPF(*p, *q);  // p = P M P w lies in Ker G
     const double pq = p->dot(*q);
     if (!(pq > 0.0)) break;  // breakdown: F not positive on Ker G (bad constraints)
     const double alpha = wz / pq;

@@ -91,27 +91,49 @@ void SubdomainSolver::compute(const fem::SubdomainSystem& system, const std::vec
   }
   factor_ = makeSparseCholesky(factorization);
   factor_->factorize(reg);
+  const std::vector<LO>& perm = factor_->permutation();
+  kernelRows_.resize(6 * static_cast<size_t>(n_));
+  for (LO k = 0; k < n_; ++k)
+    for (int m = 0; m < 6; ++m) kernelRows_[6 * static_cast<size_t>(k) + m] = R_[static_cast<size_t>(m) * n_ + perm[k]];
+  scratch_.assign(n_, 0.0);
 }
 
 void SubdomainSolver::applyGeneralizedInverse(const double* x, double* y, int nrhs) const {
   factor_->solve(x, y, nrhs);
 }
 
-void SubdomainSolver::applyPseudoInverse(const double* x, double* y, int nrhs) const {
+void SubdomainSolver::removeKernelPermuted(double* v) const {
+  // (I - R R^T) v with R orthonormal (paper eq. (11)); the six dot products in one pass
+  // over the rows of R, each summed in the factor's order.
+  double c[6] = {0, 0, 0, 0, 0, 0};
+  const double* r = kernelRows_.data();
+  for (LO k = 0; k < n_; ++k, r += 6)
+    for (int m = 0; m < 6; ++m) c[m] += r[m] * v[k];
+  r = kernelRows_.data();
+  for (LO k = 0; k < n_; ++k, r += 6)
+    v[k] -= ((r[0] * c[0] + r[1] * c[1]) + (r[2] * c[2] + r[3] * c[3])) + (r[4] * c[4] + r[5] * c[5]);
+}
+
+void SubdomainSolver::applyPseudoInversePermuted(double* v) const {
   // K^dagger = (I - R R^T) K^+ (I - R R^T) (paper eq. (11) / Lemma 1, R orthonormal).
-  const size_t n = static_cast<size_t>(n_);
-  std::vector<double> t(x, x + n * nrhs);
-  auto removeKernel = [&](double* v) {
-    for (int m = 0; m < 6; ++m) {
-      const double* r = &R_[m * n];
-      double dot = 0.0;
-      for (size_t k = 0; k < n; ++k) dot += r[k] * v[k];
-      for (size_t k = 0; k < n; ++k) v[k] -= dot * r[k];
-    }
-  };
-  for (int j = 0; j < nrhs; ++j) removeKernel(&t[j * n]);
-  factor_->solve(t.data(), y, nrhs);
-  for (int j = 0; j < nrhs; ++j) removeKernel(&y[j * n]);
+  removeKernelPermuted(v);
+  factor_->solveInPlace(v);
+  removeKernelPermuted(v);
+}
+
+void SubdomainSolver::applyPseudoInverse(const double* x, double* y, int nrhs) const {
+  const std::vector<LO>& perm = permutation();
+  for (int j = 0; j < nrhs; ++j) {
+    const double* xj = x + static_cast<size_t>(j) * n_;
+    double* yj = y + static_cast<size_t>(j) * n_;
+    for (LO k = 0; k < n_; ++k) scratch_[k] = xj[perm[k]];
+    applyPseudoInversePermuted(scratch_.data());
+    for (LO k = 0; k < n_; ++k) yj[perm[k]] = scratch_[k];
+  }
+}
+
+long long SubdomainSolver::pseudoInverseBytes() const {
+  return factor_->solveBytes() + 2 * static_cast<long long>(sizeof(double)) * 6 * n_;
 }
 
 }  // namespace tribos::feti

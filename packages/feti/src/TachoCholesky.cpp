@@ -48,6 +48,8 @@ class TachoCholesky final : public SparseCholesky {
     rowPtr_.assign(A.rowPtr.begin(), A.rowPtr.end());
     colInd_ = A.colInd;
     perm_ = nestedDissection(A);
+    identity_.resize(n_);
+    for (LO k = 0; k < n_; ++k) identity_[k] = k;
     iperm_.assign(n_, 0);
     for (LO k = 0; k < n_; ++k) iperm_[perm_[k]] = k;
     nnzL_ = -1;
@@ -95,6 +97,13 @@ class TachoCholesky final : public SparseCholesky {
     driver_->solve(X, B, W);
   }
 
+  /// Tacho permutes internally: in-place solves work in A's own order.
+  const std::vector<LO>& permutation() const override { return identity_; }
+  void solveInPlace(double* v) const override {
+    inPlace_.assign(v, v + n_);
+    solve(inPlace_.data(), v, 1);
+  }
+
   LO size() const override { return n_; }
 
   long long factorNonzeros() const override {
@@ -111,6 +120,9 @@ class TachoCholesky final : public SparseCholesky {
     return nnzL_;
   }
 
+  /// Estimated as 12 bytes (value and row index) per entry of L, read twice: Tacho does not
+  /// report its storage.
+  long long solveBytes() const override { return 2 * 12 * factorNonzeros(); }
   std::string name() const override { return "Tacho"; }
 
  private:
@@ -135,7 +147,8 @@ class TachoCholesky final : public SparseCholesky {
   std::unique_ptr<TachoDriver> driver_;
   std::vector<size_t> rowPtr_;
   std::vector<int> colInd_, perm_, iperm_;
-  mutable std::vector<double> work_;
+  mutable std::vector<double> work_, inPlace_;
+  std::vector<LO> identity_;
   mutable long long nnzL_ = -1;
   LO n_ = 0;
 };

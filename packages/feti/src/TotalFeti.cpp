@@ -33,6 +33,21 @@ void applyBlock(const SubdomainBlock& b, const double* y, double* out) {
   }
 }
 
+// The same two products with the dofs of B_s renumbered (`dof[k]` for entry k): F works in
+// the factor's order (SubdomainSolver::permutation).
+void applyBlockTranspose(const SubdomainBlock& b, const std::vector<LO>& dof, const double* lambda, double* x, LO n) {
+  std::fill(x, x + n, 0.0);
+  for (size_t i = 0; i + 1 < b.rowPtr.size(); ++i)
+    for (LO k = b.rowPtr[i]; k < b.rowPtr[i + 1]; ++k) x[dof[k]] += b.value[k] * lambda[i];
+}
+void applyBlock(const SubdomainBlock& b, const std::vector<LO>& dof, const double* y, double* out) {
+  for (size_t i = 0; i + 1 < b.rowPtr.size(); ++i) {
+    double s = 0.0;
+    for (LO k = b.rowPtr[i]; k < b.rowPtr[i + 1]; ++k) s += b.value[k] * y[dof[k]];
+    out[i] = s;
+  }
+}
+
 // Extracts K_ii (rows and columns `interior`, ascending) from K.
 fem::CsrMatrix principalSubmatrix(const fem::CsrMatrix& K, const std::vector<LO>& keep) {
   std::vector<LO> position(K.n, -1);
@@ -61,6 +76,7 @@ struct TotalFeti::Local {
   int subdomain = 0;
   const SubdomainBlock* block = nullptr;
   std::vector<LO> overlapIndex;  ///< local index in the overlap map of each block row
+  std::vector<LO> factorDof;     ///< per entry of the block: its dof in the factor's order
   fem::SubdomainSystem system;
   SubdomainSolver solver;
   std::vector<double> denseF;    ///< explicit F_s (m x m, column-major) when requested
@@ -104,9 +120,12 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
                                                                          << " ranks, the communicator has " << size);
 
   // (1) Maps: owned rows (contiguous per rank by construction of B) and the overlap = the
-  // rows that touch this rank's subdomains.
+  // rows that touch this rank's subdomains, both in B's row order. Their global ids are
+  // B.rowId, the numbering of one rank: the same id for the same row on any number of ranks.
   const GO myFirst = B.firstRowOfRank[rank], myEnd = B.firstRowOfRank[rank + 1];
-  dualMap_ = Teuchos::rcp(new DualMap(B.numRows, static_cast<size_t>(myEnd - myFirst), 0, comm));
+  std::vector<GO> ids;
+  for (GO r = myFirst; r < myEnd; ++r) ids.push_back(rowId(r));
+  dualMap_ = Teuchos::rcp(new DualMap(B.numRows, Teuchos::ArrayView<const GO>(ids.data(), ids.size()), 0, comm));
   std::vector<GO> overlapRows;
   for (int i = 0; i < numOwned; ++i) {
     const auto& rows = B.blocks[firstOwned_ + i].rows;
@@ -114,19 +133,24 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
   }
   std::sort(overlapRows.begin(), overlapRows.end());
   overlapRows.erase(std::unique(overlapRows.begin(), overlapRows.end()), overlapRows.end());
+  ids.clear();
+  for (GO r : overlapRows) ids.push_back(rowId(r));
   overlapMap_ = Teuchos::rcp(new DualMap(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
-                                         Teuchos::ArrayView<const GO>(overlapRows.data(), overlapRows.size()), 0,
-                                         comm));
+                                         Teuchos::ArrayView<const GO>(ids.data(), ids.size()), 0, comm));
   importer_ = Teuchos::rcp(new Tpetra::Import<LO, GO>(dualMap_, overlapMap_));
+  overlapIsOwned_ = overlapMap_->isSameAs(*dualMap_);
+  xOverlap_ = Teuchos::rcp(new DualVector(overlapMap_));
+  yOverlap_ = Teuchos::rcp(new DualVector(overlapMap_));
 
-  // (2) Rigid body modes of every subdomain (every rank computes all of them: they are
-  // needed for the replicated G G^T and cost little); owned systems use the same bits.
-  std::vector<std::vector<double>> R(numSubdomains_);
-  core::forEachSubdomain(numSubdomains_, [&](int s) {
+  // (2) Rigid body modes of the owned subdomains (a rank needs no other R_s: the g_{s,r}
+  // of foreign subdomains come from their owners, buildCoarseRows).
+  std::vector<std::vector<double>> R(numOwned);
+  core::forEachSubdomain(numOwned, [&](int i) {
+    const auto& nodes = decomposition.subdomains[firstOwned_ + i].nodes;
     std::vector<std::array<double, 3>> coords;
-    coords.reserve(decomposition.subdomains[s].nodes.size());
-    for (LO node : decomposition.subdomains[s].nodes) coords.push_back(mesh.coords[node]);
-    R[s] = fem::rigidBodyModes(coords);
+    coords.reserve(nodes.size());
+    for (LO node : nodes) coords.push_back(mesh.coords[node]);
+    R[i] = fem::rigidBodyModes(coords);
   });
 
   // (3) Owned subdomains: factorise K_reg on threads.
@@ -136,20 +160,26 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
     L->subdomain = firstOwned_ + i;
     L->block = &B.blocks[L->subdomain];
     L->system = std::move(owned[i]);
-    L->system.R = R[L->subdomain];  // the same bits as every rank's copy
-    for (GO row : L->block->rows) L->overlapIndex.push_back(overlapMap_->getLocalElement(row));
+    L->system.R = std::move(R[i]);
+    for (GO row : L->block->rows) L->overlapIndex.push_back(overlapMap_->getLocalElement(rowId(row)));
     L->in.assign(L->m(), 0.0);
     L->out.assign(L->m(), 0.0);
     L->x.assign(L->n(), 0.0);
     L->y.assign(L->n(), 0.0);
     local_[i] = std::move(L);
   }
+  gatherOverlapContributions();
   core::Stopwatch watch;
   core::forEachSubdomain(numOwned, [&](int i) {
     Local& L = *local_[i];
     std::vector<std::array<double, 3>> coords;
     for (LO node : decomposition.subdomains[L.subdomain].nodes) coords.push_back(mesh.coords[node]);
     L.solver.compute(L.system, coords, settings_.factorization);
+    std::vector<LO> position(L.n());
+    const std::vector<LO>& perm = L.solver.permutation();
+    for (LO k = 0; k < L.n(); ++k) position[perm[k]] = k;
+    L.factorDof.resize(L.block->dof.size());
+    for (size_t k = 0; k < L.factorDof.size(); ++k) L.factorDof[k] = position[L.block->dof[k]];
     if (settings_.dirichletPreconditioner) buildInteriorFactor(L, settings_.factorization);
     if (settings_.explicitF) {
       // F_s = B_s K^dagger B_s^T, column by column of B_s^T (ALGORITHMS.md 3, explicit F).
@@ -166,8 +196,8 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
   double seconds = watch.seconds();
   Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &seconds, &factorizationSeconds_);
 
-  // (4) G G^T, replicated, factorised once.
-  R_ = std::move(R);
+  // (4) G on the owned rows; G G^T, replicated, factorised once.
+  buildCoarseRows();
   const fem::CsrMatrix GGt = assembleCoarse(nullptr);
   coarse_ = makeSparseCholesky(settings_.factorization);
   try {
@@ -177,6 +207,8 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
                                        "(G G^T is singular: ") +
                            e.what() + "); check Boundary/Dirichlet Node Sets and the contact surfaces");
   }
+
+  measureTraffic();
 
   // (5) e = R^T f, d~ = B K^dagger f - c, lambda_Im = G^T (G G^T)^{-1} e.
   e_.assign(numCoarse(), 0.0);
@@ -204,38 +236,199 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
   applyGt(a, *lambdaIm_);
 }
 
-fem::CsrMatrix TotalFeti::assembleCoarse(const std::vector<char>* rowMask) const {
-  // g_{s,r} = R_s^T (row r of B_s)^T, and (G G^T)_{st} = sum over rows r touching both s
-  // and t of g_{s,r} g_{t,r}^T: 6x6 blocks for subdomains that share a row of B.
-  std::vector<std::vector<std::pair<int, std::array<double, 6>>>> byRow(B_.numRows);
-  for (int s = 0; s < numSubdomains_; ++s) {
-    const auto& b = B_.blocks[s];
-    const LO n = static_cast<LO>(R_[s].size() / 6);
-    for (size_t i = 0; i < b.rows.size(); ++i) {
-      if (rowMask && !(*rowMask)[b.rows[i]]) continue;
-      std::array<double, 6> g{};
-      for (LO k = b.rowPtr[i]; k < b.rowPtr[i + 1]; ++k)
-        for (int j = 0; j < 6; ++j) g[j] += b.value[k] * R_[s][static_cast<size_t>(j) * n + b.dof[k]];
-      byRow[b.rows[i]].push_back({s, g});
-    }
+/// G on this rank's owned rows of B, stored twice over the same entries (one entry = one
+/// row r and one subdomain s it touches, with g_{s,r} = R_s^T b_{s,r}^T, 6 numbers):
+///  - by row (G^T a: each row independent, so threads over chunks of rows);
+///  - by subdomain (G x: each coarse block summed by one thread in a fixed order, so the
+///    result does not depend on the number of threads).
+/// 2 x 56 bytes per entry (~2 entries per row) instead of R_s and B_s^T per application.
+struct TotalFeti::CoarseRows {
+  GO firstRow = 0;
+  LO numRows = 0;
+  std::vector<LO> rowStart;       ///< numRows + 1; a row's entries in ascending subdomain order
+  std::vector<int> rowSubdomain;  ///< per entry
+  std::vector<double> rowG;       ///< 6 per entry
+  std::vector<int> columnSubdomain;  ///< the subdomains that touch an owned row, ascending
+  std::vector<LO> columnStart;       ///< columnSubdomain.size() + 1
+  std::vector<LO> columnRow;         ///< per entry: local owned row, ascending within a column
+  std::vector<double> columnG;       ///< 6 per entry
+};
+
+namespace {
+/// Rows per task of the row loops of the projector: fixed, so that the work split (and with
+/// it nothing, the rows being independent) does not depend on the number of threads.
+constexpr LO kRowChunk = 4096;
+}  // namespace
+
+void TotalFeti::buildCoarseRows() {
+  // Entry (s, i) = row i of B_s, numbered globally by subdomain then i: the entries of the
+  // owned subdomains are one contiguous range per rank (owned subdomains are contiguous and
+  // ascending with the rank), which is the source map of one import of the 6 columns g.
+  const int rank = comm_->getRank();
+  std::vector<GO> entryOffset(numSubdomains_ + 1, 0);
+  for (int s = 0; s < numSubdomains_; ++s) entryOffset[s + 1] = entryOffset[s] + static_cast<GO>(B_.blocks[s].rows.size());
+  const GO ownedEntries = entryOffset[firstOwned_ + numOwnedSubdomains()] - entryOffset[firstOwned_];
+  auto source = Teuchos::rcp(new DualMap(entryOffset.back(), static_cast<size_t>(ownedEntries), 0, comm_));
+  Tpetra::MultiVector<Scalar, LO, GO> gSource(source, 6);
+  {
+    auto g = gSource.getLocalViewHost(Tpetra::Access::OverwriteAll);
+    core::forEachSubdomain(numOwnedSubdomains(), [&](int i) {
+      const Local& L = *local_[i];
+      const SubdomainBlock& b = *L.block;
+      const LO n = L.n(), first = static_cast<LO>(entryOffset[L.subdomain] - entryOffset[firstOwned_]);
+      for (LO r = 0; r < L.m(); ++r)
+        for (int j = 0; j < 6; ++j) {
+          double sum = 0.0;
+          for (LO k = b.rowPtr[r]; k < b.rowPtr[r + 1]; ++k) sum += b.value[k] * L.system.R[static_cast<size_t>(j) * n + b.dof[k]];
+          g(first + r, j) = sum;
+        }
+    });
   }
-  std::vector<std::map<int, std::array<double, 36>>> blocks(numSubdomains_);
-  for (const auto& touching : byRow)
-    for (const auto& [s, gs] : touching)
-      for (const auto& [t, gt] : touching) {
-        auto& blk = blocks[s][t];
+
+  // Target: the entries of the owned rows, ordered by row, then subdomain (ascending: the
+  // order in which G G^T has always summed them).
+  auto G = std::make_unique<CoarseRows>();
+  G->firstRow = B_.firstRowOfRank[rank];
+  G->numRows = static_cast<LO>(B_.firstRowOfRank[rank + 1] - G->firstRow);
+  struct Entry {
+    LO row;
+    int subdomain;
+    GO id;
+  };
+  std::vector<Entry> entries;
+  for (int s = 0; s < numSubdomains_; ++s) {
+    const auto& rows = B_.blocks[s].rows;
+    for (size_t i = 0; i < rows.size(); ++i)
+      if (rows[i] >= G->firstRow && rows[i] < G->firstRow + G->numRows)
+        entries.push_back({static_cast<LO>(rows[i] - G->firstRow), s, entryOffset[s] + static_cast<GO>(i)});
+  }
+  std::stable_sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) { return a.row < b.row; });
+  std::vector<GO> ids(entries.size());
+  for (size_t e = 0; e < entries.size(); ++e) ids[e] = entries[e].id;
+  auto target = Teuchos::rcp(new DualMap(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
+                                         Teuchos::ArrayView<const GO>(ids.data(), ids.size()), 0, comm_));
+  Tpetra::MultiVector<Scalar, LO, GO> gTarget(target, 6);
+  gTarget.doImport(gSource, Tpetra::Import<LO, GO>(source, target), Tpetra::INSERT);
+  auto g = gTarget.getLocalViewHost(Tpetra::Access::ReadOnly);
+
+  G->rowStart.assign(G->numRows + 1, 0);
+  G->rowSubdomain.resize(entries.size());
+  G->rowG.resize(6 * entries.size());
+  for (size_t e = 0; e < entries.size(); ++e) {
+    ++G->rowStart[entries[e].row + 1];
+    G->rowSubdomain[e] = entries[e].subdomain;
+    for (int j = 0; j < 6; ++j) G->rowG[6 * e + j] = g(e, j);
+  }
+  for (LO r = 0; r < G->numRows; ++r) G->rowStart[r + 1] += G->rowStart[r];
+
+  // The same entries by subdomain (stable: rows stay ascending within a subdomain).
+  std::vector<size_t> order(entries.size());
+  for (size_t e = 0; e < order.size(); ++e) order[e] = e;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t a, size_t b) { return entries[a].subdomain < entries[b].subdomain; });
+  G->columnRow.resize(entries.size());
+  G->columnG.resize(6 * entries.size());
+  for (size_t k = 0; k < order.size(); ++k) {
+    const Entry& e = entries[order[k]];
+    if (G->columnSubdomain.empty() || G->columnSubdomain.back() != e.subdomain) {
+      G->columnSubdomain.push_back(e.subdomain);
+      G->columnStart.push_back(static_cast<LO>(k));
+    }
+    G->columnRow[k] = e.row;
+    for (int j = 0; j < 6; ++j) G->columnG[6 * k + j] = g(order[k], j);
+  }
+  G->columnStart.push_back(static_cast<LO>(order.size()));
+  G_ = std::move(G);
+  coarseLocal_.assign(numCoarse(), 0.0);
+  coarseVector_.assign(numCoarse(), 0.0);
+  coarseRhs_.assign(numCoarse(), 0.0);
+}
+
+void TotalFeti::measureTraffic() {
+  // The least each product with P F P must move between memory and the cores: every array
+  // below is read (or written) once per use, the n_s-sized work vectors of a subdomain
+  // staying in cache. doc/performance.md divides it by the triad bandwidth.
+  constexpr double kDouble = sizeof(double), kIndex = sizeof(LO);
+  double f = 0.0, factorEntries = 0.0;
+  for (const auto& L : local_) {
+    const double entries = static_cast<double>(L->block->value.size()), rows = L->m();
+    if (settings_.explicitF) {
+      f += kDouble * rows * rows;  // the dense F_s
+    } else {
+      // the factor (both substitutions) and R (either side); B_s^T and B_s (values, dofs,
+      // row pointers), its dofs in the factor's order
+      f += static_cast<double>(L->solver.pseudoInverseBytes()) + 2 * (entries * (kDouble + 2 * kIndex) + rows * kIndex);
+    }
+    f += rows * (2 * kIndex + 3 * kDouble);  // overlap indices in and out; x gathered, y added
+    factorEntries += static_cast<double>(L->solver.factor().factorNonzeros());
+  }
+  const double owned = static_cast<double>(G_->numRows), gEntries = static_cast<double>(G_->rowSubdomain.size());
+  f += owned * kDouble;  // y cleared before the sum
+  // One projection: G x by subdomain and G^T a by row (g, row or subdomain index, row
+  // pointers), x read twice, y written.
+  const double projection = gEntries * 2 * (6 * kDouble + kIndex) + owned * (kIndex + 3 * kDouble);
+  double local[2] = {f + 2 * projection, factorEntries}, global[2] = {0.0, 0.0};
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, 2, local, global);
+  bytesPerFApplication_ = global[0];
+  factorNonzeros_ = static_cast<long long>(global[1]);
+}
+
+fem::CsrMatrix TotalFeti::assembleCoarse(const std::vector<char>* rowMask) const {
+  // (G G^T)_{st} = sum over rows r touching both s and t of g_{s,r} g_{t,r}^T: 6x6 blocks
+  // for subdomains that share a row of B. The block pattern follows from B alone (every
+  // rank has it); each rank adds the products of its owned rows into the replicated value
+  // array, in row order, and one all-reduce sums the ranks' parts.
+  auto counted = [&](GO row) { return !rowMask || (*rowMask)[row]; };
+  std::vector<std::vector<int>> touching(B_.numRows);
+  for (int s = 0; s < numSubdomains_; ++s)
+    for (GO row : B_.blocks[s].rows)
+      if (counted(row)) touching[row].push_back(s);
+  std::vector<std::vector<int>> neighbours(numSubdomains_);
+  for (const auto& subdomains : touching)
+    for (int s : subdomains) neighbours[s].insert(neighbours[s].end(), subdomains.begin(), subdomains.end());
+  touching.clear();
+  touching.shrink_to_fit();
+  std::vector<LO> blockStart(numSubdomains_ + 1, 0);  // first block of block row s
+  for (int s = 0; s < numSubdomains_; ++s) {
+    auto& t = neighbours[s];
+    std::sort(t.begin(), t.end());
+    t.erase(std::unique(t.begin(), t.end()), t.end());
+    blockStart[s + 1] = blockStart[s] + static_cast<LO>(t.size());
+  }
+  auto blockOf = [&](int s, int t) {
+    const auto& n = neighbours[s];
+    return blockStart[s] + static_cast<LO>(std::lower_bound(n.begin(), n.end(), t) - n.begin());
+  };
+
+  std::vector<double> local(36 * static_cast<size_t>(blockStart.back()), 0.0);
+  const CoarseRows& G = *G_;
+  for (LO r = 0; r < G.numRows; ++r) {
+    if (!counted(G.firstRow + r)) continue;
+    for (LO e = G.rowStart[r]; e < G.rowStart[r + 1]; ++e)
+      for (LO f = G.rowStart[r]; f < G.rowStart[r + 1]; ++f) {
+        double* block = &local[36 * static_cast<size_t>(blockOf(G.rowSubdomain[e], G.rowSubdomain[f]))];
+        const double *gs = &G.rowG[6 * e], *gt = &G.rowG[6 * f];
         for (int a = 0; a < 6; ++a)
-          for (int c = 0; c < 6; ++c) blk[a * 6 + c] += gs[a] * gt[c];
+          for (int c = 0; c < 6; ++c) block[a * 6 + c] += gs[a] * gt[c];
       }
+  }
+  std::vector<double> blocks(local.size(), 0.0);
+  if (comm_->getSize() == 1)
+    blocks.swap(local);
+  else
+    Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, static_cast<int>(local.size()), local.data(), blocks.data());
+
   fem::CsrMatrix GGt;
-  GGt.n = 6 * numSubdomains_;
+  GGt.n = numCoarse();
   GGt.rowPtr.assign(GGt.n + 1, 0);
+  GGt.colInd.reserve(blocks.size());
+  GGt.values.reserve(blocks.size());
   for (int s = 0; s < numSubdomains_; ++s)
     for (int a = 0; a < 6; ++a) {
-      for (const auto& [t, blk] : blocks[s])
+      for (LO k = blockStart[s]; k < blockStart[s + 1]; ++k)
         for (int c = 0; c < 6; ++c) {
-          GGt.colInd.push_back(6 * t + c);
-          GGt.values.push_back(blk[a * 6 + c]);
+          GGt.colInd.push_back(6 * neighbours[s][k - blockStart[s]] + c);
+          GGt.values.push_back(blocks[36 * static_cast<size_t>(k) + a * 6 + c]);
         }
       GGt.rowPtr[6 * s + a + 1] = static_cast<LO>(GGt.colInd.size());
     }
@@ -249,7 +442,7 @@ std::vector<double> TotalFeti::rigidBodyCoefficients(const DualVector& lambda,
   residual.update(-1.0, *dTilde_, 1.0);
   {
     auto data = residual.getLocalViewHost(Tpetra::Access::ReadWrite);
-    const GO first = dualMap_->getMinGlobalIndex();
+    const GO first = B_.firstRowOfRank[comm_->getRank()];
     for (size_t i = 0; i < data.extent(0); ++i)
       if (!rowMask[first + static_cast<GO>(i)]) data(i, 0) = 0.0;
   }
@@ -271,28 +464,70 @@ Teuchos::RCP<DualVector> TotalFeti::createDualVector() const { return Teuchos::r
 
 const SubdomainSolver& TotalFeti::subdomainSolver(int i) const { return local_.at(i)->solver; }
 
+const double* TotalFeti::overlapValues(const DualVector& x) const {
+  if (overlapIsOwned_) return readOnly(x);
+  xOverlap_->doImport(x, *importer_, Tpetra::INSERT);
+  return readOnly(*xOverlap_);
+}
+
+void TotalFeti::gatherOverlapContributions() {
+  // For each overlap row, the entries of the subdomains' `out` that add into it, in
+  // ascending subdomain order (the order the sequential sum used): a row's sum is then one
+  // thread's business, and the same bits for any number of threads.
+  const LO numOverlap = static_cast<LO>(overlapMap_->getNodeNumElements());
+  contributionStart_.assign(numOverlap + 1, 0);
+  for (const auto& L : local_)
+    for (LO index : L->overlapIndex) ++contributionStart_[index + 1];
+  for (LO o = 0; o < numOverlap; ++o) contributionStart_[o + 1] += contributionStart_[o];
+  contribution_.resize(contributionStart_.back());
+  std::vector<LO> fill(contributionStart_.begin(), contributionStart_.end() - 1);
+  for (const auto& L : local_)
+    for (LO r = 0; r < L->m(); ++r) contribution_[fill[L->overlapIndex[r]]++] = &L->out[r];
+}
+
 template <class LocalOp>
 void TotalFeti::applyBlockwise(const DualVector& x, DualVector& y, LocalOp op) const {
   // Import (main thread), per-subdomain work on threads with raw pointers only, then a
-  // sequential, deterministic sum into the overlap vector and an export-add.
-  DualVector xOverlap(overlapMap_), yOverlap(overlapMap_);
-  xOverlap.doImport(x, *importer_, Tpetra::INSERT);
-  const double* xo = readOnly(xOverlap);
+  // sequential, deterministic sum into the overlap vector and an export-add. The overlap
+  // vectors live as long as this object (no allocation per application); when the overlap
+  // is the owned rows themselves (one rank), x and y serve as their own overlap vectors.
+  const double* xo = overlapValues(x);
   core::forEachSubdomain(numOwnedSubdomains(), [&](int i) {
     Local& L = *local_[i];
     for (LO r = 0; r < L.m(); ++r) L.in[r] = xo[L.overlapIndex[r]];
     op(L, true);
   });
-  double* yo = readWrite(yOverlap);
-  for (const auto& L : local_)
-    for (LO r = 0; r < L->m(); ++r) yo[L->overlapIndex[r]] += L->out[r];
+  // Every overlap row has a contribution (that is what puts it in the overlap), so the
+  // gather overwrites the whole vector.
+  DualVector& sum = overlapIsOwned_ ? y : *yOverlap_;
+  double* yo = sum.getLocalViewHost(Tpetra::Access::OverwriteAll).data();
+  const LO numOverlap = static_cast<LO>(contributionStart_.size()) - 1;
+  core::forEachSubdomain((numOverlap + kRowChunk - 1) / kRowChunk, [&](int chunk) {
+    const LO end = std::min<LO>(numOverlap, (chunk + 1) * kRowChunk);
+    for (LO o = chunk * kRowChunk; o < end; ++o) {
+      double total = 0.0;
+      for (LO k = contributionStart_[o]; k < contributionStart_[o + 1]; ++k) total += *contribution_[k];
+      yo[o] = total;
+    }
+  });
+  if (overlapIsOwned_) return;
   y.putScalar(0.0);
-  y.doExport(yOverlap, *importer_, Tpetra::ADD);
+  y.doExport(*yOverlap_, *importer_, Tpetra::ADD);
 }
 
-void TotalFeti::applyF(const DualVector& x, DualVector& y) const {
+void TotalFeti::applyF(const DualVector& x, DualVector& y) const { applyF(x, y, true); }
+
+void TotalFeti::applyPF(const DualVector& x, DualVector& y) const {
+  // For x in Ker G, B_s^T x is orthogonal to R_s (G x = 0 block by block), and P removes
+  // what B_s R_s R_s^T adds on the way out (P G^T = 0): P F x = P B K^+ B^T x, without the
+  // two kernel projections of K^dagger.
+  applyF(x, y, settings_.explicitF);
+  project(y, y);
+}
+
+void TotalFeti::applyF(const DualVector& x, DualVector& y, bool removeKernel) const {
   ++fApplications_;
-  applyBlockwise(x, y, [this](Local& L, bool) {
+  applyBlockwise(x, y, [this, removeKernel](Local& L, bool) {
     if (settings_.explicitF) {
       // out = F_s in, column-major. A plain loop: Debian's serial OpenBLAS is not safe to
       // call from several threads at once (doc/factorization.md).
@@ -305,9 +540,13 @@ void TotalFeti::applyF(const DualVector& x, DualVector& y) const {
       }
       return;
     }
-    applyBlockTranspose(*L.block, L.in.data(), L.x.data(), L.n());
-    L.solver.applyPseudoInverse(L.x.data(), L.y.data());
-    applyBlock(*L.block, L.y.data(), L.out.data());
+    // Two triangular solves in the factor's order: B_s^T scatters into it, B_s gathers from it.
+    applyBlockTranspose(*L.block, L.factorDof, L.in.data(), L.x.data(), L.n());
+    if (removeKernel)
+      L.solver.applyPseudoInversePermuted(L.x.data());
+    else
+      L.solver.applyGeneralizedInversePermuted(L.x.data());
+    applyBlock(*L.block, L.factorDof, L.x.data(), L.out.data());
   });
 }
 
@@ -342,50 +581,79 @@ void TotalFeti::applyDirichlet(const DualVector& x, DualVector& y) const {
   });
 }
 
-void TotalFeti::applyG(const DualVector& x, std::vector<double>& gx) const {
-  DualVector xOverlap(overlapMap_);
-  xOverlap.doImport(x, *importer_, Tpetra::INSERT);
-  const double* xo = readOnly(xOverlap);
-  std::vector<double> local(numCoarse(), 0.0);
-  core::forEachSubdomain(numOwnedSubdomains(), [&](int i) {
-    Local& L = *local_[i];
-    for (LO r = 0; r < L.m(); ++r) L.in[r] = xo[L.overlapIndex[r]];
-    applyBlockTranspose(*L.block, L.in.data(), L.x.data(), L.n());
-    for (int j = 0; j < 6; ++j) {
-      double s = 0.0;
-      for (LO k = 0; k < L.n(); ++k) s += L.system.R[static_cast<size_t>(j) * L.n() + k] * L.x[k];
-      local[6 * L.subdomain + j] = s;
+void TotalFeti::applyGOwnedRows(const double* x, double* gx) const {
+  // (G x)_s = sum over the owned rows r that s touches of g_{s,r} x_r; one thread per
+  // subdomain block, entries in row order: the same bits for any number of threads.
+  const CoarseRows& G = *G_;
+  std::fill(gx, gx + numCoarse(), 0.0);
+  core::forEachSubdomain(static_cast<int>(G.columnSubdomain.size()), [&](int c) {
+    double sum[6] = {0, 0, 0, 0, 0, 0};
+    for (LO k = G.columnStart[c]; k < G.columnStart[c + 1]; ++k) {
+      const double xr = x[G.columnRow[k]];
+      const double* g = &G.columnG[6 * static_cast<size_t>(k)];
+      for (int j = 0; j < 6; ++j) sum[j] += g[j] * xr;
     }
+    std::copy(sum, sum + 6, gx + 6 * G.columnSubdomain[c]);
   });
-  gx.assign(numCoarse(), 0.0);
-  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, numCoarse(), local.data(), gx.data());
 }
 
-void TotalFeti::applyGt(const std::vector<double>& a, DualVector& y) const {
-  applyBlockwise(y, y, [&a](Local& L, bool) {
-    const LO n = L.n();
-    for (LO k = 0; k < n; ++k) {
-      double s = 0.0;
-      for (int j = 0; j < 6; ++j) s += L.system.R[static_cast<size_t>(j) * n + k] * a[6 * L.subdomain + j];
-      L.y[k] = s;
+void TotalFeti::applyG(const DualVector& x, std::vector<double>& gx) const {
+  applyGOwnedRows(readOnly(x), coarseLocal_.data());
+  gx.resize(numCoarse());
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, numCoarse(), coarseLocal_.data(), gx.data());
+}
+
+namespace {
+// y_r = x_r - sum over the entries of row r of g_{s,r} . a_s, for the owned rows
+// (y may be x: each row reads its x_r before writing y_r).
+void subtractGt(const TotalFeti::CoarseRows& G, const double* a, const double* x, double* y) {
+  const int chunks = static_cast<int>((G.numRows + kRowChunk - 1) / kRowChunk);
+  core::forEachSubdomain(chunks, [&](int chunk) {
+    const LO end = std::min<LO>(G.numRows, (chunk + 1) * kRowChunk);
+    for (LO r = chunk * kRowChunk; r < end; ++r) {
+      double sum = 0.0;
+      for (LO e = G.rowStart[r]; e < G.rowStart[r + 1]; ++e) {
+        const double* g = &G.rowG[6 * static_cast<size_t>(e)];
+        const double* as = a + 6 * G.rowSubdomain[e];
+        // Pairwise, not one running sum: three short dependency chains instead of six.
+        sum += (g[0] * as[0] + g[1] * as[1]) + (g[2] * as[2] + g[3] * as[3]) + (g[4] * as[4] + g[5] * as[5]);
+      }
+      y[r] = x[r] - sum;
     }
-    applyBlock(*L.block, L.y.data(), L.out.data());
   });
+}
+}  // namespace
+
+void TotalFeti::applyGt(const std::vector<double>& a, DualVector& y) const {
+  // y = G^T a = 0 - (-G^T a)
+  std::vector<double> minusA(a.size());
+  for (size_t i = 0; i < a.size(); ++i) minusA[i] = -a[i];
+  y.putScalar(0.0);
+  double* yd = readWrite(y);
+  subtractGt(*G_, minusA.data(), yd, yd);
 }
 
 void TotalFeti::solveCoarse(std::vector<double>& a) const {
-  std::vector<double> b = a;
-  coarse_->solve(b.data(), a.data());
+  std::copy(a.begin(), a.end(), coarseRhs_.begin());
+  coarse_->solve(coarseRhs_.data(), a.data());
 }
 
 void TotalFeti::project(const DualVector& x, DualVector& y) const {
-  std::vector<double> a;
-  applyG(x, a);
-  solveCoarse(a);
-  DualVector correction(dualMap_);
-  applyGt(a, correction);
-  if (&y != &x) y.assign(x);
-  y.update(-1.0, correction, 1.0);
+  // y = x - G^T (G G^T)^{-1} G x on the owned rows: one all-reduce of length l, no import,
+  // no allocation.
+  const double* xd = nullptr;
+  double* yd = nullptr;
+  if (&x == &y) {
+    yd = readWrite(y);
+    xd = yd;
+  } else {
+    xd = readOnly(x);
+    yd = y.getLocalViewHost(Tpetra::Access::OverwriteAll).data();
+  }
+  applyGOwnedRows(xd, coarseLocal_.data());
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, numCoarse(), coarseLocal_.data(), coarseVector_.data());
+  solveCoarse(coarseVector_);
+  subtractGt(*G_, coarseVector_.data(), xd, yd);
 }
 
 std::vector<double> TotalFeti::rigidBodyCoefficients(const DualVector& lambda) const {
@@ -405,9 +673,7 @@ void TotalFeti::applyB(const std::vector<std::vector<double>>& u, DualVector& y)
 }
 
 double TotalFeti::equilibriumResidual(const DualVector& lambda, const std::vector<std::vector<double>>& u) const {
-  DualVector overlap(overlapMap_);
-  overlap.doImport(lambda, *importer_, Tpetra::INSERT);
-  const double* lo = readOnly(overlap);
+  const double* lo = overlapValues(lambda);
   double worst = 0.0;
   for (size_t i = 0; i < local_.size(); ++i) {
     Local& L = *local_[i];
@@ -444,9 +710,7 @@ double TotalFeti::loadNormInf() const {
 
 std::vector<std::vector<double>> TotalFeti::recoverDisplacements(const DualVector& lambda,
                                                                  const std::vector<double>& alpha) const {
-  DualVector overlap(overlapMap_);
-  overlap.doImport(lambda, *importer_, Tpetra::INSERT);
-  const double* lo = readOnly(overlap);
+  const double* lo = overlapValues(lambda);
   std::vector<std::vector<double>> u(local_.size());
   core::forEachSubdomain(numOwnedSubdomains(), [&](int i) {
     Local& L = *local_[i];

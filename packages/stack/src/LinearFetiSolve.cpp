@@ -84,6 +84,8 @@ LinearFetiResult solveLinearFeti(const Scene& scene, std::vector<fem::SubdomainS
   result.relativeResidual = solve.relativeResidual;
   result.conditionEstimate = solve.conditionEstimate;
   result.fApplications = feti.fApplications();
+  result.factorNonzeros = feti.factorNonzeros();
+  result.bytesPerFApplication = feti.bytesPerFApplication();
 
   // KKT of the discrete problem: equilibrium per subdomain, and B u = c.
   result.equilibriumResidual = feti.equilibriumResidual(*lambda, u) / (fNorm > 0.0 ? fNorm : 1.0);

@@ -174,6 +174,7 @@ TEST(ConstraintMatrix, ownershipIsContiguousAndTheRowsDoNotDependOnTheRankCount)
   for (int parts : {0, 7}) {
     const mesh::TwoBricksSpec spec{{4, 2, 2}, 2};
     std::multiset<std::vector<std::tuple<int, LO, long long>>> reference;
+    std::vector<std::vector<std::tuple<int, LO, long long>>> referenceById;
     for (int ranks : {1, 2, 4}) {
       SCOPED_TRACE("metis " + std::to_string(parts) + " / ranks " + std::to_string(ranks));
       const auto b = build(spec, paperSpec(), ranks, parts);
@@ -204,6 +205,18 @@ TEST(ConstraintMatrix, ownershipIsContiguousAndTheRowsDoNotDependOnTheRankCount)
       }
       if (reference.empty()) reference = set;
       EXPECT_EQ(set, reference);
+      // Row ids: a permutation, the identity on one rank, and the same row (the same entries)
+      // under the same id for every rank count.
+      ASSERT_EQ(b.B.rowId.size(), static_cast<size_t>(b.B.numRows));
+      std::vector<std::vector<std::tuple<int, LO, long long>>> byId(b.B.numRows);
+      for (GO r = 0; r < b.B.numRows; ++r) {
+        ASSERT_GE(b.B.rowId[r], 0);
+        ASSERT_LT(b.B.rowId[r], b.B.numRows);
+        if (ranks == 1) EXPECT_EQ(b.B.rowId[r], r);
+        for (const auto& [col, v] : rows[r]) byId[b.B.rowId[r]].push_back({col.first, col.second, std::llround(v * 1e12)});
+      }
+      if (referenceById.empty()) referenceById = byId;
+      EXPECT_EQ(byId, referenceById);
       // Contact nodes in row order, triples consecutive, ordered by slave node within a rank.
       for (size_t i = 0; i < b.B.contact.size(); ++i) {
         const GO r = b.B.contact[i].normalRow;

@@ -92,6 +92,11 @@ struct ConstraintMatrix {
   std::vector<RowKind> kind;         ///< per row
   std::vector<double> c;             ///< per row: scaled gap for N rows, 0 otherwise
   std::vector<GO> firstRowOfRank;    ///< numRanks + 1 entries
+  /// Per row: its index in the numbering by the documented order alone, ranks ignored — the
+  /// numbering on one rank (rowId[r] == r there), the same row for every number of ranks.
+  /// The dual map's global ids: whatever depends on them (the power method's start vector)
+  /// is the same on every rank count (issue 9).
+  std::vector<GO> rowId;
   std::vector<ContactNode> contact;  ///< contact nodes, in row order
   GO unpairedSlaveNodes = 0;         ///< slave nodes with no master face within the search distance
   GO overlappingPairs = 0;           ///< contact nodes with a negative initial gap

@@ -1,12 +1,14 @@
 #pragma once
 /// \file SparseCholesky.hpp
-/// One interface for the supernodal sparse Cholesky factorisations of SPD matrices (the
-/// regularised subdomain stiffness K_reg, G G^T, K_ii). Implementations: "CHOLMOD"
-/// (SuiteSparse, the default) and "Tacho" (Trilinos's Tacho::Driver), both with a METIS
-/// fill-reducing ordering. See doc/factorization.md for the measurements behind the default.
+/// One interface for the sparse Cholesky factorisations of SPD matrices (the regularised
+/// subdomain stiffness K_reg, G G^T, K_ii). Implementations: "CHOLMOD" (SuiteSparse for the
+/// factorisation, tribos's packed factor for the solves; the default) and "Tacho"
+/// (Trilinos's Tacho::Driver), both with a METIS fill-reducing ordering. See
+/// doc/factorization.md for the measurements behind the default.
 ///
 /// Thread safety: different objects may factorize and solve concurrently from the threads
-/// of core::forEachSubdomain (each object used by one thread at a time).
+/// of core::forEachSubdomain (each object used by one thread at a time). "CHOLMOD" gives
+/// the same bits on any thread and for any number of threads.
 #include <memory>
 #include <string>
 #include <vector>
@@ -24,9 +26,17 @@ class SparseCholesky {
   /// Solves A X = B for `nrhs` right-hand sides stored column-major (leading dimension n);
   /// x and b may not alias.
   virtual void solve(const double* b, double* x, int nrhs = 1) const = 0;
+  /// The order of the unknowns of solveInPlace: its entry k is row permutation()[k] of A
+  /// (the fill-reducing order, so that the solve needs no permutation pass of its own).
+  virtual const std::vector<LO>& permutation() const = 0;
+  /// v := A^{-1} v for one vector in the order of permutation(); no allocation.
+  virtual void solveInPlace(double* v) const = 0;
   virtual LO size() const = 0;
   /// Stored entries of the factor (for memory reports).
   virtual long long factorNonzeros() const = 0;
+  /// Bytes one solve with one right-hand side reads from the factor (both triangular
+  /// substitutions): the numerator of the bandwidth bound of doc/performance.md.
+  virtual long long solveBytes() const = 0;
   virtual std::string name() const = 0;
 };
 

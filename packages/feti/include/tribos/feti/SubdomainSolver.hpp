@@ -25,8 +25,21 @@ class SubdomainSolver {
 
   /// y = K^+ x for nrhs column-major vectors of length n (Lemma 1's generalised inverse).
   void applyGeneralizedInverse(const double* x, double* y, int nrhs = 1) const;
-  /// y = K^dagger x (Moore-Penrose), nrhs column-major vectors; uses `work` scratch.
+  /// y = K^dagger x (Moore-Penrose), nrhs column-major vectors (x and y may alias).
   void applyPseudoInverse(const double* x, double* y, int nrhs = 1) const;
+
+  /// The order of the unknowns of applyPseudoInversePermuted: entry k is dof permutation()[k]
+  /// (the factor's fill-reducing order). A caller that keeps its vectors in this order (F
+  /// scatters B_s^T straight into it) saves two permutation passes per application.
+  const std::vector<LO>& permutation() const { return factor_->permutation(); }
+  /// v := K^dagger v for v in the order of permutation(). No allocation; like every method
+  /// here, one thread at a time per object.
+  void applyPseudoInversePermuted(double* v) const;
+  /// v := K^+ v (the factor alone, Lemma 1's generalised inverse) in the same order.
+  void applyGeneralizedInversePermuted(double* v) const { factor_->solveInPlace(v); }
+  /// Bytes one applyPseudoInversePermuted reads: the factor (both substitutions) and R
+  /// (once on either side of the solve).
+  long long pseudoInverseBytes() const;
 
   LO size() const { return n_; }
   const std::vector<double>& kernel() const { return R_; }  ///< n x 6 column-major, orthonormal
@@ -34,8 +47,13 @@ class SubdomainSolver {
   const SparseCholesky& factor() const { return *factor_; }
 
  private:
+  /// v := (I - R R^T) v in the factor's order: one pass for R^T v, one for the update.
+  void removeKernelPermuted(double* v) const;
+
   LO n_ = 0;
   std::vector<double> R_;
+  std::vector<double> kernelRows_;  ///< R in the factor's order, row-major (n x 6)
+  mutable std::vector<double> scratch_;  ///< one vector in the factor's order
   std::array<LO, 3> fixingNodes_{};
   std::unique_ptr<SparseCholesky> factor_;
 };

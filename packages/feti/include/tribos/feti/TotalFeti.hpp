@@ -5,12 +5,16 @@
 ///   lambda_Im = G^T (G G^T)^{-1} e, P = I - G^T (G G^T)^{-1} G,
 /// and the recovery u = K^dagger (f - B^T lambda) + R alpha.
 ///
-/// Distribution: dual vectors live on `dualMap()` (each row of B owned by one rank); an
+/// Distribution: dual vectors live on `dualMap()` (each row of B owned by one rank, local
+/// index = row - B.firstRowOfRank[rank], global id = B.rowId[row], so that a vector defined
+/// by its global ids is the same on every number of ranks); an
 /// application of F imports lambda to the rows that touch this rank's subdomains, applies
 /// B_s K_s^dagger B_s^T per subdomain on threads, and export-adds the result. Coarse
 /// vectors (length l = 6 x subdomains) are replicated on every rank; G G^T is assembled and
 /// factorised on every rank (it is small and sparse), so the coarse solve needs no
-/// communication beyond one all-reduce of G lambda.
+/// communication beyond one all-reduce of G lambda. G itself is stored once, on the rows each
+/// rank owns (the 6 numbers g_{s,r} = R_s^T b_{s,r}^T per row r and subdomain s it touches),
+/// so the projector reads no R_s, no n_s-sized vector and moves no dual vector between ranks.
 #include <Teuchos_Comm.hpp>
 #include <Tpetra_Import_decl.hpp>
 #include <Tpetra_Map_decl.hpp>
@@ -52,6 +56,10 @@ class TotalFeti {
 
   /// y = F x. Counts one F application.
   void applyF(const DualVector& x, DualVector& y) const;
+  /// y = P F x for x in Ker G (G x = 0 to round-off, e.g. x = P z): computed as P B K^+ B^T x,
+  /// which is the same there and skips the kernel projections of K^dagger (one pass over
+  /// R_s on either side of every solve). P F P z = applyPF(P z). Counts one F application.
+  void applyPF(const DualVector& x, DualVector& y) const;
   /// gx = G x (length l, replicated).
   void applyG(const DualVector& x, std::vector<double>& gx) const;
   /// y = G^T a (a of length l, replicated).
@@ -98,13 +106,31 @@ class TotalFeti {
   int numOwnedSubdomains() const { return static_cast<int>(local_.size()); }
   const SubdomainSolver& subdomainSolver(int i) const;
   double factorizationSeconds() const { return factorizationSeconds_; }
+  /// Stored entries of the subdomain factors, all ranks (the summary's factor_nonzeros).
+  long long factorNonzeros() const { return factorNonzeros_; }
+  /// Bytes one product with P F P moves at least (the summary's bytes_per_f_application,
+  /// one F application per PFP product): the factors (both substitutions), R_s on either
+  /// side of each solve, B_s^T and B_s, the dual entries in and out, and two projections
+  /// (G read by subdomain and by row). All ranks. Divided by the memory bandwidth it bounds
+  /// the time of one product from below (doc/performance.md).
+  double bytesPerFApplication() const { return bytesPerFApplication_; }
 
-  struct Local;  ///< one owned subdomain (implementation detail, defined in TotalFeti.cpp)
+  struct Local;       ///< one owned subdomain (implementation detail, defined in TotalFeti.cpp)
+  struct CoarseRows;  ///< G on the owned rows (implementation detail, defined in TotalFeti.cpp)
 
  private:
   // x (owned) -> overlap values -> per-subdomain op -> export-add into y (owned).
   template <class LocalOp>
   void applyBlockwise(const DualVector& x, DualVector& y, LocalOp op) const;
+  /// y = B K^dagger B^T x, or B K^+ B^T x without `removeKernel` (implicit F only).
+  void applyF(const DualVector& x, DualVector& y, bool removeKernel) const;
+  /// Builds contributionStart_/contribution_ from the subdomains' overlap indices.
+  void gatherOverlapContributions();
+  /// x on the overlap rows (x's own values when the overlap is the owned rows).
+  const double* overlapValues(const DualVector& x) const;
+
+  /// The dual maps' global id of row r of B (B.rowId; r itself for a B without ids).
+  GO rowId(GO r) const { return B_.rowId.empty() ? r : B_.rowId[r]; }
 
   const ConstraintMatrix& B_;
   Teuchos::RCP<const Teuchos::Comm<int>> comm_;
@@ -113,15 +139,31 @@ class TotalFeti {
   std::vector<std::unique_ptr<Local>> local_;
   Teuchos::RCP<const DualMap> dualMap_, overlapMap_;
   Teuchos::RCP<const Tpetra::Import<LO, GO>> importer_;
+  bool overlapIsOwned_ = false;  ///< one rank: the overlap map is the owned map
+  Teuchos::RCP<DualVector> xOverlap_, yOverlap_;  ///< applyBlockwise's, allocated once
+  /// Per overlap row, where its sum comes from: contribution_[k] for k in
+  /// [contributionStart_[row], contributionStart_[row + 1]) points into a subdomain's `out`.
+  std::vector<LO> contributionStart_;
+  std::vector<const double*> contribution_;
   /// G_I G_I^T over the rows with mask != 0 (all rows: G G^T), replicated on every rank.
   fem::CsrMatrix assembleCoarse(const std::vector<char>* rowMask) const;
+  /// g_{s,r} for the owned rows, from the owners of the subdomains (one import at set-up).
+  void buildCoarseRows();
+  /// Sets factorNonzeros_ and bytesPerFApplication_ (collective).
+  void measureTraffic();
+  /// The part of G x that this rank's owned rows contribute (length l, not reduced).
+  void applyGOwnedRows(const double* x, double* gx) const;
 
-  std::vector<std::vector<double>> R_;       ///< R_s of every subdomain (all ranks)
+  std::unique_ptr<CoarseRows> G_;           ///< G on the owned rows
   std::unique_ptr<SparseCholesky> coarse_;  ///< G G^T, replicated
+  /// Coarse work vectors of project() and solveCoarse(), allocated once (length l).
+  mutable std::vector<double> coarseLocal_, coarseVector_, coarseRhs_;
   std::vector<double> e_;
   Teuchos::RCP<DualVector> dTilde_, lambdaIm_;
   mutable long long fApplications_ = 0;
   double factorizationSeconds_ = 0.0;
+  long long factorNonzeros_ = 0;
+  double bytesPerFApplication_ = 0.0;
 };
 
 }  // namespace tribos::feti

@@ -26,6 +26,8 @@ struct LinearFetiResult {
   std::string message;              ///< "converged", or which limit ended the iterations
   int iterations = 0;
   long long fApplications = 0;
+  long long factorNonzeros = 0;       ///< feti::TotalFeti::factorNonzeros
+  double bytesPerFApplication = 0.0;  ///< feti::TotalFeti::bytesPerFApplication
   double relativeResidual = 0.0;    ///< ||P r|| / ||P h||
   double conditionEstimate = 0.0;   ///< Lanczos estimate of kappa(P F P | Ker G) (preconditioned)
   double equilibriumResidual = 0.0; ///< max ||K_s u_s - f_s + B_s^T lambda_s||_inf / ||f||_inf

@@ -1,0 +1,105 @@
+#include "PackedFactor.hpp"
+
+namespace tribos::feti {
+
+namespace {
+// The kernels are compiled for AVX-512, AVX2 and the baseline, picked once at load time
+// (GCC function multiversioning): the default build targets any x86-64, and these loops are
+// most of the cost of an F application. Every thread of a run uses the same version; the
+// versions may differ from each other in the last bit (fused multiply-adds).
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define TRIBOS_KERNEL __attribute__((target_clones("avx512f", "avx2", "default")))
+#else
+#define TRIBOS_KERNEL
+#endif
+
+// sum a_i b_i in eight interleaved partial sums, added pairwise: a fixed order that the
+// compiler may vectorise (a single running sum it may not reorder).
+inline __attribute__((always_inline)) double dot(const double* __restrict a, const double* __restrict b, LO n) {
+  double s[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+  LO i = 0;
+  for (; i + 8 <= n; i += 8)
+    for (int k = 0; k < 8; ++k) s[k] += a[i + k] * b[i + k];
+  for (; i < n; ++i) s[0] += a[i] * b[i];
+  return ((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7]));
+}
+
+// y -= alpha x
+inline __attribute__((always_inline)) void subtractScaled(double* __restrict y, const double* __restrict x,
+                                                          double alpha, LO n) {
+  for (LO i = 0; i < n; ++i) y[i] -= alpha * x[i];
+}
+}  // namespace
+
+TRIBOS_KERNEL void PackedFactor::forward(double* x, double* panelWork) const {
+  // L y = x, supernode by supernode: the diagonal triangle by columns, then the panel as
+  // t = panel * x_d (one axpy per column into the contiguous t), scattered: x_rows -= t.
+  const double* values = values_.data();
+  const LO* rows = rows_.data();
+  double* __restrict t = panelWork;
+  for (const Supernode& s : supernodes_) {
+    double* __restrict xd = x + s.firstColumn;
+    const double* __restrict invDiagonal = inverseDiagonal_.data() + s.firstColumn;
+    const double* triangle = values + s.triangleOffset;
+    const LO nc = s.numColumns, nr = s.numPanelRows;
+    for (LO j = 0; j < nc; ++j) {
+      const double xj = xd[j] * invDiagonal[j];
+      xd[j] = xj;
+      subtractScaled(xd + j + 1, triangle, xj, nc - j - 1);
+      triangle += nc - j - 1;
+    }
+    if (nr == 0) continue;
+    const double* __restrict panel = values + s.panelOffset;
+    for (LO r = 0; r < nr; ++r) t[r] = 0.0;
+    for (LO j = 0; j < nc; ++j, panel += nr) subtractScaled(t, panel, -xd[j], nr);
+    const LO* __restrict panelRows = rows + s.rowOffset;
+    for (LO r = 0; r < nr; ++r) x[panelRows[r]] -= t[r];
+  }
+}
+
+TRIBOS_KERNEL void PackedFactor::backward(double* x, double* panelWork) const {
+  // L^T y = x from the last supernode: gather the (solved) panel rows into t, one dot
+  // product per panel column, then the transposed diagonal triangle.
+  const double* values = values_.data();
+  const LO* rows = rows_.data();
+  double* __restrict t = panelWork;
+  for (auto it = supernodes_.rbegin(); it != supernodes_.rend(); ++it) {
+    const Supernode& s = *it;
+    double* __restrict xd = x + s.firstColumn;
+    const LO nc = s.numColumns, nr = s.numPanelRows;
+    if (nr > 0) {
+      const LO* __restrict panelRows = rows + s.rowOffset;
+      for (LO r = 0; r < nr; ++r) t[r] = x[panelRows[r]];
+      const double* __restrict panel = values + s.panelOffset;
+      for (LO j = 0; j < nc; ++j, panel += nr) xd[j] -= dot(panel, t, nr);
+    }
+    const double* __restrict invDiagonal = inverseDiagonal_.data() + s.firstColumn;
+    const double* triangle = values + s.triangleOffset;
+    for (LO j = nc - 1; j >= 0; --j) {
+      // Column j's strict lower part starts after the (nc - 1 - k) entries of columns k < j.
+      const double* column = triangle + static_cast<long long>(j) * (nc - 1) - static_cast<long long>(j) * (j - 1) / 2;
+      xd[j] = (xd[j] - dot(column, xd + j + 1, nc - j - 1)) * invDiagonal[j];
+    }
+  }
+}
+
+void PackedFactor::solvePermuted(double* v, double* work) const {
+  forward(v, work);
+  backward(v, work);
+}
+
+void PackedFactor::solve(const double* b, double* x, double* work) const {
+  const LO n = size();
+  for (LO k = 0; k < n; ++k) work[k] = b[perm_[k]];
+  solvePermuted(work, work + n);
+  for (LO k = 0; k < n; ++k) x[perm_[k]] = work[k];
+}
+
+long long PackedFactor::solveBytes() const {
+  const long long factor = 8 * static_cast<long long>(values_.size() + inverseDiagonal_.size()) +
+                           4 * static_cast<long long>(rows_.size()) +
+                           static_cast<long long>(sizeof(Supernode) * supernodes_.size());
+  return 2 * factor;
+}
+
+}  // namespace tribos::feti

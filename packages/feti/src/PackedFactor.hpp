@@ -1,0 +1,85 @@
+#pragma once
+// Internal: a sparse Cholesky factor L (A = P^T L L^T P) stored for the triangular solves
+// only, in as few bytes as a solve must read (doc/performance.md):
+//  - columns grouped into supernodes (consecutive columns whose sub-diagonal row sets nest,
+//    so they share one list of row indices);
+//  - per supernode, the diagonal triangle packed by columns (reciprocal diagonal apart) and
+//    the rows below it as a dense column-major panel, its row indices gathered once per
+//    supernode into a contiguous work vector: the forward solve is one axpy per panel
+//    column, the backward solve one dot product per panel column, each as long as the
+//    panel (where a row-by-row loop would run over the few columns of a small supernode);
+//  - 8 bytes per entry plus 4 per panel row (shared by the supernode's columns), instead of
+//    CHOLMOD's 12 per entry (simplicial) or its padded square panels (supernodal).
+// The solves are plain loops: no BLAS (so concurrent solves on threads are safe and give
+// the same bits as a solve alone), no allocation (the caller passes the work vector), and a
+// fixed order of every sum (the same bits on every thread, for any number of threads).
+#include <algorithm>
+#include <vector>
+
+#include "tribos/core/Types.hpp"
+
+namespace tribos::feti {
+
+class PackedFactor {
+ public:
+  /// One supernode as a builder hands it over: columns [firstColumn, firstColumn + numColumns)
+  /// of L, `rows` the row indices below the diagonal block (ascending), `value(i, j)` the
+  /// entry of L in column firstColumn + j and row (i < numColumns ? firstColumn + i :
+  /// rows[i - numColumns]) for i >= j.
+  template <class Value>
+  void appendSupernode(LO firstColumn, LO numColumns, const std::vector<LO>& rows, Value&& value);
+  /// Sets the fill-reducing permutation: row k of the factor is row perm[k] of A.
+  void setPermutation(std::vector<LO> perm) { perm_ = std::move(perm); }
+
+  LO size() const { return static_cast<LO>(perm_.size()); }
+  /// Entries of the work vector of solve().
+  LO workSize() const { return size() + maxPanelRows_; }
+  /// x = A^{-1} b for one vector (b and x may alias); work has workSize() entries.
+  void solve(const double* b, double* x, double* work) const;
+  /// In the factor's own (permuted) numbering: v := L^{-T} L^{-1} v; work has
+  /// workSize() - size() entries.
+  void solvePermuted(double* v, double* work) const;
+  const std::vector<LO>& permutation() const { return perm_; }
+
+  /// Stored values of L (diagonal included): what each triangular solve reads once.
+  long long storedValues() const { return static_cast<long long>(values_.size() + inverseDiagonal_.size()); }
+  /// Bytes that one solve with one right-hand side reads from the factor: values, row
+  /// indices and supernode descriptors, twice (forward and backward substitution).
+  long long solveBytes() const;
+  LO numSupernodes() const { return static_cast<LO>(supernodes_.size()); }
+
+ private:
+  struct Supernode {
+    LO firstColumn, numColumns, numPanelRows;
+    LO rowOffset;    ///< into rows_
+    long long triangleOffset;  ///< into values_: packed strict lower triangle, by columns
+    long long panelOffset;     ///< into values_: numPanelRows x numColumns, column-major
+  };
+  void forward(double* x, double* panelWork) const;
+  void backward(double* x, double* panelWork) const;
+
+  std::vector<Supernode> supernodes_;
+  std::vector<LO> rows_;
+  std::vector<double> values_;
+  std::vector<double> inverseDiagonal_;  ///< 1 / L_jj, by column
+  std::vector<LO> perm_;
+  LO maxPanelRows_ = 0;
+};
+
+template <class Value>
+void PackedFactor::appendSupernode(LO firstColumn, LO numColumns, const std::vector<LO>& rows, Value&& value) {
+  Supernode s{firstColumn, numColumns, static_cast<LO>(rows.size()), static_cast<LO>(rows_.size()), 0, 0};
+  rows_.insert(rows_.end(), rows.begin(), rows.end());
+  s.triangleOffset = static_cast<long long>(values_.size());
+  for (LO j = 0; j < numColumns; ++j) {
+    inverseDiagonal_.push_back(1.0 / value(j, j));
+    for (LO i = j + 1; i < numColumns; ++i) values_.push_back(value(i, j));
+  }
+  s.panelOffset = static_cast<long long>(values_.size());
+  for (LO j = 0; j < numColumns; ++j)
+    for (LO r = 0; r < s.numPanelRows; ++r) values_.push_back(value(numColumns + r, j));
+  maxPanelRows_ = std::max(maxPanelRows_, s.numPanelRows);
+  supernodes_.push_back(s);
+}
+
+}  // namespace tribos::feti

@@ -1,0 +1,130 @@
+// Cost of the dual operators on one Table 1 cell, inside one process (so that start-up, set-up
+// and the noise of whole runs stay out): median seconds of F, P, P F P (as MPGP applies it:
+// project, F, project), G, and the coarse solve over `repeats` applications, on the paper's
+// two bricks with their contact rows (Coulomb, the default scene).
+//
+// Usage: build/bin/tribos_bench_dual_operator [grid (10x5x5)] [H/h (5)] [repeats (40)]
+// Threads: OMP_NUM_THREADS; ranks: mpirun. Prints a CSV header and one line: wall and process
+// CPU milliseconds per call of each operation (doc/performance.md).
+#include <mpi.h>
+
+#include <Teuchos_DefaultMpiComm.hpp>
+#include <Tpetra_Core.hpp>
+#include <Tpetra_Vector.hpp>
+
+#include <time.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <string>
+
+#include "tribos/core/Parallel.hpp"
+#include "tribos/core/Parameters.hpp"
+#include "tribos/feti/ConstraintMatrix.hpp"
+#include "tribos/feti/TotalFeti.hpp"
+#include "tribos/stack/LinearFetiSolve.hpp"
+#include "tribos/stack/Scene.hpp"
+#include "tribos/stack/SceneParameters.hpp"
+#include "tribos/stack/SubdomainSetup.hpp"
+
+using namespace tribos;
+
+namespace {
+double processCpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+// Median wall time of `repeats` calls, each bracketed by barriers so that every rank times
+// the same collective call; `cpu` gets the median CPU time of the process (all its threads)
+// per call, which neighbours on a shared machine disturb less than the wall time.
+double medianSeconds(int repeats, const std::function<void()>& call, double* cpu = nullptr) {
+  std::vector<double> t, c;
+  call();  // warm-up: first touch of the overlap buffers, caches
+  for (int r = 0; r < repeats; ++r) {
+    MPI_Barrier(MPI_COMM_WORLD);
+    const double cpuStart = processCpuSeconds();
+    const auto start = std::chrono::steady_clock::now();
+    call();
+    MPI_Barrier(MPI_COMM_WORLD);
+    t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    c.push_back(processCpuSeconds() - cpuStart);
+  }
+  std::sort(t.begin(), t.end());
+  std::sort(c.begin(), c.end());
+  if (cpu) *cpu = c[c.size() / 2];
+  return t[t.size() / 2];
+}
+
+void fill(feti::DualVector& v) {
+  auto data = v.getLocalViewHost(Tpetra::Access::OverwriteAll);
+  const auto& map = *v.getMap();
+  for (size_t i = 0; i < data.extent(0); ++i) data(i, 0) = std::sin(0.37 * static_cast<double>(map.getGlobalElement(i)));
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  MPI_Init(&argc, &argv);
+  {
+    Tpetra::ScopeGuard tpetra(&argc, &argv);
+    core::warmUpKokkosForThreads();
+    const std::string grid = argc > 1 ? argv[1] : "10x5x5", h = argc > 2 ? argv[2] : "5";
+    const int repeats = argc > 3 ? std::max(1, std::atoi(argv[3])) : 40;
+    int size = 1, rank = 0;
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+
+    Teuchos::ParameterList params("Tribos");
+    const auto valid = stack::sceneValidParameters();
+    for (const std::string o : {"Mesh/Subdomains Per Brick=" + grid, "Mesh/H Over h=" + h,
+                                std::string("Contact/Slave Side Set=contact_aluminium"),
+                                std::string("Contact/Master Side Set=contact_steel")})
+      core::applyOverride(params, *valid, o);
+    core::validateAndSetDefaults(params, *valid, "bench");
+    const auto scene = stack::buildScene(params, "bench");
+    std::vector<fem::SubdomainSystem> systems;
+    stack::assembleOwnedSubdomains(scene, MPI_COMM_WORLD, systems);
+    const auto B = feti::buildConstraintMatrix(scene.mesh, scene.decomposition, stack::constraintSpec(scene), size);
+    feti::TotalFetiSettings settings;
+    settings.factorization = params.sublist("FETI").get<std::string>("Factorization");
+    const feti::TotalFeti feti(scene.mesh, scene.decomposition, std::move(systems), B,
+                               Teuchos::rcp(new Teuchos::MpiComm<int>(MPI_COMM_WORLD)), settings);
+
+    auto x = feti.createDualVector(), y = feti.createDualVector(), t = feti.createDualVector();
+    fill(*x);
+    std::vector<double> coarse;
+    struct Timing {
+      const char* name;
+      std::function<void()> call;
+      double wall = 0.0, cpu = 0.0;
+    };
+    std::vector<Timing> timings = {
+        {"F", [&] { feti.applyF(*x, *y); }},
+        {"P", [&] { feti.project(*x, *y); }},
+        {"PFP",
+         [&] {
+           feti.project(*x, *t);
+           feti.applyF(*t, *y);
+           feti.project(*y, *y);
+         }},
+        {"G", [&] { feti.applyG(*x, coarse); }},
+        {"coarse_solve", [&] { feti.solveCoarse(coarse); }},
+    };
+    for (auto& timing : timings) timing.wall = medianSeconds(repeats, timing.call, &timing.cpu);
+    if (rank == 0) {
+      std::printf("grid,h,ranks,threads,subdomains,n_dual,factor_nonzeros,bytes_per_f_application,factorization_s");
+      for (const auto& timing : timings) std::printf(",%s_ms,%s_cpu_ms", timing.name, timing.name);
+      std::printf("\n%s,%s,%d,%d,%d,%lld,%lld,%.0f,%.3f", grid.c_str(), h.c_str(), size, core::numThreads(),
+                  feti.numCoarse() / 6, static_cast<long long>(feti.numDual()), feti.factorNonzeros(),
+                  feti.bytesPerFApplication(), feti.factorizationSeconds());
+      for (const auto& timing : timings) std::printf(",%.3f,%.3f", 1e3 * timing.wall, 1e3 * timing.cpu);
+      std::printf("\n");
+    }
+  }
+  MPI_Finalize();
+  return 0;
+}
