@@ -119,15 +119,15 @@ void requireFiniteCoordinates(const Mesh& mesh, const Fail& fail) {
 
 void requireValidElements(const Mesh& mesh, const Fail& fail) {
   for (LO e = 0; e < mesh.numElements(); ++e) {
-    const std::string element = mesh.elementLabel(e);
     for (LO n : mesh.tets[e])
       if (n < 0 || n >= mesh.numNodes())
-        fail(element + " references node " + std::to_string(n + 1) + " out of range 1.." + std::to_string(mesh.numNodes()));
+        fail(mesh.elementLabel(e) + " references node " + std::to_string(n + 1) + " out of range 1.." +
+             std::to_string(mesh.numNodes()));
     const double volume = mesh.elementVolume(e), edge = mesh.longestEdge(e);
     if (std::abs(volume) <= kDegenerateVolumeRatio * edge * edge * edge)
-      fail(element + " is degenerate (volume " + core::formatNumber(volume) + " for a longest edge of " +
+      fail(mesh.elementLabel(e) + " is degenerate (volume " + core::formatNumber(volume) + " for a longest edge of " +
            core::formatNumber(edge) + ")");
-    if (volume < 0.0) fail(element + " is inverted (volume " + core::formatNumber(volume) + ")");
+    if (volume < 0.0) fail(mesh.elementLabel(e) + " is inverted (volume " + core::formatNumber(volume) + ")");
   }
 }
 
