@@ -4,6 +4,7 @@
 // --split-bodies duplicates the nodes that two bodies share, so a conforming interface meshed
 // once becomes a node-to-node contact pair ("<surface>_<body>" side sets on each side).
 // Exit status: 0 written, 2 bad input (the message names the file), 1 internal error.
+#include <filesystem>
 #include <iostream>
 #include <string>
 
@@ -28,18 +29,25 @@ int main(int argc, char** argv) {
     std::cerr << "usage: tribos-msh2exo [--split-bodies] mesh.msh mesh.exo\n";
     return 2;
   }
+  // Written under a temporary name and renamed when complete: a failed conversion leaves no
+  // file that looks like a mesh (nor clobbers an older one).
+  const std::string partial = out + ".tribos-partial";
+  std::error_code ignored;
   try {
     const auto mesh = tribos::mesh::readGmsh(in, split);
-    tribos::mesh::writeExodus(out, mesh);
+    tribos::mesh::writeExodus(partial, mesh);
+    std::filesystem::rename(partial, out);
     std::cout << "tribos-msh2exo: " << in << " -> " << out << ": " << mesh.numNodes() << " nodes, "
               << mesh.numElements() << " tetrahedra, " << mesh.numBlocks() << " blocks, " << mesh.sideSets.size()
               << " side sets\n";
     for (const auto& s : mesh.sideSets) std::cout << "  side set \"" << s.name << "\": " << s.elements.size() << " faces\n";
     return 0;
   } catch (const tribos::core::InputError& e) {
+    std::filesystem::remove(partial, ignored);
     std::cerr << "tribos-msh2exo: error: " << e.what() << "\n";
     return 2;
   } catch (const std::exception& e) {
+    std::filesystem::remove(partial, ignored);
     std::cerr << "tribos-msh2exo: internal error: " << e.what() << "\n";
     return 1;
   }

@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "CommandLine.hpp"
+#include "RunOutcome.hpp"
 #include "tribos/stack/SubdomainSetup.hpp"
 #include "tribos/core/Errors.hpp"
 #include "tribos/core/Parallel.hpp"
@@ -510,11 +511,11 @@ int main(int argc, char** argv) {
   sleepWhileWaiting(argv);
   lineBufferedOutput();
   MPI_Init(&argc, &argv);
-  int rank = 0, size = 1;
+  int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  MPI_Comm_size(MPI_COMM_WORLD, &size);
   int status = core::kExitOk;
   {
+    core::RankErrors rankErrors;  // before any work (it duplicates MPI_COMM_WORLD), gone before MPI_Finalize
     // Kokkos gets only its --kokkos-* options (--kokkos-help included).
     std::vector<char*> kokkosArgv = driver::kokkosArguments(argc, argv);
     int kokkosArgc = static_cast<int>(kokkosArgv.size()) - 1;
@@ -522,28 +523,13 @@ int main(int argc, char** argv) {
     std::optional<Tpetra::ScopeGuard> tpetra;  // Kokkos too; MPI is already up
     status = startKokkos(tpetra, kokkosArgc, kokkosArgvData, argc, argv, rank);
     // Every rank sees the same argv: a bad Kokkos option stops them all here, together.
-    const bool started = status == core::kExitOk;
-    if (started) {
+    if (status == core::kExitOk) {
       core::warmUpKokkosForThreads();
-      try {
-        status = run(argc, argv, rank);
-      } catch (const driver::CommandLineError& e) {
-        reportCommandLineError(e, rank);
-        status = core::kExitBadInput;
-      } catch (const core::InputError& e) {
-        // Input errors are the same on every rank (every rank parses the same input).
-        if (rank == 0) std::cerr << "tribos: error: " << e.what() << "\n";
-        status = core::kExitBadInput;
-      } catch (const std::exception& e) {
-        std::cerr << "tribos: internal error on rank " << rank << ": " << e.what() << "\n";
-        status = core::kExitInternal;
-      }
+      // Every rank exits with the same status and each message is printed once, with the rank
+      // when not every rank had it; a rank that failed alone aborts the job only if the others
+      // do not reach this point within seconds (core/RankErrors.hpp).
+      status = rankErrors.finish(driver::runCatchingErrors([&] { return run(argc, argv, rank); }), "tribos");
     }
-    // A rank that failed alone would leave the others waiting in a collective. "Not
-    // converged" is reached by every rank together after the results are written: a normal
-    // exit (mpirun returns 3), not an abort.
-    if (started && status != core::kExitOk && status != core::kExitNotConverged && size > 1)
-      MPI_Abort(MPI_COMM_WORLD, status);
   }
   MPI_Finalize();
   return status;

@@ -9,6 +9,17 @@
 # Test names follow <package>.<Class>.<behaviour>[_np<N>] (STYLE.md 6).
 include_guard(GLOBAL)
 
+# Sanitizer run-time options (TRIBOS_SANITIZE=ON): stop at the first report, with stacks;
+# child processes (tribos run by a driver test, ranks under mpirun) inherit the variables.
+# Leak detection is off: Open MPI, Trilinos (Belos, Thyra, Tpetra registries) and Kokkos keep
+# allocations for the life of the process, and their stacks through these uninstrumented
+# libraries and Open MPI's unloaded plugins are too broken to suppress by library (measured:
+# 69 of 79 tests failed on leaks, none with a frame in Tribos). The fuzz leg checks leaks of
+# the readers, which run there without MPI or Trilinos (scripts/fuzz.sh).
+set(TRIBOS_SANITIZER_ENVIRONMENT
+  "ASAN_OPTIONS=halt_on_error=1:detect_leaks=0"
+  "UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1:suppressions=${PROJECT_SOURCE_DIR}/test/sanitizer/ubsan.supp")
+
 function(tribos_add_test)
   cmake_parse_arguments(T "" "NAME;NP;THREADS;TIMEOUT;EXE" "SOURCES;COMMAND;ARGS;LIBS;LABELS" ${ARGN})
   if(NOT T_THREADS)
@@ -36,7 +47,11 @@ function(tribos_add_test)
   if(NOT T_TIMEOUT)
     set(T_TIMEOUT 300)
   endif()
+  set(environment OMP_NUM_THREADS=${T_THREADS} OMP_WAIT_POLICY=PASSIVE OMPI_ALLOW_RUN_AS_ROOT=1
+      OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1 TRIBOS_SOURCE_DIR=${PROJECT_SOURCE_DIR})
+  if(TRIBOS_SANITIZE)
+    list(APPEND environment ${TRIBOS_SANITIZER_ENVIRONMENT})
+  endif()
   set_tests_properties(${T_NAME} PROPERTIES
-    LABELS "${T_LABELS}" TIMEOUT ${T_TIMEOUT} PROCESSORS ${procs}
-    ENVIRONMENT "OMP_NUM_THREADS=${T_THREADS};OMP_WAIT_POLICY=PASSIVE;OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1;TRIBOS_SOURCE_DIR=${PROJECT_SOURCE_DIR}")
+    LABELS "${T_LABELS}" TIMEOUT ${T_TIMEOUT} PROCESSORS ${procs} ENVIRONMENT "${environment}")
 endfunction()

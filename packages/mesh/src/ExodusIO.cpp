@@ -64,6 +64,20 @@ class NameArray {
   int length_;
 };
 
+/// Counts from the file size allocations: each is checked first against what the rest of
+/// the file allows, so that a corrupt header is an input error and not std::bad_alloc.
+/// Blocks, sets, variables, steps and info lines beyond this many are not a mesh Tribos reads.
+constexpr int64_t kMaxEntities = 1'000'000;
+/// A node set may list a node once per face corner it belongs to (other writers do).
+constexpr int64_t kMaxNodeRepeats = 64;
+
+void requireCount(int64_t count, int64_t limit, const std::string& path, const std::string& what,
+                  const std::string& limitText) {
+  if (count < 0 || count > limit)
+    throw core::InputError(path + ": the file claims " + std::to_string(count) + " " + what + ", outside 0.." +
+                           std::to_string(limit) + " (" + limitText + "): a corrupt file?");
+}
+
 void check(int status, const std::string& path, const std::string& what) {
   if (status < 0) throw core::InputError(path + ": Exodus error while " + what + " (status " + std::to_string(status) + ")");
 }
@@ -201,6 +215,7 @@ void writeGlobals(int id, const std::string& path, int step, const std::vector<G
 std::vector<std::string> readInfo(int id, const std::string& path) {
   const int64_t count = ex_inquire_int(id, EX_INQ_INFO);
   if (count <= 0) return {};
+  requireCount(count, kMaxEntities, path, "info records", "Tribos reads");
   NameArray records(static_cast<size_t>(count), MAX_LINE_LENGTH);
   check(ex_get_info(id, records.data()), path, "reading the info records");
   std::vector<std::string> lines;
@@ -213,6 +228,7 @@ void readGlobals(int id, const std::string& path, int nameLength, std::vector<Ti
   int count = 0;
   check(ex_get_variable_param(id, EX_GLOBAL, &count), path, "counting global variables");
   if (count <= 0) return;
+  requireCount(count, kMaxEntities, path, "global variables", "Tribos reads");
   NameArray names(static_cast<size_t>(count), nameLength);
   check(ex_get_variable_names(id, EX_GLOBAL, count, names.data()), path, "reading global variable names");
   std::vector<double> values(static_cast<size_t>(count));
@@ -351,7 +367,7 @@ ExodusData readExodus(const std::string& path) {
   int cpuWordSize = 8, ioWordSize = 0;
   float version = 0.0f;
   ExodusFile file(ex_open(path.c_str(), EX_READ, &cpuWordSize, &ioWordSize, &version));
-  if (file.id() < 0) throw core::InputError(path + ": not an Exodus II file (netCDF could not open it)");
+  if (file.id() < 0) throw core::InputError(path + ": not an Exodus II file, or a corrupt one (netCDF could not open it)");
   const int id = file.id();
   // With the 64-bit API, one code path reads files written with 32- or 64-bit ids.
   check(ex_set_int64_status(id, EX_ALL_INT64_API) < 0 ? -1 : 0, path, "selecting the 64-bit API");
@@ -365,8 +381,19 @@ ExodusData readExodus(const std::string& path) {
         "reading the header");
   if (dim != 3) throw core::InputError(path + ": the mesh is " + std::to_string(dim) + "D; Tribos needs a 3D mesh");
   if (numElements <= 0 || numBlocks <= 0) throw core::InputError(path + ": the mesh has no elements");
+  if (numNodes < 4) throw core::InputError(path + ": the mesh has " + std::to_string(numNodes) + " nodes");
   if (numNodes > INT_MAX || numElements > INT_MAX)
     throw core::InputError(path + ": the mesh has more nodes or elements than Tribos can index");
+  // A file stores its coordinates and connectivity; compressed (netCDF-4) it may hold more
+  // values than bytes, but not a thousand times more: a bound for corrupt headers.
+  const auto fileBytes = std::filesystem::file_size(path, ec);
+  const int64_t fileValues = ec ? INT64_MAX : 1000 * static_cast<int64_t>(fileBytes);
+  requireCount(numNodes, fileValues, path, "nodes", "more than a file of this size can hold");
+  requireCount(numElements, fileValues, path, "elements", "more than a file of this size can hold");
+  // Every other count is checked against these before it sizes an allocation.
+  requireCount(numBlocks, numElements, path, "element blocks", "elements");
+  requireCount(numNodeSets, kMaxEntities, path, "node sets", "Tribos reads");
+  requireCount(numSideSets, kMaxEntities, path, "side sets", "Tribos reads");
 
   ExodusData data;
   Mesh& mesh = data.mesh;
@@ -404,12 +431,16 @@ ExodusData readExodus(const std::string& path) {
     block.id = blockIds[b];
     block.type = EX_ELEM_BLOCK;
     check(ex_get_block_param(id, &block), path, "reading element block " + blockNames[b]);
+    const std::string blockText = "element block \"" + blockNames[b] + "\" (id " + std::to_string(blockIds[b]) + ")";
+    if (block.num_entry == 0) throw core::InputError(path + ": " + blockText + " has no elements");
     const std::string topology = upper(block.topology);
     if (!(topology == "TETRA" || topology == "TETRA4" || topology == "TET4" || topology == "TET") ||
         block.num_nodes_per_entry != 4)
       throw core::InputError(path + ": element block \"" + blockNames[b] + "\" (id " + std::to_string(blockIds[b]) +
                              ") has topology " + block.topology + " with " + std::to_string(block.num_nodes_per_entry) +
                              " nodes per element; Tribos needs linear tetrahedra (TETRA, 4 nodes)");
+    requireCount(block.num_entry, numElements - static_cast<int64_t>(mesh.tets.size()), path,
+                 "elements in " + blockText, "elements the header leaves for it");
     std::vector<int64_t> conn(4 * static_cast<size_t>(block.num_entry));
     if (block.num_entry > 0)
       check(ex_get_conn(id, EX_ELEM_BLOCK, blockIds[b], conn.data(), nullptr, nullptr), path,
@@ -423,7 +454,8 @@ ExodusData readExodus(const std::string& path) {
         if (node < 1 || node > numNodes)
           throw core::InputError(path + ": element " + std::to_string(eb.first + e + 1) + " of block \"" + eb.name +
                                  "\" references node " + std::to_string(node) + " out of range 1.." +
-                                 std::to_string(numNodes));
+                                 std::to_string(numNodes) +
+                                 (node == 0 ? " (0 is what netCDF reads where data is missing: a truncated file?)" : ""));
         tet[v] = static_cast<LO>(node - 1);
       }
       mesh.tets.push_back(tet);
@@ -440,6 +472,9 @@ ExodusData readExodus(const std::string& path) {
   for (int64_t s = 0; s < numNodeSets; ++s) {
     int64_t count = 0, factors = 0;
     check(ex_get_set_param(id, EX_NODE_SET, nodeSetIds[s], &count, &factors), path, "reading node set " + nodeSetNames[s]);
+    // Other writers repeat nodes (one entry per face corner), so allow each node many times.
+    requireCount(count, kMaxNodeRepeats * numNodes, path, "entries in node set \"" + nodeSetNames[s] + "\"",
+                 "the nodes allow");
     std::vector<int64_t> list(count);
     if (count > 0)
       check(ex_get_set(id, EX_NODE_SET, nodeSetIds[s], list.data(), nullptr), path, "reading node set " + nodeSetNames[s]);
@@ -455,6 +490,7 @@ ExodusData readExodus(const std::string& path) {
   for (int64_t s = 0; s < numSideSets; ++s) {
     int64_t count = 0, factors = 0;
     check(ex_get_set_param(id, EX_SIDE_SET, sideSetIds[s], &count, &factors), path, "reading side set " + sideSetNames[s]);
+    requireCount(count, 4 * numElements, path, "faces in side set \"" + sideSetNames[s] + "\"", "the elements have");
     std::vector<int64_t> elements(count), sides(count);
     if (count > 0)
       check(ex_get_set(id, EX_SIDE_SET, sideSetIds[s], elements.data(), sides.data()), path,
@@ -466,14 +502,18 @@ ExodusData readExodus(const std::string& path) {
     }
     mesh.sideSets.push_back(std::move(ss));
   }
+  mesh.file = path;
   mesh.validate(path);
 
   // Variables over time steps.
   const int64_t numSteps = ex_inquire_int(id, EX_INQ_TIME);
   if (numSteps < 0) check(-1, path, "counting time steps");
+  requireCount(numSteps, kMaxEntities, path, "time steps", "Tribos reads");
   int numNodal = 0, numElemVars = 0;
   check(ex_get_variable_param(id, EX_NODAL, &numNodal), path, "counting nodal variables");
   check(ex_get_variable_param(id, EX_ELEM_BLOCK, &numElemVars), path, "counting element variables");
+  requireCount(numNodal, kMaxEntities, path, "nodal variables", "Tribos reads");
+  requireCount(numElemVars, kMaxEntities, path, "element variables", "Tribos reads");
   NameArray nodalNames(numNodal, nameLength), elemNames(numElemVars, nameLength);
   if (numNodal > 0)
     check(ex_get_variable_names(id, EX_NODAL, numNodal, nodalNames.data()), path, "reading nodal variable names");

@@ -1,12 +1,22 @@
+// gmsh 4.1 ASCII reader. The file is read whole and split into tokens by a reader that
+// knows its line and section, so every message can say "file: line 12 ($Nodes): ...".
+// Nothing read from the file sizes an allocation before it has been checked against what
+// the rest of the file can hold (a corrupt count once asked std::vector for 10^19 entries).
 #include "tribos/mesh/GmshReader.hpp"
 
 #include <algorithm>
+#include <charconv>
+#include <climits>
+#include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <set>
 #include <sstream>
+#include <unordered_map>
 
 #include "tribos/core/Errors.hpp"
+#include "tribos/core/Format.hpp"
 
 namespace tribos::mesh {
 
@@ -14,191 +24,426 @@ namespace {
 struct Triangle {
   std::array<long long, 3> nodes;
   int physical;
+  long long tag;
 };
 struct Tet {
   std::array<long long, 4> nodes;
   int physical;
+  long long tag;
+};
+
+/// What the sections hold, in gmsh's own numbering (tags).
+struct GmshContent {
+  std::map<std::pair<int, int>, std::string> physicalName;       // (dim, tag) -> name
+  std::map<std::pair<int, int>, std::vector<int>> entityPhysical;  // (dim, entity) -> physical tags
+  std::unordered_map<long long, std::array<double, 3>> nodes;     // node tag -> coordinates
+  std::vector<Tet> tets;
+  std::vector<Triangle> triangles;
+};
+
+/// Whitespace-separated tokens of the file. Every read names what it expected, so that a
+/// truncated file or a stray word is reported with its line and section.
+class Tokens {
+ public:
+  Tokens(std::string_view text, std::string source) : text_(text), source_(std::move(source)) {}
+
+  /// Skips white space; false at the end of the text.
+  bool more() {
+    while (pos_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[pos_]))) {
+      if (text_[pos_] == '\n') ++line_;
+      ++pos_;
+    }
+    return pos_ < text_.size();
+  }
+
+  std::string_view word(const std::string& what) {
+    if (!more()) fail("the file ends where " + what + " should be (truncated?)");
+    const size_t start = pos_;
+    while (pos_ < text_.size() && !std::isspace(static_cast<unsigned char>(text_[pos_]))) ++pos_;
+    return text_.substr(start, pos_ - start);
+  }
+
+  long long integer(const std::string& what, long long min = LLONG_MIN, long long max = LLONG_MAX) {
+    const auto token = word(what);
+    long long value = 0;
+    const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), value);
+    if (error == std::errc::result_out_of_range) fail(what + " \"" + shorten(token) + "\" is out of range");
+    if (error != std::errc() || end != token.data() + token.size())
+      fail(what + " must be an integer, not \"" + shorten(token) + "\"");
+    if (value < min || value > max)
+      fail(what + " is " + std::to_string(value) + ", outside " + std::to_string(min) + ".." + std::to_string(max));
+    return value;
+  }
+
+  int smallInteger(const std::string& what, int min = INT_MIN, int max = INT_MAX) {
+    return static_cast<int>(integer(what, min, max));
+  }
+
+  /// A count of items that take at least `tokensPerItem` tokens each: it cannot exceed what
+  /// the rest of the file holds (every token is at least one character and one separator),
+  /// which also bounds every allocation made from it.
+  long long count(const std::string& what, int tokensPerItem) {
+    const long long count = integer(what, 0);
+    const long long room = static_cast<long long>((text_.size() - pos_) / 2 + 1) / tokensPerItem;
+    if (count > room)
+      fail(what + " is " + std::to_string(count) + ", more than the rest of the file can hold (at most " +
+           std::to_string(room) + "): a corrupt count or a truncated file");
+    return count;
+  }
+
+  double number(const std::string& what) {
+    const auto token = word(what);
+    double value = 0.0;
+    const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), value);
+    if (error == std::errc::result_out_of_range) fail(what + " \"" + shorten(token) + "\" is out of range");
+    if (error != std::errc() || end != token.data() + token.size())
+      fail(what + " must be a number, not \"" + shorten(token) + "\"");
+    return value;
+  }
+
+  /// A name in double quotes on the current line ("plate bottom").
+  std::string quoted(const std::string& what) {
+    const auto token = word(what);
+    if (token.front() != '"') fail(what + " must be in double quotes, not " + shorten(token));
+    const size_t open = pos_ - token.size();
+    const size_t close = text_.find('"', open + 1);
+    const size_t endOfLine = text_.find('\n', open);
+    if (close == std::string_view::npos || close > endOfLine) fail(what + " has no closing double quote");
+    pos_ = close + 1;
+    return std::string(text_.substr(open + 1, close - open - 1));
+  }
+
+  void enter(std::string_view section) { section_ = std::string(section); }
+
+  /// The section's closing keyword, "$End<name>".
+  void leave() {
+    const std::string end = "$End" + section_.substr(1);
+    const auto token = word(end);
+    if (token != end) fail("expected " + end + ", found \"" + shorten(token) + "\" (a count does not match the data?)");
+    section_.clear();
+  }
+
+  /// Sections Tribos does not use ($Comments, $Periodic, $NodeData, ...) up to their end.
+  void skipSection() {
+    const std::string end = "$End" + section_.substr(1);
+    while (word(end + " to close the section") != end) {
+    }
+    section_.clear();
+  }
+
+  [[noreturn]] void fail(const std::string& what) const {
+    throw core::InputError(source_ + ": line " + std::to_string(line_) +
+                           (section_.empty() ? std::string() : " (" + section_ + ")") + ": " + what);
+  }
+
+ private:
+  static std::string shorten(std::string_view token) {
+    return token.size() <= 40 ? std::string(token) : std::string(token.substr(0, 40)) + "...";
+  }
+
+  std::string_view text_;
+  std::string source_;
+  size_t pos_ = 0;
+  int line_ = 1;
+  std::string section_;
+};
+
+void readFormat(Tokens& in) {
+  const double version = in.number("the format version");
+  const int fileType = in.smallInteger("the file type");
+  in.integer("the data size");
+  if (version < 4.0 || version >= 5.0 || fileType != 0)
+    in.fail("only gmsh 4.x ASCII meshes are read (gmsh -format msh41); this file is version " +
+            core::formatNumber(version) + (fileType != 0 ? " binary" : ""));
+  in.leave();
+}
+
+void readPhysicalNames(Tokens& in, GmshContent& content) {
+  const long long count = in.count("the number of physical names", 3);
+  for (long long i = 0; i < count; ++i) {
+    const int dim = in.smallInteger("a physical group's dimension", 0, 3);
+    const int tag = in.smallInteger("a physical group's tag");
+    content.physicalName[{dim, tag}] = in.quoted("the name of physical group " + std::to_string(tag));
+  }
+  in.leave();
+}
+
+void readEntities(Tokens& in, GmshContent& content) {
+  long long counts[4];
+  for (int dim = 0; dim < 4; ++dim) counts[dim] = in.count("the number of entities of dimension " + std::to_string(dim), 5);
+  for (int dim = 0; dim < 4; ++dim)
+    for (long long e = 0; e < counts[dim]; ++e) {
+      const int tag = in.smallInteger("an entity tag");
+      const std::string entity = "entity " + std::to_string(tag) + " (dimension " + std::to_string(dim) + ")";
+      for (int k = 0; k < (dim == 0 ? 3 : 6); ++k) in.number("a bounding-box coordinate of " + entity);
+      std::vector<int> physical(in.count("the number of physical tags of " + entity, 1));
+      for (int& p : physical) p = in.smallInteger("a physical tag of " + entity);
+      content.entityPhysical[{dim, tag}] = std::move(physical);
+      if (dim == 0) continue;
+      const long long bounding = in.count("the number of bounding entities of " + entity, 1);
+      for (long long k = 0; k < bounding; ++k) in.integer("a bounding entity of " + entity);
+    }
+  in.leave();
+}
+
+void readNodes(Tokens& in, GmshContent& content) {
+  const long long blocks = in.count("the number of node blocks", 4);
+  const long long total = in.count("the number of nodes", 4);
+  if (total > INT_MAX) in.fail("more nodes than Tribos can index (" + std::to_string(total) + ")");
+  in.integer("the smallest node tag");
+  in.integer("the largest node tag");
+  content.nodes.reserve(static_cast<size_t>(total));
+  long long seen = 0;
+  for (long long b = 0; b < blocks; ++b) {
+    in.smallInteger("a node block's entity dimension", 0, 3);
+    in.smallInteger("a node block's entity tag");
+    if (in.smallInteger("the parametric flag", 0, 1) != 0) in.fail("parametric node coordinates are not supported");
+    const long long inBlock = in.count("the number of nodes in a block", 4);
+    if (inBlock > total - seen)
+      in.fail("the node blocks hold more nodes than the section header says (" + std::to_string(total) + ")");
+    std::vector<long long> tags(static_cast<size_t>(inBlock));
+    for (auto& t : tags) t = in.integer("a node tag", 1);
+    for (long long t : tags) {
+      const std::string node = "node " + std::to_string(t);
+      std::array<double, 3> x;
+      for (int c = 0; c < 3; ++c) {
+        x[c] = in.number(std::string("the ") + "xyz"[c] + " coordinate of " + node);
+        if (!std::isfinite(x[c])) in.fail("the " + std::string(1, "xyz"[c]) + " coordinate of " + node + " is not finite");
+      }
+      if (!content.nodes.emplace(t, x).second) in.fail(node + " is defined twice");
+    }
+    seen += inBlock;
+  }
+  if (seen != total)
+    in.fail("the node blocks hold " + std::to_string(seen) + " nodes but the section header says " +
+            std::to_string(total));
+  in.leave();
+}
+
+/// Nodes per element of the gmsh types Tribos reads: point, line, triangle, tetrahedron.
+int nodesPerElement(int type) {
+  switch (type) {
+    case 15: return 1;
+    case 1: return 2;
+    case 2: return 3;
+    case 4: return 4;
+    default: return -1;
+  }
+}
+
+void checkElementBlockType(Tokens& in, int dim, int entity, int type) {
+  const std::string where = "entity " + std::to_string(entity) + " (dimension " + std::to_string(dim) + ")";
+  if (dim == 3 && type != 4)
+    in.fail("volume " + where + " has elements of gmsh type " + std::to_string(type) +
+            "; Tribos needs 4-node tetrahedra (type 4)");
+  if (nodesPerElement(type) < 0)
+    in.fail(where + " has elements of gmsh type " + std::to_string(type) +
+            ", which Tribos does not read (points, lines, 3-node triangles and 4-node tetrahedra only)");
+  if ((type == 4) != (dim == 3) || (type == 2 && dim != 2))
+    in.fail(where + " holds elements of gmsh type " + std::to_string(type) + ", which do not have its dimension");
+}
+
+void readElements(Tokens& in, GmshContent& content) {
+  const long long blocks = in.count("the number of element blocks", 4);
+  const long long total = in.count("the number of elements", 2);
+  in.integer("the smallest element tag");
+  in.integer("the largest element tag");
+  long long seen = 0;
+  for (long long b = 0; b < blocks; ++b) {
+    const int dim = in.smallInteger("an element block's entity dimension", 0, 3);
+    const int entity = in.smallInteger("an element block's entity tag");
+    const int type = in.smallInteger("an element type");
+    checkElementBlockType(in, dim, entity, type);
+    const int perElement = nodesPerElement(type);
+    const long long inBlock = in.count("the number of elements in a block", 1 + perElement);
+    if (inBlock > total - seen)
+      in.fail("the element blocks hold more elements than the section header says (" + std::to_string(total) + ")");
+    const auto physical = content.entityPhysical.find({dim, entity});
+    const int group = physical == content.entityPhysical.end() || physical->second.empty() ? 0 : physical->second.front();
+    for (long long e = 0; e < inBlock; ++e) {
+      const long long tag = in.integer("an element tag", 1);
+      std::array<long long, 4> v{};
+      for (int k = 0; k < perElement; ++k) v[k] = in.integer("a node tag of element " + std::to_string(tag), 1);
+      if (type == 4) content.tets.push_back({v, group, tag});
+      if (type == 2) content.triangles.push_back({{v[0], v[1], v[2]}, group, tag});
+    }
+    seen += inBlock;
+  }
+  if (seen != total)
+    in.fail("the element blocks hold " + std::to_string(seen) + " elements but the section header says " +
+            std::to_string(total));
+  if (content.tets.size() > static_cast<size_t>(INT_MAX)) in.fail("more tetrahedra than Tribos can index");
+  in.leave();
+}
+
+/// The sections, in any order after $MeshFormat; unknown ones are skipped.
+GmshContent readSections(std::string_view text, const std::string& source) {
+  Tokens in(text, source);
+  GmshContent content;
+  bool sawFormat = false, sawNodes = false, sawElements = false;
+  while (in.more()) {
+    const auto section = in.word("a section");
+    if (section.empty() || section.front() != '$' || section.rfind("$End", 0) == 0)
+      in.fail(sawFormat ? "\"" + std::string(section.substr(0, 40)) + "\" outside a section (a count does not match the data?)"
+                        : "not a gmsh mesh ($MeshFormat missing)");
+    in.enter(section);
+    if (section == "$MeshFormat") {
+      readFormat(in);
+      sawFormat = true;
+      continue;
+    }
+    if (!sawFormat) in.fail("not a gmsh mesh ($MeshFormat missing)");
+    if (section == "$PhysicalNames") {
+      readPhysicalNames(in, content);
+    } else if (section == "$Entities") {
+      readEntities(in, content);
+    } else if (section == "$Nodes") {
+      readNodes(in, content);
+      sawNodes = true;
+    } else if (section == "$Elements") {
+      readElements(in, content);
+      sawElements = true;
+    } else {
+      in.skipSection();
+    }
+  }
+  if (!sawFormat) in.fail("not a gmsh mesh ($MeshFormat missing)");
+  if (!sawNodes || !sawElements) in.fail(std::string("the file has no ") + (sawNodes ? "$Elements" : "$Nodes") + " section");
+  if (content.tets.empty()) in.fail("no tetrahedra (mesh in 3D with a Physical Volume)");
+  return content;
+}
+
+std::string volumeName(const GmshContent& content, int physical) {
+  const auto it = content.physicalName.find({3, physical});
+  return it != content.physicalName.end() ? it->second : "volume_" + std::to_string(physical);
+}
+
+std::string surfaceName(const GmshContent& content, int physical) {
+  const auto it = content.physicalName.find({2, physical});
+  return it != content.physicalName.end() ? it->second : "surface_" + std::to_string(physical);
+}
+
+using FaceKey = std::array<long long, 3>;  // sorted gmsh node tags of a face
+
+/// Builds the Mesh: bodies in the order of their physical tags, elements sorted by body (so
+/// blocks are contiguous), nodes numbered in order of first use, one per (node, body) when
+/// the bodies are split.
+class MeshBuilder {
+ public:
+  MeshBuilder(GmshContent& content, const std::string& source, bool splitBodies)
+      : content_(content), source_(source), split_(splitBodies) {}
+
+  Mesh build() {
+    std::stable_sort(content_.tets.begin(), content_.tets.end(),
+                     [](const Tet& a, const Tet& b) { return a.physical < b.physical; });
+    for (size_t e = 0; e < content_.tets.size(); ++e) addTet(static_cast<LO>(e));
+    addSurfaces();
+    mesh_.validate(source_);
+    return std::move(mesh_);
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& what) const { throw core::InputError(source_ + ": " + what); }
+
+  LO nodeId(long long gmshNode, int body, const std::string& user) {
+    const auto it = content_.nodes.find(gmshNode);
+    if (it == content_.nodes.end())
+      fail(user + " references node " + std::to_string(gmshNode) + ", which $Nodes does not define");
+    const auto key = std::make_pair(gmshNode, split_ ? body : 0);
+    const auto [pos, inserted] = nodeIds_.insert({key, static_cast<LO>(mesh_.coords.size())});
+    if (inserted) mesh_.coords.push_back(it->second);
+    return pos->second;
+  }
+
+  void addTet(LO e) {
+    Tet& tet = content_.tets[e];
+    const std::string name = volumeName(content_, tet.physical);
+    if (blockOfBody_.count(tet.physical) == 0) {  // tets are sorted by body: a new block
+      blockOfBody_[tet.physical] = mesh_.numBlocks();
+      mesh_.blocks.push_back({name, tet.physical > 0 ? tet.physical : mesh_.numBlocks() + 1, e, 0});
+    }
+    mesh_.blocks.back().count++;
+    const std::string element = "element " + std::to_string(tet.tag) + " of Physical Volume \"" + name + "\"";
+    std::array<LO, 4> t;
+    for (int v = 0; v < 4; ++v) t[v] = nodeId(tet.nodes[v], tet.physical, element);
+    mesh_.tets.push_back(t);
+    mesh_.elementNumbers.push_back(tet.tag);  // messages from Mesh::validate name gmsh's tags
+    const double volume = mesh_.elementVolume(e), edge = mesh_.longestEdge(e);
+    if (!(std::abs(volume) > kDegenerateVolumeRatio * edge * edge * edge))
+      fail(element + " is degenerate (volume " + core::formatNumber(volume) + " for a longest edge of " +
+           core::formatNumber(edge) + ")");
+    if (volume < 0.0) {  // the other orientation convention: reorder
+      std::swap(mesh_.tets.back()[2], mesh_.tets.back()[3]);
+      std::swap(tet.nodes[2], tet.nodes[3]);
+    }
+    for (int side = 0; side < 4; ++side) {
+      FaceKey key;
+      for (int k = 0; k < 3; ++k) key[k] = tet.nodes[kTetFaceVertices[side][k]];
+      std::sort(key.begin(), key.end());
+      faces_[key].push_back({e, side});
+    }
+  }
+
+  /// Side sets from the physical surfaces; a surface between two bodies gives one per body.
+  void addSurfaces() {
+    std::map<int, std::map<int, SideSet>> sets;  // surface tag -> body -> set
+    for (const auto& tri : content_.triangles) {
+      if (tri.physical == 0) continue;
+      const std::string triangle =
+          "triangle " + std::to_string(tri.tag) + " of Physical Surface \"" + surfaceName(content_, tri.physical) + "\"";
+      FaceKey key = tri.nodes;
+      for (long long n : key)
+        if (!content_.nodes.count(n))
+          fail(triangle + " references node " + std::to_string(n) + ", which $Nodes does not define");
+      std::sort(key.begin(), key.end());
+      const auto it = faces_.find(key);
+      if (it == faces_.end()) fail(triangle + " is not a face of any tetrahedron");
+      for (const auto& [element, side] : it->second) {
+        auto& set = sets[tri.physical][content_.tets[element].physical];
+        set.elements.push_back(element);
+        set.sides.push_back(side);
+      }
+    }
+    int id = 1;
+    for (auto& [surface, byBody] : sets)
+      for (auto& [body, set] : byBody) {
+        const std::string base = surfaceName(content_, surface);
+        set.name = byBody.size() > 1 ? base + "_" + mesh_.blocks[blockOfBody_[body]].name : base;
+        set.id = id++;
+        NodeSet nodes{set.name, set.id, {}};
+        for (size_t f = 0; f < set.elements.size(); ++f)
+          for (int v : kTetFaceVertices[set.sides[f]]) nodes.nodes.push_back(mesh_.tets[set.elements[f]][v]);
+        std::sort(nodes.nodes.begin(), nodes.nodes.end());
+        nodes.nodes.erase(std::unique(nodes.nodes.begin(), nodes.nodes.end()), nodes.nodes.end());
+        mesh_.sideSets.push_back(set);
+        mesh_.nodeSets.push_back(std::move(nodes));
+      }
+  }
+
+  GmshContent& content_;
+  const std::string& source_;
+  const bool split_;
+  Mesh mesh_;
+  std::map<std::pair<long long, int>, LO> nodeIds_;  // (gmsh node, body or 0) -> node
+  std::map<int, int> blockOfBody_;                    // physical tag -> block index
+  std::map<FaceKey, std::vector<std::pair<LO, int>>> faces_;  // -> (element, side)
 };
 }  // namespace
 
+Mesh parseGmsh(std::string_view text, const std::string& source, bool splitBodies) {
+  GmshContent content = readSections(text, source);
+  return MeshBuilder(content, source, splitBodies).build();
+}
+
 Mesh readGmsh(const std::string& path, bool splitBodies) {
-  std::ifstream in(path);
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) throw core::InputError(path + ": is a directory, not a gmsh file");
+  std::ifstream in(path, std::ios::binary);
   if (!in) throw core::InputError(path + ": cannot open the gmsh file");
-  auto fail = [&](const std::string& what) -> void { throw core::InputError(path + ": " + what); };
-
-  std::map<std::pair<int, int>, std::string> physicalName;       // (dim, tag) -> name
-  std::map<std::pair<int, int>, std::vector<int>> entityPhysical;  // (dim, entity) -> physical tags
-  std::map<long long, std::array<double, 3>> nodes;
-  std::vector<Tet> tets;
-  std::vector<Triangle> triangles;
-  std::string section;
-  bool sawFormat = false;
-  while (in >> section) {
-    if (section == "$MeshFormat") {
-      double version = 0;
-      int binary = 1, size = 0;
-      in >> version >> binary >> size;
-      if (version < 4.0 || version >= 5.0 || binary != 0)
-        fail("only gmsh 4.x ASCII meshes are read (gmsh -format msh41); this file is version " +
-             std::to_string(version) + (binary ? " binary" : ""));
-      sawFormat = true;
-    } else if (section == "$PhysicalNames") {
-      int count = 0;
-      in >> count;
-      for (int i = 0; i < count; ++i) {
-        int dim = 0, tag = 0;
-        std::string name;
-        in >> dim >> tag;
-        std::getline(in, name);
-        const auto first = name.find('"'), last = name.rfind('"');
-        physicalName[{dim, tag}] = first == std::string::npos ? name : name.substr(first + 1, last - first - 1);
-      }
-    } else if (section == "$Entities") {
-      long long counts[4];
-      in >> counts[0] >> counts[1] >> counts[2] >> counts[3];
-      for (int dim = 0; dim < 4; ++dim)
-        for (long long e = 0; e < counts[dim]; ++e) {
-          int tag = 0;
-          double box[6];
-          in >> tag;
-          for (int k = 0; k < (dim == 0 ? 3 : 6); ++k) in >> box[k];
-          int numPhysical = 0;
-          in >> numPhysical;
-          std::vector<int> phys(numPhysical);
-          for (int& p : phys) in >> p;
-          entityPhysical[{dim, tag}] = phys;
-          if (dim > 0) {
-            int numBounding = 0;
-            in >> numBounding;
-            for (int k = 0; k < numBounding; ++k) {
-              long long skip;
-              in >> skip;
-            }
-          }
-        }
-    } else if (section == "$Nodes") {
-      long long blocks = 0, count = 0, minTag = 0, maxTag = 0;
-      in >> blocks >> count >> minTag >> maxTag;
-      for (long long b = 0; b < blocks; ++b) {
-        int dim = 0, entity = 0, parametric = 0;
-        long long inBlock = 0;
-        in >> dim >> entity >> parametric >> inBlock;
-        if (parametric) fail("parametric node coordinates are not supported");
-        std::vector<long long> tags(inBlock);
-        for (auto& t : tags) in >> t;
-        for (auto t : tags) {
-          std::array<double, 3> x;
-          in >> x[0] >> x[1] >> x[2];
-          nodes[t] = x;
-        }
-      }
-    } else if (section == "$Elements") {
-      long long blocks = 0, count = 0, minTag = 0, maxTag = 0;
-      in >> blocks >> count >> minTag >> maxTag;
-      for (long long b = 0; b < blocks; ++b) {
-        int dim = 0, entity = 0, type = 0;
-        long long inBlock = 0;
-        in >> dim >> entity >> type >> inBlock;
-        const auto& phys = entityPhysical[{dim, entity}];
-        const int physical = phys.empty() ? 0 : phys.front();
-        const int perElement = type == 4 ? 4 : type == 2 ? 3 : type == 1 ? 2 : type == 15 ? 1 : -1;
-        if (dim == 3 && type != 4)
-          fail("volume entity " + std::to_string(entity) + " has elements of gmsh type " + std::to_string(type) +
-               "; Tribos needs 4-node tetrahedra (type 4)");
-        if (perElement < 0) fail("unsupported gmsh element type " + std::to_string(type));
-        for (long long e = 0; e < inBlock; ++e) {
-          long long tag;
-          in >> tag;
-          std::array<long long, 4> v{};
-          for (int k = 0; k < perElement; ++k) in >> v[k];
-          if (type == 4) tets.push_back({v, physical});
-          if (type == 2) triangles.push_back({{v[0], v[1], v[2]}, physical});
-        }
-      }
-    }
-  }
-  if (!sawFormat) fail("not a gmsh mesh ($MeshFormat missing)");
-  if (tets.empty()) fail("no tetrahedra (mesh in 3D with a Physical Volume)");
-
-  // Bodies in the order of their physical tags; elements sorted by body (contiguous blocks).
-  std::set<int> bodyTags;
-  for (const auto& t : tets) bodyTags.insert(t.physical);
-  std::vector<int> bodies(bodyTags.begin(), bodyTags.end());
-  std::stable_sort(tets.begin(), tets.end(), [](const Tet& a, const Tet& b) { return a.physical < b.physical; });
-
-  // Node numbering per (gmsh node, body): one node unless split and shared.
-  Mesh mesh;
-  std::map<std::pair<long long, int>, LO> nodeId;
-  std::map<long long, LO> sharedId;
-  auto idOf = [&](long long gmshNode, int body) -> LO {
-    const auto it = nodes.find(gmshNode);
-    if (it == nodes.end()) fail("element references node " + std::to_string(gmshNode) + " that does not exist");
-    if (!splitBodies) {
-      auto [pos, inserted] = sharedId.insert({gmshNode, static_cast<LO>(mesh.coords.size())});
-      if (inserted) mesh.coords.push_back(it->second);
-      return pos->second;
-    }
-    auto [pos, inserted] = nodeId.insert({{gmshNode, body}, static_cast<LO>(mesh.coords.size())});
-    if (inserted) mesh.coords.push_back(it->second);
-    return pos->second;
-  };
-  std::map<std::array<LO, 3>, std::vector<std::pair<LO, int>>> faces;  // sorted gmsh nodes -> (element, side)
-  std::map<int, int> blockOfBody;
-  for (size_t e = 0; e < tets.size(); ++e) {
-    const int body = tets[e].physical;
-    if (!blockOfBody.count(body)) {
-      const auto name = physicalName.count({3, body}) ? physicalName[{3, body}] : "volume_" + std::to_string(body);
-      blockOfBody[body] = static_cast<int>(mesh.blocks.size());
-      mesh.blocks.push_back({name, body > 0 ? body : static_cast<int>(mesh.blocks.size()) + 1, static_cast<LO>(e), 0});
-    }
-    mesh.blocks[blockOfBody[body]].count++;
-    std::array<LO, 4> t;
-    for (int v = 0; v < 4; ++v) t[v] = idOf(tets[e].nodes[v], body);
-    mesh.tets.push_back(t);
-    if (mesh.elementVolume(static_cast<LO>(e)) < 0.0) {
-      std::swap(mesh.tets.back()[2], mesh.tets.back()[3]);
-      std::swap(tets[e].nodes[2], tets[e].nodes[3]);
-    }
-    for (int side = 0; side < 4; ++side) {
-      std::array<LO, 3> key;
-      for (int k = 0; k < 3; ++k) key[k] = static_cast<LO>(tets[e].nodes[kTetFaceVertices[side][k]]);
-      std::sort(key.begin(), key.end());
-      faces[key].push_back({static_cast<LO>(e), side});
-    }
-  }
-
-  // Side sets from the physical surfaces; a surface between two bodies gives one per body.
-  std::map<int, std::map<int, SideSet>> sets;  // surface tag -> body -> set
-  for (const auto& tri : triangles) {
-    if (tri.physical == 0) continue;
-    std::array<LO, 3> key{static_cast<LO>(tri.nodes[0]), static_cast<LO>(tri.nodes[1]), static_cast<LO>(tri.nodes[2])};
-    std::sort(key.begin(), key.end());
-    const auto it = faces.find(key);
-    if (it == faces.end())
-      fail("a triangle of Physical Surface " + std::to_string(tri.physical) + " is not a face of any tetrahedron");
-    for (const auto& [element, side] : it->second) {
-      auto& set = sets[tri.physical][tets[element].physical];
-      set.elements.push_back(element);
-      set.sides.push_back(side);
-    }
-  }
-  int id = 1;
-  for (auto& [surface, byBody] : sets) {
-    const auto base = physicalName.count({2, surface}) ? physicalName[{2, surface}] : "surface_" + std::to_string(surface);
-    for (auto& [body, set] : byBody) {
-      set.name = byBody.size() > 1 ? base + "_" + mesh.blocks[blockOfBody[body]].name : base;
-      set.id = id++;
-      NodeSet ns{set.name, set.id, {}};
-      for (size_t f = 0; f < set.elements.size(); ++f)
-        for (int v : kTetFaceVertices[set.sides[f]]) ns.nodes.push_back(mesh.tets[set.elements[f]][v]);
-      std::sort(ns.nodes.begin(), ns.nodes.end());
-      ns.nodes.erase(std::unique(ns.nodes.begin(), ns.nodes.end()), ns.nodes.end());
-      mesh.sideSets.push_back(set);
-      mesh.nodeSets.push_back(std::move(ns));
-    }
-  }
-  mesh.validate(path);
-  return mesh;
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw core::InputError(path + ": reading the gmsh file failed");
+  return parseGmsh(text.str(), path, splitBodies);
 }
 
 }  // namespace tribos::mesh

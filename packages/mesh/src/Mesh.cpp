@@ -1,19 +1,37 @@
 #include "tribos/mesh/Mesh.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <functional>
 #include <sstream>
 
 #include "tribos/core/Errors.hpp"
+#include "tribos/core/Format.hpp"
+#include "tribos/mesh/MeshFaces.hpp"
 
 namespace tribos::mesh {
 
 namespace {
+size_t entries(const NodeSet& s) { return s.nodes.size(); }
+size_t entries(const SideSet& s) { return s.elements.size(); }
+size_t entries(const ElementBlock& b) { return static_cast<size_t>(b.count); }
+
+/// "the mesh" or "the mesh (file.exo)".
+std::string theMesh(const std::string& file) { return file.empty() ? "the mesh" : "the mesh (" + file + ")"; }
+
+/// The entity named `name`. A set or block that is used must hold something: an empty one
+/// would silently restrain, load or couple nothing.
 template <class Set>
-const Set& findByName(const std::vector<Set>& sets, const std::string& name, const char* kind) {
-  for (const auto& s : sets)
-    if (s.name == name) return s;
+const Set& findByName(const std::vector<Set>& sets, const std::string& name, const char* kind,
+                      const std::string& file) {
+  for (const auto& s : sets) {
+    if (s.name != name) continue;
+    if (entries(s) == 0)
+      throw core::InputError(std::string(kind) + " \"" + name + "\" of " + theMesh(file) + " is empty");
+    return s;
+  }
   std::ostringstream msg;
-  msg << "the mesh has no " << kind << " named \"" << name << "\"; it has:";
+  msg << theMesh(file) << " has no " << kind << " named \"" << name << "\"; it has:";
   for (const auto& s : sets) msg << " \"" << s.name << "\"";
   if (sets.empty()) msg << " none";
   throw core::InputError(msg.str());
@@ -27,16 +45,16 @@ int Mesh::blockOf(LO element) const {
 }
 
 int Mesh::blockIndex(const std::string& name) const {
-  const auto& block = findByName(blocks, name, "element block");
+  const auto& block = findByName(blocks, name, "element block", file);
   return static_cast<int>(&block - blocks.data());
 }
 
 const NodeSet& Mesh::nodeSet(const std::string& name) const {
-  return findByName(nodeSets, name, "node set");
+  return findByName(nodeSets, name, "node set", file);
 }
 
 const SideSet& Mesh::sideSet(const std::string& name) const {
-  return findByName(sideSets, name, "side set");
+  return findByName(sideSets, name, "side set", file);
 }
 
 double Mesh::elementVolume(LO element) const {
@@ -51,6 +69,25 @@ double Mesh::elementVolume(LO element) const {
   return det / 6.0;
 }
 
+std::string Mesh::elementLabel(LO element) const {
+  const bool numbered = static_cast<size_t>(element) < elementNumbers.size();
+  const int b = blockOf(element);
+  return "element " + std::to_string(numbered ? elementNumbers[element] : element + 1LL) +
+         (b >= 0 ? " of block \"" + blocks[b].name + "\"" : std::string());
+}
+
+double Mesh::longestEdge(LO element) const {
+  const auto& t = tets[element];
+  double longest = 0.0;
+  for (int a = 0; a < 4; ++a)
+    for (int b = a + 1; b < 4; ++b) {
+      double squared = 0.0;
+      for (int c = 0; c < 3; ++c) squared += (coords[t[a]][c] - coords[t[b]][c]) * (coords[t[a]][c] - coords[t[b]][c]);
+      longest = std::max(longest, squared);
+    }
+  return std::sqrt(longest);
+}
+
 std::array<double, 3> Mesh::faceNormal(LO element, int side) const {
   const auto& t = tets[element];
   const auto& face = kTetFaceVertices[side];
@@ -59,39 +96,69 @@ std::array<double, 3> Mesh::faceNormal(LO element, int side) const {
   return {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
 }
 
-void Mesh::validate(const std::string& source) const {
-  auto fail = [&](const std::string& what) { throw core::InputError(source + ": " + what); };
+namespace {
+using Fail = std::function<void(const std::string&)>;
+
+void requireContiguousBlocks(const Mesh& mesh, const Fail& fail) {
   LO next = 0;
-  for (const auto& b : blocks) {
-    if (b.first != next || b.count < 0)
+  for (const auto& b : mesh.blocks) {
+    if (b.first != next || b.count < 0 || b.count > mesh.numElements() - next)
       fail("element block \"" + b.name + "\" is not contiguous with the previous block");
+    if (b.count == 0) fail("element block \"" + b.name + "\" (id " + std::to_string(b.id) + ") has no elements");
     next += b.count;
   }
-  if (next != numElements()) fail("element blocks do not cover all elements");
-  for (LO e = 0; e < numElements(); ++e) {
-    for (LO n : tets[e])
-      if (n < 0 || n >= numNodes())
-        fail("element " + std::to_string(e + 1) + " references node " + std::to_string(n + 1) +
-             " out of range 1.." + std::to_string(numNodes()));
-    if (!(elementVolume(e) > 0.0))
-      fail("element " + std::to_string(e + 1) + " of block \"" + blocks[blockOf(e)].name +
-           "\" is inverted or degenerate (volume " + std::to_string(elementVolume(e)) + ")");
+  if (next != mesh.numElements()) fail("element blocks do not cover all elements");
+}
+
+void requireFiniteCoordinates(const Mesh& mesh, const Fail& fail) {
+  for (LO n = 0; n < mesh.numNodes(); ++n)
+    for (double x : mesh.coords[n])
+      if (!std::isfinite(x)) fail("node " + std::to_string(n + 1) + " has a coordinate that is not finite: " +
+                                  core::formatPoint(mesh.coords[n]));
+}
+
+void requireValidElements(const Mesh& mesh, const Fail& fail) {
+  for (LO e = 0; e < mesh.numElements(); ++e) {
+    for (LO n : mesh.tets[e])
+      if (n < 0 || n >= mesh.numNodes())
+        fail(mesh.elementLabel(e) + " references node " + std::to_string(n + 1) + " out of range 1.." +
+             std::to_string(mesh.numNodes()));
+    const double volume = mesh.elementVolume(e), edge = mesh.longestEdge(e);
+    if (std::abs(volume) <= kDegenerateVolumeRatio * edge * edge * edge)
+      fail(mesh.elementLabel(e) + " is degenerate (volume " + core::formatNumber(volume) + " for a longest edge of " +
+           core::formatNumber(edge) + ")");
+    if (volume < 0.0) fail(mesh.elementLabel(e) + " is inverted (volume " + core::formatNumber(volume) + ")");
   }
-  for (const auto& s : nodeSets) {
+}
+
+void requireValidSets(const Mesh& mesh, const Fail& fail) {
+  for (const auto& s : mesh.nodeSets) {
     for (LO n : s.nodes)
-      if (n < 0 || n >= numNodes())
+      if (n < 0 || n >= mesh.numNodes())
         fail("node set \"" + s.name + "\" references node " + std::to_string(n + 1) + " out of range");
     if (!std::is_sorted(s.nodes.begin(), s.nodes.end()) ||
         std::adjacent_find(s.nodes.begin(), s.nodes.end()) != s.nodes.end())
       fail("node set \"" + s.name + "\" is not sorted and unique");
   }
-  for (const auto& s : sideSets) {
+  for (const auto& s : mesh.sideSets) {
     if (s.elements.size() != s.sides.size()) fail("side set \"" + s.name + "\" is malformed");
     for (size_t i = 0; i < s.elements.size(); ++i)
-      if (s.elements[i] < 0 || s.elements[i] >= numElements() || s.sides[i] < 0 || s.sides[i] > 3)
-        fail("side set \"" + s.name + "\" references element " + std::to_string(s.elements[i] + 1) +
-             " side " + std::to_string(s.sides[i] + 1) + " out of range");
+      if (s.elements[i] < 0 || s.elements[i] >= mesh.numElements() || s.sides[i] < 0 || s.sides[i] > 3)
+        fail("side set \"" + s.name + "\" references element " + std::to_string(s.elements[i] + 1) + " side " +
+             std::to_string(s.sides[i] + 1) + " out of range");
   }
+}
+}  // namespace
+
+void Mesh::validate(const std::string& source) const {
+  const Fail fail = [&](const std::string& what) { throw core::InputError(source + ": " + what); };
+  // In this order: each check relies on the ones before (ids in range, then volumes, then
+  // face normals that point outwards).
+  requireContiguousBlocks(*this, fail);
+  requireFiniteCoordinates(*this, fail);
+  requireValidElements(*this, fail);
+  requireValidSets(*this, fail);
+  requireSoundTopology(*this, source);
 }
 
 }  // namespace tribos::mesh

@@ -6,6 +6,7 @@
 
 #include "tribos/core/Errors.hpp"
 #include "tribos/mesh/Decomposition.hpp"
+#include "tribos/mesh/MeshFaces.hpp"
 
 namespace tribos::mesh {
 
@@ -51,6 +52,10 @@ std::vector<int> metisPartition(const Mesh& mesh, int numParts) {
   const int nb = mesh.numBlocks();
   core::requireInput(numParts >= nb, "Mesh/Subdomains: " + std::to_string(numParts) + " is fewer than the " +
                                          std::to_string(nb) + " bodies (element blocks); a subdomain cannot span two");
+  // A body in several pieces has no contiguous partition (METIS would print "A contiguous
+  // partition is requested for a non-contiguous input graph") and a subdomain spanning two
+  // pieces has 12 rigid motions, not 6: an input error naming the block, before METIS.
+  requireConnectedBlocks(mesh, mesh.file.empty() ? "mesh" : mesh.file);
   const auto share = shareParts(mesh, numParts);
   std::vector<int> part(mesh.numElements(), 0);
   int offset = 0;
@@ -82,14 +87,9 @@ std::vector<int> metisPartition(const Mesh& mesh, int numParts) {
     idx_t options[METIS_NOPTIONS];
     METIS_SetDefaultOptions(options);
     options[METIS_OPTION_NUMBERING] = 0;
-    options[METIS_OPTION_CONTIG] = 1;  // connected subdomains where the body allows
-    int status = METIS_PartMeshDual(&ne, &nn, eptr.data(), eind.data(), nullptr, nullptr, &ncommon, &nparts, nullptr,
-                                    options, &objval, epart.data(), npart.data());
-    if (status != METIS_OK) {  // e.g. a body made of disconnected pieces: drop contiguity
-      options[METIS_OPTION_CONTIG] = 0;
-      status = METIS_PartMeshDual(&ne, &nn, eptr.data(), eind.data(), nullptr, nullptr, &ncommon, &nparts, nullptr,
-                                  options, &objval, epart.data(), npart.data());
-    }
+    options[METIS_OPTION_CONTIG] = 1;  // connected subdomains: each has exactly 6 rigid motions
+    const int status = METIS_PartMeshDual(&ne, &nn, eptr.data(), eind.data(), nullptr, nullptr, &ncommon, &nparts,
+                                          nullptr, options, &objval, epart.data(), npart.data());
     if (status != METIS_OK)
       throw std::runtime_error("METIS_PartMeshDual failed (status " + std::to_string(status) + ") on element block \"" +
                                block.name + "\"");

@@ -132,24 +132,37 @@ TEST(metisPartition, coversEveryElementOnceWithinOneBodyAndBalanced) {
   for (LO e = 0; e < mesh.numElements(); ++e) EXPECT_EQ(two[e], mesh.blockOf(e));
 }
 
-TEST(metisPartition, smallBodiesGetOnePartAndDisconnectedBodiesArePartitioned) {
-  // Re-block the 2x1x1, H/h = 2 mesh (2 x 80 tets) into a body made of BOTH bricks (two
-  // pieces that share no node, so no contiguous partition exists and METIS must be re-run
-  // without CONTIG) and two one-element bodies. Proportional shares of 6 parts are
-  // 5.93, 0.04, 0.04: the small bodies get one part each, taken from the big one, and the
-  // shares still sum to 6.
+TEST(metisPartition, smallBodiesGetOnePartEach) {
+  // Re-block the 2x1x1, H/h = 2 mesh (2 x 80 tets): the first brick less its last two tets,
+  // those two tets as one-element bodies, the second brick. Proportional shares of 6 parts
+  // are 2.925, 0.0375, 0.0375, 3: the small bodies get one part each, taken from the bodies
+  // whose shares exceed their quotas most, and the shares still sum to 6.
   Mesh mesh = generateTwoBricks({{2, 1, 1}, 2});
-  const LO ne = mesh.numElements();
-  mesh.blocks = {{"both", 1, 0, ne - 2}, {"tiny_a", 2, ne - 2, 1}, {"tiny_b", 3, ne - 1, 1}};
+  ASSERT_EQ(mesh.numElements(), 160);
+  mesh.blocks = {{"big", 1, 0, 78}, {"tiny_a", 2, 78, 1}, {"tiny_b", 3, 79, 1}, {"steel", 4, 80, 80}};
   const auto part = metisPartition(mesh, 6);
   const auto d = buildDecomposition(mesh, part);
   ASSERT_EQ(d.numSubdomains(), 6);
-  EXPECT_EQ(part[ne - 2], 4);
-  EXPECT_EQ(part[ne - 1], 5);
-  for (int p = 0; p < 4; ++p) {
-    EXPECT_EQ(d.subdomains[p].body, 0);
-    // METIS without contiguity still balances: 158 / 4 = 39.5 elements on average.
-    EXPECT_LE(d.subdomains[p].elements.size(), 1.10 * 158 / 4);
+  EXPECT_EQ(part[78], 2);
+  EXPECT_EQ(part[79], 3);
+  for (int p : {0, 1}) EXPECT_EQ(d.subdomains[p].body, 0);
+  for (int p : {4, 5}) EXPECT_EQ(d.subdomains[p].body, 3);
+  EXPECT_THROW(metisPartition(mesh, 3), core::InputError);  // 4 bodies
+}
+
+TEST(metisPartition, aBodyInSeveralPiecesIsAnInputErrorNamingTheBlockAndItsIslands) {
+  // Both bricks (which share no node) as one body: no contiguous partition exists, and a
+  // subdomain holding both would have 12 rigid motions.
+  Mesh mesh = generateTwoBricks({{2, 1, 1}, 2});
+  mesh.blocks = {{"both", 1, 0, mesh.numElements()}};
+  for (int parts : {1, 4}) {
+    try {
+      metisPartition(mesh, parts);
+      ADD_FAILURE() << "no error for a body in two pieces";
+    } catch (const core::InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("element block \"both\" is 2 separate pieces"), std::string::npos) << what;
+      EXPECT_NE(what.find("80 elements from element 1, 80 elements from element 81"), std::string::npos) << what;
+    }
   }
-  EXPECT_THROW(metisPartition(mesh, 2), core::InputError);  // 3 bodies
 }

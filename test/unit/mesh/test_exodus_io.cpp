@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <stdexcept>
 
 #include "tribos/core/Errors.hpp"
@@ -392,6 +393,63 @@ TEST(ExodusIO, badFilesAreInputErrorsNamingTheFile) {
   const std::string badConnPath = dir.file("bad_conn.exo");
   writeExodus(badConnPath, badConn);
   expectInputError(badConnPath, "references node 9 out of range");
+}
+
+TEST(ExodusIO, corruptCountsBadGeometryAndEmptyEntitiesAreInputErrors) {
+  const ScratchDir dir("untrusted");
+  auto written = [&](const std::string& name, const Mesh& mesh) {
+    const std::string path = dir.file(name);
+    writeExodus(path, mesh);
+    return path;
+  };
+  // A node count in the netCDF header that the file cannot hold (classic format: the
+  // dimension's 4-byte big-endian length follows its name, padded to 4 bytes).
+  const std::string good = written("good.exo", cubeMesh());
+  std::ifstream in(good, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const size_t at = bytes.find("num_nodes");
+  ASSERT_NE(at, std::string::npos);
+  bytes.replace(at + 12, 4, std::string("\x7f\xff\xff\xff", 4));
+  std::ofstream(dir.file("corrupt.exo"), std::ios::binary) << bytes;
+  expectInputError(dir.file("corrupt.exo"), "a corrupt one");
+
+  Mesh nan = cubeMesh();
+  nan.coords[5][0] = std::nan("");
+  expectInputError(written("nan.exo", nan), "node 6 has a coordinate that is not finite");
+
+  Mesh flat = cubeMesh();
+  flat.coords[6] = {0.5, 0.5, 0.0};  // the diagonal's end on the bottom face: tets 1, 2 become flat
+  expectInputError(written("flat.exo", flat), "element 1 of block \"lower\" is degenerate");
+
+  Mesh emptyBlock = cubeMesh();
+  emptyBlock.blocks.insert(emptyBlock.blocks.begin() + 1, {"hollow", 15, 3, 0});
+  expectInputError(written("empty_block.exo", emptyBlock), "element block \"hollow\" (id 15) has no elements");
+
+  // Sets may be empty in a file; using one is the error (Mesh::nodeSet, Mesh::sideSet).
+  Mesh emptySets = cubeMesh();
+  emptySets.nodeSets.push_back({"none", 4, {}});
+  emptySets.sideSets.push_back({"nowhere", 8, {}, {}});
+  const std::string emptySetsPath = written("empty_sets.exo", emptySets);
+  const Mesh back = readExodus(emptySetsPath).mesh;
+  for (const auto& lookup : {std::function<void()>([&] { back.nodeSet("none"); }),
+                             std::function<void()>([&] { back.sideSet("nowhere"); })}) {
+    try {
+      lookup();
+      ADD_FAILURE() << "an empty set in use";
+    } catch (const core::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("of the mesh (" + emptySetsPath + ") is empty"), std::string::npos) << e.what();
+    }
+  }
+
+  // The cube's two blocks as one, next to a shifted copy of itself: one body in two pieces.
+  Mesh two = cubeMesh();
+  const LO offset = two.numNodes();
+  for (LO n = 0; n < offset; ++n) two.coords.push_back({two.coords[n][0] + 3.0, two.coords[n][1], two.coords[n][2]});
+  for (LO e = 0; e < 6; ++e) two.tets.push_back({two.tets[e][0] + offset, two.tets[e][1] + offset,
+                                                 two.tets[e][2] + offset, two.tets[e][3] + offset});
+  two.blocks = {{"pair", 1, 0, 12}};
+  two.sideSets.clear();
+  expectInputError(written("two_pieces.exo", two), "element block \"pair\" is 2 separate pieces");
 }
 
 TEST(ExodusIO, writerRejectsBadCalls) {

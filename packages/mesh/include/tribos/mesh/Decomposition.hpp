@@ -30,11 +30,12 @@ struct Decomposition {
 /// Throws core::InputError if a part is empty or spans two element blocks (bodies).
 Decomposition buildDecomposition(const Mesh& mesh, const std::vector<int>& elementPart);
 
-/// METIS partition of a general mesh into `numParts` parts, face-adjacent (ncommon = 3),
-/// contiguous where METIS can. Each body (element block) is partitioned on its own, so no
-/// part spans two bodies; body b gets a share of the parts proportional to its element
-/// count (at least one). Throws core::InputError naming "Mesh/Subdomains" if numParts is
-/// smaller than the number of bodies or larger than a body's element count allows.
+/// METIS partition of a general mesh into `numParts` parts, face-adjacent (ncommon = 3) and
+/// contiguous. Each body (element block) is partitioned on its own, so no part spans two
+/// bodies; body b gets a share of the parts proportional to its element count (at least
+/// one). Throws core::InputError naming "Mesh/Subdomains" if numParts is smaller than the
+/// number of bodies or larger than a body's element count allows, and naming the block and
+/// its islands if a body is several face-connected pieces (MeshFaces.hpp).
 std::vector<int> metisPartition(const Mesh& mesh, int numParts);
 
 /// Contiguous block distribution of subdomains over ranks: the subdomains of `rank`

@@ -6,15 +6,27 @@
 /// so that each body has its own nodes on their interface (a conforming interface meshed
 /// once in gmsh becomes a node-to-node contact pair); a Physical Surface on such an
 /// interface yields one side set per body, "<name>_<body>".
+///
+/// The reader trusts nothing in the file: every count is checked against what the rest of
+/// the file can hold before anything is allocated, every number must parse completely,
+/// every section must be closed, node tags must exist, coordinates must be finite.
 #include <string>
+#include <string_view>
 
 #include "tribos/mesh/Mesh.hpp"
 
 namespace tribos::mesh {
 
-/// Throws core::InputError naming the file and what is wrong (not gmsh 4.1 ASCII, a
-/// Physical Volume with elements other than 4-node tetrahedra, a surface triangle that is
-/// no face of a tetrahedron). Tetrahedra with negative orientation are reordered.
+/// Throws core::InputError naming the file, the line and what is wrong (not gmsh 4.1 ASCII,
+/// a truncated file or section, a count the file cannot hold, a number that does not parse,
+/// an undefined node, a non-finite coordinate, a Physical Volume with elements other than
+/// 4-node tetrahedra, a degenerate tetrahedron, a surface triangle that is no face of a
+/// tetrahedron) and, through Mesh::validate, overlapping elements and bodies in several
+/// pieces. Tetrahedra with negative orientation are reordered (gmsh itself writes positive
+/// ones; other writers may use the opposite convention).
 Mesh readGmsh(const std::string& path, bool splitBodies);
+
+/// readGmsh on the text of a file; `source` names it in messages (tests and fuzzing).
+Mesh parseGmsh(std::string_view text, const std::string& source, bool splitBodies);
 
 }  // namespace tribos::mesh
