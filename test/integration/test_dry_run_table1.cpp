@@ -1,6 +1,7 @@
 // tribos --dry-run reproduces the dimensions of the paper's Table 1: n (primal dofs) and
 // l (rigid body modes) for all 20 cells. The figures below are this test's own copy of
 // ../shared/paper/table1.csv (2s, H/h, n, l).
+#include <unistd.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -32,7 +33,7 @@ std::string gridFor(int subdomains) {
 }  // namespace
 
 TEST(tribosDryRun, dimensionsMatchTable1) {
-  const auto dir = std::filesystem::temp_directory_path() / "tribos_table1";
+  const auto dir = std::filesystem::temp_directory_path() / ("tribos_table1_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   for (const Cell& cell : kTable1) {
     SCOPED_TRACE("2s = " + std::to_string(cell.subdomains) + ", H/h = " + std::to_string(cell.hOverH));
