@@ -236,28 +236,30 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
   applyGt(a, *lambdaIm_);
 }
 
-/// G on this rank's owned rows of B, stored twice over the same entries (one entry = one
-/// row r and one subdomain s it touches, with g_{s,r} = R_s^T b_{s,r}^T, 6 numbers):
-///  - by row (G^T a: each row independent, so threads over chunks of rows);
-///  - by subdomain (G x: each coarse block summed by one thread in a fixed order, so the
-///    result does not depend on the number of threads).
-/// 2 x 56 bytes per entry (~2 entries per row) instead of R_s and B_s^T per application.
+/// G on this rank's owned rows of B, by row: one entry = one row r and one subdomain s it
+/// touches, with g_{s,r} = R_s^T b_{s,r}^T (6 numbers); 52 bytes per entry (~2 entries per
+/// row) instead of R_s and B_s^T per application. Both products stream the entries in row
+/// order, threads over fixed chunks of rows:
+///  - G^T a: each row on its own;
+///  - G x: each chunk sums into its own coarse partial vector (over the range of subdomains
+///    its rows touch), and the partials are added chunk by chunk in a fixed order, so the
+///    result does not depend on the number of threads.
 struct TotalFeti::CoarseRows {
   GO firstRow = 0;
   LO numRows = 0;
   std::vector<LO> rowStart;       ///< numRows + 1; a row's entries in ascending subdomain order
   std::vector<int> rowSubdomain;  ///< per entry
   std::vector<double> rowG;       ///< 6 per entry
-  std::vector<int> columnSubdomain;  ///< the subdomains that touch an owned row, ascending
-  std::vector<LO> columnStart;       ///< columnSubdomain.size() + 1
-  std::vector<LO> columnRow;         ///< per entry: local owned row, ascending within a column
-  std::vector<double> columnG;       ///< 6 per entry
+  std::vector<int> chunkFirstSubdomain, chunkEndSubdomain;  ///< per chunk of kRowChunk rows
+  std::vector<size_t> partialOffset;  ///< per chunk, into partial: 6 x its subdomain range
+  mutable std::vector<double> partial;
+  int numChunks() const { return static_cast<int>(chunkFirstSubdomain.size()); }
 };
 
 namespace {
 /// Rows per task of the row loops of the projector: fixed, so that the work split (and with
-/// it nothing, the rows being independent) does not depend on the number of threads.
-constexpr LO kRowChunk = 4096;
+/// it the order of every sum in G x) does not depend on the number of threads.
+constexpr LO kRowChunk = 8192;
 }  // namespace
 
 void TotalFeti::buildCoarseRows() {
@@ -321,23 +323,19 @@ void TotalFeti::buildCoarseRows() {
   }
   for (LO r = 0; r < G->numRows; ++r) G->rowStart[r + 1] += G->rowStart[r];
 
-  // The same entries by subdomain (stable: rows stay ascending within a subdomain).
-  std::vector<size_t> order(entries.size());
-  for (size_t e = 0; e < order.size(); ++e) order[e] = e;
-  std::stable_sort(order.begin(), order.end(),
-                   [&](size_t a, size_t b) { return entries[a].subdomain < entries[b].subdomain; });
-  G->columnRow.resize(entries.size());
-  G->columnG.resize(6 * entries.size());
-  for (size_t k = 0; k < order.size(); ++k) {
-    const Entry& e = entries[order[k]];
-    if (G->columnSubdomain.empty() || G->columnSubdomain.back() != e.subdomain) {
-      G->columnSubdomain.push_back(e.subdomain);
-      G->columnStart.push_back(static_cast<LO>(k));
+  // The subdomain range of each chunk of rows, and room for its partial sums of G x.
+  for (LO first = 0; first < G->numRows; first += kRowChunk) {
+    const LO end = std::min<LO>(G->numRows, first + kRowChunk);
+    int lo = numSubdomains_, hi = 0;
+    for (LO e = G->rowStart[first]; e < G->rowStart[end]; ++e) {
+      lo = std::min(lo, G->rowSubdomain[e]);
+      hi = std::max(hi, G->rowSubdomain[e] + 1);
     }
-    G->columnRow[k] = e.row;
-    for (int j = 0; j < 6; ++j) G->columnG[6 * k + j] = g(order[k], j);
+    G->partialOffset.push_back(G->partial.size());
+    G->chunkFirstSubdomain.push_back(lo);
+    G->chunkEndSubdomain.push_back(std::max(lo, hi));
+    G->partial.resize(G->partial.size() + 6 * static_cast<size_t>(std::max(0, hi - lo)));
   }
-  G->columnStart.push_back(static_cast<LO>(order.size()));
   G_ = std::move(G);
   coarseLocal_.assign(numCoarse(), 0.0);
   coarseVector_.assign(numCoarse(), 0.0);
@@ -364,8 +362,8 @@ void TotalFeti::measureTraffic() {
   }
   const double owned = static_cast<double>(G_->numRows), gEntries = static_cast<double>(G_->rowSubdomain.size());
   f += owned * kDouble;  // y cleared before the sum
-  // One projection: G x by subdomain and G^T a by row (g, row or subdomain index, row
-  // pointers), x read twice, y written.
+  // One projection: G x and G^T a, each one pass over the entries by row (g, subdomain
+  // index, row pointers); x read twice, y written.
   const double projection = gEntries * 2 * (6 * kDouble + kIndex) + owned * (kIndex + 3 * kDouble);
   double local[2] = {f + 2 * projection, factorEntries}, global[2] = {0.0, 0.0};
   Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, 2, local, global);
@@ -582,19 +580,30 @@ void TotalFeti::applyDirichlet(const DualVector& x, DualVector& y) const {
 }
 
 void TotalFeti::applyGOwnedRows(const double* x, double* gx) const {
-  // (G x)_s = sum over the owned rows r that s touches of g_{s,r} x_r; one thread per
-  // subdomain block, entries in row order: the same bits for any number of threads.
+  // (G x)_s = sum over the owned rows r that s touches of g_{s,r} x_r: per chunk of rows
+  // into its partial vector (threads), then the partials in chunk order (main thread).
   const CoarseRows& G = *G_;
-  std::fill(gx, gx + numCoarse(), 0.0);
-  core::forEachSubdomain(static_cast<int>(G.columnSubdomain.size()), [&](int c) {
-    double sum[6] = {0, 0, 0, 0, 0, 0};
-    for (LO k = G.columnStart[c]; k < G.columnStart[c + 1]; ++k) {
-      const double xr = x[G.columnRow[k]];
-      const double* g = &G.columnG[6 * static_cast<size_t>(k)];
-      for (int j = 0; j < 6; ++j) sum[j] += g[j] * xr;
+  core::forEachSubdomain(G.numChunks(), [&](int c) {
+    const int lo = G.chunkFirstSubdomain[c];
+    double* partial = G.partial.data() + G.partialOffset[c];
+    std::fill(partial, partial + 6 * (G.chunkEndSubdomain[c] - lo), 0.0);
+    const LO end = std::min<LO>(G.numRows, (c + 1) * kRowChunk);
+    for (LO r = c * kRowChunk; r < end; ++r) {
+      const double xr = x[r];
+      for (LO e = G.rowStart[r]; e < G.rowStart[r + 1]; ++e) {
+        const double* __restrict g = &G.rowG[6 * static_cast<size_t>(e)];
+        double* __restrict sum = partial + 6 * (G.rowSubdomain[e] - lo);
+        for (int j = 0; j < 6; ++j) sum[j] += g[j] * xr;
+      }
     }
-    std::copy(sum, sum + 6, gx + 6 * G.columnSubdomain[c]);
   });
+  std::fill(gx, gx + numCoarse(), 0.0);
+  for (int c = 0; c < G.numChunks(); ++c) {
+    const double* partial = G.partial.data() + G.partialOffset[c];
+    double* out = gx + 6 * G.chunkFirstSubdomain[c];
+    const int count = 6 * (G.chunkEndSubdomain[c] - G.chunkFirstSubdomain[c]);
+    for (int i = 0; i < count; ++i) out[i] += partial[i];
+  }
 }
 
 void TotalFeti::applyG(const DualVector& x, std::vector<double>& gx) const {

@@ -111,7 +111,7 @@ class TotalFeti {
   /// Bytes one product with P F P moves at least (the summary's bytes_per_f_application,
   /// one F application per PFP product): the factors (both substitutions), R_s on either
   /// side of each solve, B_s^T and B_s, the dual entries in and out, and two projections
-  /// (G read by subdomain and by row). All ranks. Divided by the memory bandwidth it bounds
+  /// (G read twice each). All ranks. Divided by the memory bandwidth it bounds
   /// the time of one product from below (doc/performance.md).
   double bytesPerFApplication() const { return bytesPerFApplication_; }
 
