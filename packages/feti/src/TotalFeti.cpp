@@ -70,6 +70,34 @@ const double* readOnly(const DualVector& v) { return v.getLocalViewHost(Tpetra::
 double* readWrite(DualVector& v) { return v.getLocalViewHost(Tpetra::Access::ReadWrite).data(); }
 }  // namespace
 
+/// A rectangular block of K in CSR (rows and columns renumbered), kept with K's column
+/// order inside each row, so that its products add the same terms in the same order as
+/// K's own (the terms it leaves out multiply zeros).
+struct KBlock {
+  std::vector<LO> rowPtr, colInd;
+  std::vector<double> values;
+  // y = A x (subtract: y -= A x)
+  void apply(const double* x, double* y, bool subtract = false) const {
+    for (size_t i = 0; i + 1 < rowPtr.size(); ++i) {
+      double s = 0.0;
+      for (LO k = rowPtr[i]; k < rowPtr[i + 1]; ++k) s += values[k] * x[colInd[k]];
+      y[i] = subtract ? y[i] - s : s;
+    }
+  }
+  double bytes() const { return 8.0 * values.size() + 4.0 * (colInd.size() + rowPtr.size()); }
+};
+
+/// The Dirichlet preconditioner S = K_bb - K_bi K_ii^{-1} K_ib of one subdomain, b = the dofs
+/// that B touches, i = the others: the three blocks it multiplies with (K_ii is only
+/// factorised, so an application reads neither K_ii nor K's other entries twice), interior
+/// unknowns in the order of K_ii's factor, and its work vectors.
+struct DirichletBlocks {
+  std::vector<LO> boundaryDof;  ///< per entry of B_s: the position of its dof among b
+  KBlock Kbb, Kib, Kbi;         ///< rows/columns of i in the factor's order
+  std::unique_ptr<SparseCholesky> interiorFactor;  ///< K_ii (none when i is empty)
+  std::vector<double> xb, yb, t;
+};
+
 /// One owned subdomain: its system, generalised inverse, rows of B and scratch buffers
 /// (allocated before any threaded loop: TOOLCHAIN.md rule 1).
 struct TotalFeti::Local {
@@ -80,9 +108,7 @@ struct TotalFeti::Local {
   fem::SubdomainSystem system;
   SubdomainSolver solver;
   std::vector<double> denseF;    ///< explicit F_s (m x m, column-major) when requested
-  std::vector<LO> interior;      ///< dofs that no row of B touches (Dirichlet preconditioner)
-  std::unique_ptr<SparseCholesky> interiorFactor;  ///< K_ii
-  std::vector<double> interiorRhs, interiorSol;
+  DirichletBlocks dirichlet;     ///< the Dirichlet preconditioner's blocks of K (when requested)
   std::vector<double> in, out, x, y;
   LO m() const { return static_cast<LO>(block->rows.size()); }
   LO n() const { return system.K.n; }
@@ -91,16 +117,47 @@ struct TotalFeti::Local {
 TotalFeti::~TotalFeti() = default;
 
 namespace {
-void buildInteriorFactor(TotalFeti::Local& L, const std::string& factorization) {
+// The rows `rows` and columns with position[col] >= 0 of K, columns renumbered by `position`.
+KBlock extractBlock(const fem::CsrMatrix& K, const std::vector<LO>& rows, const std::vector<LO>& position) {
+  KBlock A;
+  A.rowPtr.push_back(0);
+  for (LO i : rows) {
+    for (LO k = K.rowPtr[i]; k < K.rowPtr[i + 1]; ++k)
+      if (position[K.colInd[k]] >= 0) {
+        A.colInd.push_back(position[K.colInd[k]]);
+        A.values.push_back(K.values[k]);
+      }
+    A.rowPtr.push_back(static_cast<LO>(A.colInd.size()));
+  }
+  return A;
+}
+
+void buildDirichletBlocks(TotalFeti::Local& L, const std::string& factorization) {
+  DirichletBlocks& D = L.dirichlet;
   std::vector<char> touched(L.n(), 0);
   for (LO d : L.block->dof) touched[d] = 1;
-  for (LO d = 0; d < L.n(); ++d)
-    if (!touched[d]) L.interior.push_back(d);
-  L.interiorRhs.assign(L.interior.size(), 0.0);
-  L.interiorSol.assign(L.interior.size(), 0.0);
-  if (L.interior.empty()) return;
-  L.interiorFactor = makeSparseCholesky(factorization);
-  L.interiorFactor->factorize(principalSubmatrix(L.system.K, L.interior));
+  std::vector<LO> boundary, interior;
+  for (LO d = 0; d < L.n(); ++d) (touched[d] ? boundary : interior).push_back(d);
+  std::vector<LO> boundaryPosition(L.n(), -1), interiorPosition(L.n(), -1);
+  for (size_t k = 0; k < boundary.size(); ++k) boundaryPosition[boundary[k]] = static_cast<LO>(k);
+  for (LO d : L.block->dof) D.boundaryDof.push_back(boundaryPosition[d]);
+  D.Kbb = extractBlock(L.system.K, boundary, boundaryPosition);
+  D.xb.assign(boundary.size(), 0.0);
+  D.yb.assign(boundary.size(), 0.0);
+  if (interior.empty()) return;
+  D.interiorFactor = makeSparseCholesky(factorization);
+  D.interiorFactor->factorize(principalSubmatrix(L.system.K, interior));
+  // Interior unknowns in the factor's order: K_ib's rows and K_bi's columns follow it, so the
+  // solve runs in place.
+  const std::vector<LO>& perm = D.interiorFactor->permutation();
+  std::vector<LO> interiorOrdered(interior.size());
+  for (size_t k = 0; k < interior.size(); ++k) {
+    interiorOrdered[k] = interior[perm[k]];
+    interiorPosition[interiorOrdered[k]] = static_cast<LO>(k);
+  }
+  D.Kib = extractBlock(L.system.K, interiorOrdered, boundaryPosition);
+  D.Kbi = extractBlock(L.system.K, boundary, interiorPosition);
+  D.t.assign(interior.size(), 0.0);
 }
 }  // namespace
 
@@ -180,7 +237,7 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
     for (LO k = 0; k < L.n(); ++k) position[perm[k]] = k;
     L.factorDof.resize(L.block->dof.size());
     for (size_t k = 0; k < L.factorDof.size(); ++k) L.factorDof[k] = position[L.block->dof[k]];
-    if (settings_.dirichletPreconditioner) buildInteriorFactor(L, settings_.factorization);
+    if (settings_.dirichletPreconditioner) buildDirichletBlocks(L, settings_.factorization);
     if (settings_.explicitF) {
       // F_s = B_s K^dagger B_s^T, column by column of B_s^T (ALGORITHMS.md 3, explicit F).
       const LO m = L.m(), n = L.n();
@@ -561,21 +618,16 @@ void TotalFeti::applyDirichlet(const DualVector& x, DualVector& y) const {
                              "tribos::feti::TotalFeti::applyDirichlet: construct with "
                              "settings.dirichletPreconditioner = true");
   applyBlockwise(x, y, [](Local& L, bool) {
-    // y = K x with x = B^T in living on the boundary dofs: y_b = K_bb x_b, y_i = K_ib x_b.
-    applyBlockTranspose(*L.block, L.in.data(), L.x.data(), L.n());
-    L.system.K.apply(L.x.data(), L.y.data());
-    if (L.interiorFactor) {
-      // s = K_ii^{-1} K_ib x_b, then y_b -= K_bi s (computed as (K [0; s])_b).
-      for (size_t k = 0; k < L.interior.size(); ++k) L.interiorRhs[k] = L.y[L.interior[k]];
-      L.interiorFactor->solve(L.interiorRhs.data(), L.interiorSol.data());
-      std::fill(L.x.begin(), L.x.end(), 0.0);
-      for (size_t k = 0; k < L.interior.size(); ++k) L.x[L.interior[k]] = L.interiorSol[k];
-      std::vector<double>& correction = L.x;
-      std::vector<double> Ks(L.n());
-      L.system.K.apply(correction.data(), Ks.data());
-      for (LO k = 0; k < L.n(); ++k) L.y[k] -= Ks[k];
+    // x_b = B_s^T in; y_b = K_bb x_b - K_bi K_ii^{-1} K_ib x_b; out = B_s y_b.
+    DirichletBlocks& D = L.dirichlet;
+    applyBlockTranspose(*L.block, D.boundaryDof, L.in.data(), D.xb.data(), static_cast<LO>(D.xb.size()));
+    D.Kbb.apply(D.xb.data(), D.yb.data());
+    if (D.interiorFactor) {
+      D.Kib.apply(D.xb.data(), D.t.data());
+      D.interiorFactor->solveInPlace(D.t.data());
+      D.Kbi.apply(D.t.data(), D.yb.data(), /*subtract=*/true);
     }
-    applyBlock(*L.block, L.y.data(), L.out.data());
+    applyBlock(*L.block, D.boundaryDof, D.yb.data(), L.out.data());
   });
 }
 
