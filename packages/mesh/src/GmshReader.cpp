@@ -338,6 +338,7 @@ class MeshBuilder {
                      [](const Tet& a, const Tet& b) { return a.physical < b.physical; });
     for (size_t e = 0; e < content_.tets.size(); ++e) addTet(static_cast<LO>(e));
     addSurfaces();
+    mesh_.file = source_;
     mesh_.validate(source_);
     return std::move(mesh_);
   }
