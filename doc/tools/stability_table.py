@@ -59,6 +59,17 @@ def displacements(exo):
     return [c for xyz in zip(u["displ_x"], u["displ_y"], u["displ_z"]) for c in xyz]
 
 
+def longest_growth(summary):
+    """The most consecutive updates in which the slip-bound change grew (the divergence test
+    of the inexact fixed point fires at 8, after 3 updates)."""
+    changes = [h.get("slip_bound_change") for h in summary.get("history", [])]
+    run = longest = 0
+    for a, b in zip(changes, changes[1:]):
+        run = run + 1 if a is not None and b is not None and b > a else 0
+        longest = max(longest, run)
+    return longest
+
+
 def scale_of(label):
     return float(label.rsplit("x", 1)[1])
 
@@ -71,7 +82,7 @@ def main(manifest):
             sections.append(section)
     for section in sections:
         print("\n#### %s\n" % section)
-        head = "| case | exit | behaviour | outer | PFP | g updates | last dg | max KKT | no contact/stick/slip |"
+        head = "| case | exit | behaviour | outer | PFP | g updates | last dg | dg growths in a row | max KKT | no contact/stick/slip |"
         if section == "scaling":
             head += " u deviation |"
         print(head + " message |")
@@ -93,9 +104,9 @@ def main(manifest):
                 nodes = summary.get("contact_nodes", {})
                 cells += [str(summary.get("outer_iterations", "")), str(summary.get("pfp_applications", "")),
                           str(summary.get("fixed_point_iterations", "")), fmt(summary.get("fixed_point_change")),
-                          fmt(worst), "%s/%s/%s" % (nodes.get("no_contact"), nodes.get("stick"), nodes.get("slip"))]
+                          str(longest_growth(summary)), fmt(worst), "%s/%s/%s" % (nodes.get("no_contact"), nodes.get("stick"), nodes.get("slip"))]
             else:
-                cells += [""] * 6
+                cells += [""] * 7
             if section == "scaling":
                 deviation = ""
                 if summary and os.path.exists(base + ".exo"):
@@ -109,7 +120,7 @@ def main(manifest):
                         top = max(abs(x) for x in ref)
                         deviation = fmt(max(abs(a / s - b) for a, b in zip(u, ref)) / top)
                 cells.append(deviation)
-            cells.append(message.replace("|", "/")[:160])
+            cells.append(message.replace("||", "‖").replace("|", "/")[:200])
             print("| " + " | ".join(cells) + " |")
 
 
