@@ -1,4 +1,5 @@
 #include "tribos/contact/ContactSolver.hpp"
+#include "tribos/contact/FixedPointWatch.hpp"
 
 #include <Teuchos_CommHelpers.hpp>
 #include <Tpetra_Vector.hpp>
@@ -277,25 +278,19 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
     if (friction.model == "Coulomb" && friction.fixedPoint == "Inexact") {
       // Inexact successive approximations (20): g := mu_nu + lambda_Im,nu after every outer
       // iteration; SMALSE-M may stop only when g moved by at most eps.
-      std::vector<double> changes;
+      FixedPointWatch watch(friction.divergenceWindow);
       auto hook = [&](int, const qp::Vector& current, double, double, double) {
         const auto g = impliedSlip(current);
         const double change = relativeChange(g, slip);
-        if (std::isnan(change)) throw FixedPointDiverged{"diverged: the slip bound became NaN"};
+        if (std::isnan(change)) {
+          watch.diverges(change);
+          throw FixedPointDiverged{watch.message()};
+        }
         slip = g;
         setSlipBounds(slip);
         ++result.fixedPointIterations;
         result.fixedPointChange = change;
-        changes.push_back(change);
-        const int w = friction.divergenceWindow;
-        if (static_cast<int>(changes.size()) > w + 3) {
-          bool growing = true;
-          for (int i = 0; i < w; ++i) growing = growing && changes[changes.size() - 1 - i] > changes[changes.size() - 2 - i];
-          if (growing)
-            throw FixedPointDiverged{"the Coulomb fixed point diverges: the slip bound change grew in " +
-                                     std::to_string(w) + " consecutive updates (last " + std::to_string(change) +
-                                     "); the friction coefficient may be too large for a unique solution"};
-        }
+        if (watch.diverges(change)) throw FixedPointDiverged{watch.message()};
         // Stop only where Coulomb's law holds for the current multipliers too: the inner solve
         // kept lambda_t in the ellipse of the previous bound, which the update may have shrunk
         // below it. A safeguard for the final KKT test (step (6)); on the Table 1 cells checked
@@ -394,7 +389,21 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
   std::vector<char> mask(B.numRows, 0);
   Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, static_cast<int>(B.numRows), inactive.data(), mask.data());
   for (size_t i = 0; i < lam.extent(0); ++i) result.lambda.push_back(lam(i, 0));  // reactions: -lambda_r
-  const auto alpha = feti.rigidBodyCoefficients(*lambda, mask);
+  // A body that no constraint active at the end holds leaves G_I G_I^T singular: a load beyond
+  // what contact and friction carry (no equilibrium: the iterations stagnate at the cap) or a
+  // body free to slide. Reported (exit 3, doc/stability.md); alpha then over all rows, so that
+  // the flagged results exist (it was an internal error without output).
+  std::vector<double> alpha;
+  try {
+    alpha = feti.rigidBodyCoefficients(*lambda, mask);
+  } catch (const feti::RigidMotionsUndetermined&) {
+    alpha = feti.rigidBodyCoefficients(*lambda);
+    result.converged = false;
+    result.note = "no equilibrium found: the constraints active at the end hold no body against some rigid "
+                  "motion (G_I G_I^T is singular): the loads may exceed what contact and friction can carry, or a "
+                  "body slides freely; the rigid motions of the results are undetermined";
+    result.message += "; " + result.note;
+  }
   result.displacement = feti.recoverDisplacements(*lambda, alpha);
   result.energy = feti.energy(result.displacement);
 

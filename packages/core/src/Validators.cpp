@@ -78,7 +78,10 @@ void IntRangeValidator::validate(const Teuchos::ParameterEntry& entry, const std
   if (n < low_ || n > high_) refuse(std::to_string(n) + " is outside the range " + rangeText());
 }
 
-std::string FiniteArrayValidator::rangeText() const { return std::to_string(size_) + " finite numbers"; }
+std::string FiniteArrayValidator::rangeText() const {
+  const std::string text = std::to_string(size_) + " finite numbers";
+  return std::isinf(maxAbs_) ? text : text + " of magnitude <= " + formatShortest(maxAbs_);
+}
 
 void FiniteArrayValidator::validate(const Teuchos::ParameterEntry& entry, const std::string&,
                                     const std::string&) const {
@@ -89,6 +92,8 @@ void FiniteArrayValidator::validate(const Teuchos::ParameterEntry& entry, const 
     refuse("needs exactly " + std::to_string(size_) + " components, got " + std::to_string(a.size()));
   for (double x : a)
     if (!std::isfinite(x)) refuse("component " + formatShortest(x) + " is not a finite number");
+  for (double x : a)
+    if (std::abs(x) > maxAbs_) refuse("component " + formatShortest(x) + " is outside the range " + rangeText());
 }
 
 Teuchos::RCP<const RealRangeValidator> greaterThan(double low) {
@@ -103,14 +108,17 @@ Teuchos::RCP<const RealRangeValidator> openInterval(double low, double high) {
 Teuchos::RCP<const RealRangeValidator> closedInterval(double low, double high) {
   return Teuchos::rcp(new RealRangeValidator(low, true, high, true));
 }
+Teuchos::RCP<const RealRangeValidator> openClosed(double low, double high) {
+  return Teuchos::rcp(new RealRangeValidator(low, false, high, true));
+}
 Teuchos::RCP<const RealRangeValidator> finite() {
   return Teuchos::rcp(new RealRangeValidator(-kInfinity, false, kInfinity, false));
 }
 Teuchos::RCP<const IntRangeValidator> intRange(int low, int high) {
   return Teuchos::rcp(new IntRangeValidator(low, high));
 }
-Teuchos::RCP<const FiniteArrayValidator> finiteArray(int size) {
-  return Teuchos::rcp(new FiniteArrayValidator(size));
+Teuchos::RCP<const FiniteArrayValidator> finiteArray(int size, double maxAbs) {
+  return Teuchos::rcp(new FiniteArrayValidator(size, maxAbs));
 }
 
 std::string describeRange(const Teuchos::ParameterEntry& entry) {

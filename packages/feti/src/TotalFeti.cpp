@@ -507,7 +507,7 @@ std::vector<double> TotalFeti::rigidBodyCoefficients(const DualVector& lambda,
   try {
     factor->factorize(assembleCoarse(&rowMask));
   } catch (const std::exception& e) {
-    throw std::runtime_error(std::string("tribos::feti::TotalFeti::rigidBodyCoefficients: G_I G_I^T is singular "
+    throw RigidMotionsUndetermined(std::string("tribos::feti::TotalFeti::rigidBodyCoefficients: G_I G_I^T is singular "
                                          "(the inactive rows do not fix every rigid body mode): ") + e.what());
   }
   std::vector<double> rhs = alpha;

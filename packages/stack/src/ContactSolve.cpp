@@ -141,7 +141,7 @@ void nameTheLimit(const WallClockBudget& budget, const RunRecord& runs, const qp
   if (runs.innerSolvesAtCap > 0)
     message += "; " + std::to_string(runs.innerSolvesAtCap) + " inner solve(s) ended at Solver/MPGP/max iterations = " +
                std::to_string(smalse.mpgp.maxIterations);
-  result.message = message;
+  result.message = result.note.empty() ? message : message + "; " + result.note;
 }
 
 /// Contact fields on the global mesh (rank 0): every contact node's rows belong to one rank,

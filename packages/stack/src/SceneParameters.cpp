@@ -34,10 +34,11 @@ const core::ParameterTable<contact::FrictionSettings>& frictionTable() {
                "\"None\" (frictionless), \"Tresca\" (given slip bound), \"Coulomb\" (successive "
                "approximations on the slip bound), \"Bonded\" (contact rows as equalities)",
                {"None", "Tresca", "Coulomb", "Bonded"})
-          .add("F1", &F::F1, "friction coefficient along t1 (isotropic when F1 = F2)", core::atLeast(0.0))
-          .add("F2", &F::F2, "friction coefficient along t2", core::atLeast(0.0))
+          .add("F1", &F::F1, "friction coefficient along t1 (isotropic when F1 = F2)",
+               core::closedInterval(0.0, core::kMaxMagnitude))
+          .add("F2", &F::F2, "friction coefficient along t2", core::closedInterval(0.0, core::kMaxMagnitude))
           .add("Slip Bound", &F::slipBound, "Tresca: the given slip bound g as a nodal force [force]",
-               core::atLeast(0.0))
+               core::closedInterval(0.0, core::kMaxMagnitude))
           .add("Fixed Point", &F::fixedPoint,
                "Coulomb: \"Inexact\" updates the slip bound g := lambda_nu after every SMALSE-M outer iteration "
                "(the paper's choice); \"Exact\" solves every Tresca problem to Solver/Tolerance first",
@@ -64,7 +65,7 @@ void meshParameters(ParameterList& pl) {
   pl.set("Initial Gap", 0.0,
          "Two Bricks: initial gap d [length] between the bricks (the steel brick is lifted by it); "
          "set Contact/Search Distance above it so that the contact nodes pair",
-         core::atLeast(0.0));
+         core::closedInterval(0.0, core::kMaxMagnitude));
   pl.set("File", std::string(""),
          "Exodus: path of the Exodus II mesh (linear tetrahedra); relative paths are relative to the scene file "
          "(gmsh meshes: convert with tribos-msh2exo)");
@@ -85,10 +86,11 @@ void materialParameters(ParameterList& pl) {
                                    "one sublist per element block (body), named after the block; "
                                    "give either the Lame constants or (E, nu)");
   setWithoutDefault(body, "Lame Lambda", "Lame's first parameter lambda [stress], with Lame Mu (3 lambda + 2 mu > 0)",
-                    core::finite());
-  setWithoutDefault(body, "Lame Mu", "shear modulus mu [stress], with Lame Lambda", core::greaterThan(0.0));
+                    core::closedInterval(-core::kMaxMagnitude, core::kMaxMagnitude));
+  setWithoutDefault(body, "Lame Mu", "shear modulus mu [stress], with Lame Lambda",
+                    core::openClosed(0.0, core::kMaxMagnitude));
   setWithoutDefault(body, "Young Modulus", "E [stress], with Poisson Ratio (instead of Lame constants)",
-                    core::greaterThan(0.0));
+                    core::openClosed(0.0, core::kMaxMagnitude));
   setWithoutDefault(body, "Poisson Ratio", "nu, with Young Modulus", core::openInterval(-1.0, 0.5));
 }
 
@@ -101,9 +103,10 @@ void loadParameters(ParameterList& pl) {
            "instead of Side Set: the traction acts on the boundary faces whose three nodes all lie in this node set "
            "(meshes with node sets only, e.g. written by meshio)");
   load.set("Traction", Teuchos::Array<double>(3, 0.0), "{px, py, pz}: traction density [stress]",
-           core::finiteArray(3));
+           core::finiteArray(3, core::kMaxMagnitude));
   load.set("Element Block", std::string(""), "element block that carries the volume force");
-  load.set("Volume Force", Teuchos::Array<double>(3, 0.0), "{bx, by, bz}: force per volume", core::finiteArray(3));
+  load.set("Volume Force", Teuchos::Array<double>(3, 0.0), "{bx, by, bz}: force per volume",
+           core::finiteArray(3, core::kMaxMagnitude));
 }
 
 void boundaryParameters(ParameterList& pl) {
@@ -119,7 +122,7 @@ void boundaryParameters(ParameterList& pl) {
                 "the prescribed components, any of x, y, z once each (e.g. \"x\" for a symmetry plane x = const)");
   condition.set("Displacement", Teuchos::Array<double>(3, 0.0),
                 "{ux, uy, uz} [length]: the values of the prescribed components (the others are ignored)",
-                core::finiteArray(3));
+                core::finiteArray(3, core::kMaxMagnitude));
 }
 
 void contactParameters(ParameterList& pl) {

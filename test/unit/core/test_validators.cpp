@@ -70,6 +70,16 @@ TEST(Validators, integerAndArrayRanges) {
   EXPECT_TRUE(accepts(three, Teuchos::Array<double>(3, 1.0)));
   EXPECT_FALSE(accepts(three, Teuchos::Array<double>(2, 1.0)));
   EXPECT_FALSE(accepts(three, Teuchos::Array<double>(3, std::numeric_limits<double>::quiet_NaN())));
+  // Physical magnitudes: a bound below the overflow of squares (1e300 overflowed in norms).
+  const auto bounded = core::finiteArray(3, core::kMaxMagnitude);
+  EXPECT_TRUE(accepts(bounded, Teuchos::Array<double>(3, -1e100)));
+  EXPECT_FALSE(accepts(bounded, Teuchos::Array<double>(3, -1e300)));
+  EXPECT_EQ(bounded->rangeText(), "3 finite numbers of magnitude <= 1e+100");
+  const auto modulus = core::openClosed(0.0, core::kMaxMagnitude);
+  EXPECT_TRUE(accepts(modulus, 1e100));
+  EXPECT_FALSE(accepts(modulus, 1e300));
+  EXPECT_FALSE(accepts(modulus, 0.0));
+  EXPECT_EQ(modulus->rangeText(), "(0, 1e+100]");
 }
 
 TEST(Validators, aTableDeclaresTheStructDefaultsAndReadsValidatedLists) {

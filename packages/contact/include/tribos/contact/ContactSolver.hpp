@@ -69,6 +69,7 @@ struct ContactNodeResult {
 struct ContactResult {
   bool converged = false;
   std::string message;            ///< why it stopped
+  std::string note;               ///< a finding about the result, also appended to message
   qp::SmalseCounters counters;    ///< summed over all SMALSE-M runs
   int fixedPointIterations = 0;   ///< updates of g (Coulomb)
   double fixedPointChange = 0.0;  ///< ||g_{k+1} - g_k|| / ||g_k|| at the end

@@ -54,10 +54,12 @@ class IntRangeValidator : public RangeValidator {
   int low_, high_;
 };
 
-/// Arrays of exactly `size` finite reals (Array(double): tractions, directions).
+/// Arrays of exactly `size` finite reals (Array(double): tractions, directions), each of
+/// magnitude at most `maxAbs`.
 class FiniteArrayValidator : public RangeValidator {
  public:
-  explicit FiniteArrayValidator(int size) : size_(size) {}
+  explicit FiniteArrayValidator(int size, double maxAbs = std::numeric_limits<double>::infinity())
+      : size_(size), maxAbs_(maxAbs) {}
   std::string rangeText() const override;
   const std::string getXMLTypeName() const override { return "TribosFiniteArray"; }
   void validate(const Teuchos::ParameterEntry& entry, const std::string& paramName,
@@ -65,10 +67,17 @@ class FiniteArrayValidator : public RangeValidator {
 
  private:
   int size_;
+  double maxAbs_;
 };
 
 // Short names for the declarations of valid lists.
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
+/// The largest magnitude of a physical input (moduli, loads, displacements, friction
+/// coefficients). Norms square their entries, and the square of anything above ~1.3e154
+/// overflows to Inf: E = 1e300 or a traction of 1e300 ended as non-finite or stalled runs,
+/// F = 1e300 ran without end (doc/stability.md). 1e100 leaves 54 decades for the products
+/// with lengths, areas and strains; no physical scene comes near it.
+constexpr double kMaxMagnitude = 1e100;
 /// x > low (and finite).
 Teuchos::RCP<const RealRangeValidator> greaterThan(double low);
 /// x >= low (and finite).
@@ -77,12 +86,14 @@ Teuchos::RCP<const RealRangeValidator> atLeast(double low);
 Teuchos::RCP<const RealRangeValidator> openInterval(double low, double high);
 /// low <= x <= high.
 Teuchos::RCP<const RealRangeValidator> closedInterval(double low, double high);
+/// low < x <= high.
+Teuchos::RCP<const RealRangeValidator> openClosed(double low, double high);
 /// Any finite real.
 Teuchos::RCP<const RealRangeValidator> finite();
 /// low <= n <= high.
 Teuchos::RCP<const IntRangeValidator> intRange(int low, int high);
-/// `size` finite reals.
-Teuchos::RCP<const FiniteArrayValidator> finiteArray(int size);
+/// `size` finite reals, each of magnitude at most `maxAbs`.
+Teuchos::RCP<const FiniteArrayValidator> finiteArray(int size, double maxAbs = kInfinity);
 
 /// The range of an entry in words: the range validators' text, "A | B | C" for a string
 /// choice, "" when there is no validator.

@@ -21,6 +21,7 @@
 #include <Tpetra_Vector_decl.hpp>
 
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,12 @@
 #include "tribos/feti/SubdomainSolver.hpp"
 
 namespace tribos::feti {
+
+/// The rows I leave a rigid body mode free (G_I G_I^T singular): no constraint active at the
+/// end holds some body, e.g. a load beyond what contact and friction can carry.
+struct RigidMotionsUndetermined : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
 
 using DualMap = Tpetra::Map<LO, GO>;
 using DualVector = Tpetra::Vector<Scalar, LO, GO>;
@@ -84,7 +91,8 @@ class TotalFeti {
   std::vector<double> rigidBodyCoefficients(const DualVector& lambda) const;
   /// alpha = (G_I G_I^T)^{-1} G_I (F lambda - d~)_I over the rows I where rowMask[r] != 0
   /// (rowMask global, identical on every rank): the rows where the dual constraints are not
-  /// active, so that the dual gradient vanishes there (ALGORITHMS.md 7).
+  /// active, so that the dual gradient vanishes there (ALGORITHMS.md 7). Throws
+  /// RigidMotionsUndetermined (on every rank) when G_I G_I^T is singular.
   std::vector<double> rigidBodyCoefficients(const DualVector& lambda, const std::vector<char>& rowMask) const;
   /// y = B u for displacements u of the owned subdomains (u[i] of subdomain firstOwned + i).
   void applyB(const std::vector<std::vector<double>>& u, DualVector& y) const;
