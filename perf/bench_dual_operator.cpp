@@ -1,7 +1,8 @@
 // Cost of the dual operators on one Table 1 cell, inside one process (so that start-up, set-up
 // and the noise of whole runs stay out): median seconds of F, P, P F P (as MPGP applies it:
-// project, F, project), the Dirichlet preconditioner D (before projection), G, and the coarse
-// solve over `repeats` applications, on the paper's two bricks with their contact rows
+// project, F, project), A_rho = P F P + rho Q with three and with two projections (Arho_3P,
+// Arho_2P), the Dirichlet preconditioner D (before projection), G, and the coarse solve over
+// `repeats` applications, on the paper's two bricks with their contact rows
 // (Coulomb, the default scene).
 //
 // Usage: build/bin/tribos_bench_dual_operator [grid (10x5x5)] [H/h (5)] [repeats (40)]
@@ -96,7 +97,8 @@ int main(int argc, char** argv) {
     const feti::TotalFeti feti(scene.mesh, scene.decomposition, std::move(systems), B,
                                Teuchos::rcp(new Teuchos::MpiComm<int>(MPI_COMM_WORLD)), settings);
 
-    auto x = feti.createDualVector(), y = feti.createDualVector(), t = feti.createDualVector();
+    auto x = feti.createDualVector(), y = feti.createDualVector(), t = feti.createDualVector(),
+         q = feti.createDualVector();
     fill(*x);
     std::vector<double> coarse;
     struct Timing {
@@ -112,6 +114,23 @@ int main(int argc, char** argv) {
            feti.project(*x, *t);
            feti.applyF(*t, *y);
            feti.project(*y, *y);
+         }},
+        // A_rho x = P F P x + rho Q x as SMALSE-M applied it before (Q x by a third projection)
+        // and as it does now (P F P x = applyPF(P x), Q x = x - P x).
+        {"Arho_3P",
+         [&] {
+           feti.project(*x, *t);
+           feti.applyF(*t, *y);
+           feti.project(*y, *y);
+           feti.project(*x, *q);
+           q->update(1.0, *x, -1.0);
+           y->update(10.0, *q, 1.0);
+         }},
+        {"Arho_2P",
+         [&] {
+           feti.project(*x, *t);
+           feti.applyPF(*t, *y);
+           y->update(10.0, *x, -10.0, *t, 1.0);
          }},
         {"D", [&] { feti.applyDirichlet(*x, *y); }},
         {"G", [&] { feti.applyG(*x, coarse); }},

@@ -8,14 +8,23 @@
 
 namespace tribos::qp {
 
+double EqualityProjector::normQ(const Vector& x, Vector& scratch) const {
+  applyQ(x, scratch);
+  return scratch.norm2();
+}
+
 namespace {
 /// A_rho = A + rho Q (the penalised Hessian of paper (19)). Counts products with A only.
 class PenalisedOperator : public SymmetricOperator {
  public:
   PenalisedOperator(const SymmetricOperator& A, const EqualityProjector& Q, double rho, const Teuchos::RCP<const Map>& map)
-      : A_(A), Q_(Q), rho_(rho), tmp_(map) {}
+      : A_(A), projected_(dynamic_cast<const ProjectedOperator*>(&A)), Q_(Q), rho_(rho), tmp_(map) {}
   void setRho(double rho) { rho_ = rho; }
   void apply(const Vector& x, Vector& y) const override {
+    if (projected_) {
+      projected_->applyPlusComplement(x, y, rho_);  // Q x from the P x that A computes
+      return;
+    }
     A_.apply(x, y);
     Q_.applyQ(x, tmp_);
     y.update(rho_, tmp_, 1.0);
@@ -23,6 +32,7 @@ class PenalisedOperator : public SymmetricOperator {
 
  private:
   const SymmetricOperator& A_;
+  const ProjectedOperator* projected_;  ///< A, when it can add Q x without a projection
   const EqualityProjector& Q_;
   double rho_;
   mutable Vector tmp_;
@@ -33,9 +43,13 @@ class PenalisedPreconditioner : public SymmetricOperator {
  public:
   PenalisedPreconditioner(const SymmetricOperator& M, const EqualityProjector& Q, double rho,
                           const Teuchos::RCP<const Map>& map)
-      : M_(M), Q_(Q), rho_(rho), tmp_(map) {}
+      : M_(M), projected_(dynamic_cast<const ProjectedOperator*>(&M)), Q_(Q), rho_(rho), tmp_(map) {}
   void setRho(double rho) { rho_ = rho; }
   void apply(const Vector& x, Vector& y) const override {
+    if (projected_) {
+      projected_->applyPlusComplement(x, y, 1.0 / rho_);
+      return;
+    }
     M_.apply(x, y);
     Q_.applyQ(x, tmp_);
     y.update(1.0 / rho_, tmp_, 1.0);
@@ -43,6 +57,7 @@ class PenalisedPreconditioner : public SymmetricOperator {
 
  private:
   const SymmetricOperator& M_;
+  const ProjectedOperator* projected_;  ///< M, when it can add Q x / rho without a projection
   const EqualityProjector& Q_;
   double rho_;
   mutable Vector tmp_;
@@ -134,7 +149,7 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
     // without limit when the slip bound moves (the Lagrangian is then not monotone), and
     // an inner target under round-off would never be met.
     const auto inner = mpgp.solve(Arho, b, omega, normArho, mu, g, [&](double gp, const Vector& x) {
-      innerGmu = equalityNorm(x);
+      innerGmu = Q.normQ(x, Qmu);  // every inner iteration: without G^T where Q allows it
       innerBound = std::max(std::min(M * innerGmu, eta), s.innerFloor * eps);
       return gp <= innerBound || smalseConverged(gp, innerGmu, x) || (s.stopRequested && s.stopRequested());
     });

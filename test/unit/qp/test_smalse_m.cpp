@@ -458,3 +458,103 @@ TEST(SmalseM, nonFiniteOperatorStopsAtOnceAndNeverConverges) {
     EXPECT_LE(op.applications(), poisonFrom + 2) << "iterations went on after the NaN";
   }
 }
+
+namespace {
+/// A = P M P that adds s Q x from its own P x (qp::ProjectedOperator), counting the fused calls.
+class FusedDenseOperator : public qp::ProjectedOperator {
+ public:
+  FusedDenseOperator(Dense A, Dense Q) : A_(std::move(A)), Q_(std::move(Q)) {}
+  void apply(const qp::Vector& x, qp::Vector& y) const override {
+    ++applications;
+    test::scatter(test::matVec(A_, gather_(x)), y);
+  }
+  void applyPlusComplement(const qp::Vector& x, qp::Vector& y, double s) const override {
+    ++fused;
+    const auto xs = gather_(x);
+    auto ys = test::matVec(A_, xs);
+    const auto qx = test::matVec(Q_, xs);  // x - P x
+    for (size_t i = 0; i < ys.size(); ++i) ys[i] += s * qx[i];
+    ++applications;
+    test::scatter(ys, y);
+  }
+  mutable long long applications = 0, fused = 0;
+
+ private:
+  Dense A_, Q_;
+  test::Gatherer gather_;
+};
+
+/// Q with ||Q x||^2 = (G x)^T (G G^T)^{-1} G x (as the T-FETI projector computes it, without
+/// a projected vector), for the two rows of G; counts its calls.
+class NormDenseProjector : public test::DenseProjector {
+ public:
+  NormDenseProjector(const Dense& Q, const Dense& G) : test::DenseProjector(Q), G_(G) {}
+  double normQ(const qp::Vector& x, qp::Vector&) const override {
+    ++norms;
+    const auto a = test::matVec(G_, gather_(x));
+    double g[2][2] = {{0.0, 0.0}, {0.0, 0.0}};
+    for (int r = 0; r < 2; ++r)
+      for (int c = 0; c < 2; ++c)
+        for (size_t i = 0; i < G_[r].size(); ++i) g[r][c] += G_[r][i] * G_[c][i];
+    const double det = g[0][0] * g[1][1] - g[0][1] * g[1][0];
+    const double y0 = (g[1][1] * a[0] - g[0][1] * a[1]) / det, y1 = (g[0][0] * a[1] - g[1][0] * a[0]) / det;
+    return std::sqrt(std::max(a[0] * y0 + a[1] * y1, 0.0));
+  }
+  mutable long long norms = 0;
+
+ private:
+  Dense G_;
+  test::Gatherer gather_;
+};
+}  // namespace
+
+// The contact solver's products reuse P x for the rho Q term and take ||Q mu|| from G mu
+// (ProjectedOperator, EqualityProjector::normQ): SMALSE-M must use them, with and without a
+// preconditioner, and reach the solution of the separate products.
+TEST(SmalseM, fusedPenaltyTermAndNormQGiveTheSameSolution) {
+  for (unsigned seed = 1; seed <= 8; ++seed) {
+    std::mt19937 gen(seed + 900);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    const int n = 12 + seed % 5;
+    const Dense M = test::randomSpd(n, 100.0, seed + 700);
+    std::vector<double> b(n);
+    for (double& v : b) v = 2.0 * u(gen);
+    const auto blocks = test::randomBlocks(n, gen, {1.5, 2, 1, 1, 0.3, 0.15}, 30.0);
+    std::vector<double> x0(n);
+    for (double& v : x0) v = u(gen);
+    blocks.project(x0);
+    const auto qp = test::makeEqualityQp(M, randomRowsVanishingAt(x0, gen), b);
+    // P D P with D = diag(M)^-1 as the preconditioner in face, plain and fused.
+    Dense PDP(n, std::vector<double>(n, 0.0));
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j)
+        for (int k = 0; k < n; ++k) {
+          const double pik = (i == k) - qp.Q[i][k], pkj = (k == j) - qp.Q[k][j];
+          PDP[i][j] += pik * pkj / M[k][k];
+        }
+    for (const bool preconditioned : {false, true}) {
+      auto settings = tunedSettings();
+      test::DenseOperator plainPreconditioner(PDP);
+      if (preconditioned) settings.preconditioner = &plainPreconditioner;
+      const auto reference = runSmalse(qp, blocks, settings);
+
+      auto map = test::makeMap(n, test::selfComm());
+      auto omega = blocks.build(*map);
+      FusedDenseOperator op(qp.A, qp.Q);
+      FusedDenseOperator fusedPreconditioner(PDP, qp.Q);
+      if (preconditioned) settings.preconditioner = &fusedPreconditioner;
+      NormDenseProjector projector(qp.Q, qp.G);
+      qp::Vector cv(map), mu(map);
+      test::scatter(qp.c, cv);
+      const auto counters = qp::SmalseM(settings).solve(op, projector, cv, omega, mu);
+      EXPECT_TRUE(counters.converged) << "seed " << seed;
+      EXPECT_EQ(counters.operatorApplications, op.applications);
+      EXPECT_GT(op.fused, 0) << "seed " << seed;
+      EXPECT_GT(projector.norms, 0) << "seed " << seed;
+      if (preconditioned) EXPECT_EQ(fusedPreconditioner.fused, counters.preconditionerApplications);
+      const auto x = test::gather(mu);
+      EXPECT_LE(test::maxDifference(x, reference.x), 1e-8 * std::max(1.0, test::normInf(reference.x)))
+          << "seed " << seed << (preconditioned ? " preconditioned" : "");
+    }
+  }
+}

@@ -17,12 +17,24 @@ class SymmetricOperator {
   virtual void apply(const Vector& x, Vector& y) const = 0;
 };
 
+/// A = P X P with P = I - Q for the Q of the equality constraint that SMALSE-M is given. Such
+/// an operator computes P x anyway, so A x + s Q x needs no projection of its own: Q x = x - P x
+/// (A_rho = A + rho Q and the preconditioner M^-1 + Q / rho save one projection per product).
+class ProjectedOperator : public SymmetricOperator {
+ public:
+  /// y = A x + s Q x.
+  virtual void applyPlusComplement(const Vector& x, Vector& y, double s) const = 0;
+};
+
 /// The orthogonal projector Q onto Im G^T (so that P = I - Q projects onto Ker G) of the
 /// equality constraint G x = 0. With G's rows orthonormalised, ||G x|| = ||Q x||.
 class EqualityProjector {
  public:
   virtual ~EqualityProjector() = default;
   virtual void applyQ(const Vector& x, Vector& y) const = 0;
+  /// ||Q x|| (scratch: a vector of x's map, overwritten). The default projects; an
+  /// implementation may do it without G^T: ||Q x||^2 = (G x)^T (G G^T)^{-1} G x.
+  virtual double normQ(const Vector& x, Vector& scratch) const;
 };
 
 }  // namespace tribos::qp
