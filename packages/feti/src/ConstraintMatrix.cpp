@@ -95,7 +95,7 @@ Vec3 symmetryPlaneNormal(Vec3 normal, const Prescribed& prescribed, LO slaveNode
   return scaled(normal, 1.0 / norm(normal));
 }
 
-Prescribed prescribedComponents(const mesh::Mesh& mesh, const ConstraintSpec& spec) {
+Prescribed prescribedNodeComponents(const mesh::Mesh& mesh, const ConstraintSpec& spec) {
   std::vector<DisplacementCondition> conditions;
   for (const auto& name : spec.dirichletNodeSets)
     conditions.push_back({"Dirichlet Node Sets (" + name + ")", name, {true, true, true}, {0.0, 0.0, 0.0}});
@@ -146,7 +146,7 @@ ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decom
   }
   auto numCopies = [&](LO node) { return copyPtr[node + 1] - copyPtr[node]; };
 
-  const Prescribed prescribed = prescribedComponents(mesh, spec);
+  const Prescribed prescribed = prescribedNodeComponents(mesh, spec);
 
   // A row belongs to the rank that owns the lowest subdomain it touches (header).
   auto ownerOf = [&](const std::vector<Entry>& entries) {
@@ -357,6 +357,35 @@ ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decom
   std::sort(B.contact.begin(), B.contact.end(),
             [](const ContactNode& a, const ContactNode& b) { return a.normalRow < b.normalRow; });
   return B;
+}
+
+std::vector<char> prescribedComponents(const mesh::Mesh& mesh, const ConstraintSpec& spec) {
+  return prescribedNodeComponents(mesh, spec).fixed;
+}
+
+void keepRankRows(ConstraintMatrix& B, int rank, int firstOwned, int endOwned) {
+  const GO first = B.firstRowOfRank.at(rank), end = B.firstRowOfRank.at(rank + 1);
+  for (int s = 0; s < static_cast<int>(B.blocks.size()); ++s) {
+    if (s >= firstOwned && s < endOwned) continue;
+    const SubdomainBlock& full = B.blocks[s];
+    SubdomainBlock kept;
+    kept.rowPtr.push_back(0);
+    // Rows ascend: the owned ones are one contiguous run.
+    const auto lo = std::lower_bound(full.rows.begin(), full.rows.end(), first);
+    const auto hi = std::lower_bound(lo, full.rows.end(), end);
+    for (auto it = lo; it != hi; ++it) {
+      const size_t i = static_cast<size_t>(it - full.rows.begin());
+      kept.rows.push_back(*it);
+      kept.dof.insert(kept.dof.end(), full.dof.begin() + full.rowPtr[i], full.dof.begin() + full.rowPtr[i + 1]);
+      kept.value.insert(kept.value.end(), full.value.begin() + full.rowPtr[i], full.value.begin() + full.rowPtr[i + 1]);
+      kept.rowPtr.push_back(static_cast<LO>(kept.dof.size()));
+    }
+    kept.rows.shrink_to_fit();
+    kept.rowPtr.shrink_to_fit();
+    kept.dof.shrink_to_fit();
+    kept.value.shrink_to_fit();
+    B.blocks[s] = std::move(kept);
+  }
 }
 
 }  // namespace tribos::feti

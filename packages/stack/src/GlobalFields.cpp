@@ -5,6 +5,8 @@
 #include <limits>
 #include <utility>
 
+#include "tribos/stack/LinearFetiSolve.hpp"
+
 namespace tribos::stack {
 
 GlobalDisplacement gatherDisplacement(const Scene& scene, int firstOwned, const std::vector<std::vector<double>>& u,
@@ -99,11 +101,12 @@ std::vector<std::array<double, 3>> gatherReactions(const Scene& scene, const fet
   const GO first = B.firstRowOfRank[rank], end = B.firstRowOfRank[rank + 1];
   const size_t numNodes = static_cast<size_t>(scene.mesh.numNodes());
   std::vector<double> local(3 * numNodes, 0.0);
-  std::vector<char> prescribed(3 * numNodes, 0);
+  // From the displacement conditions, not from the Dirichlet rows: a rank holds the rows of
+  // its own subdomains only (feti::keepRankRows), and an owned contact row may reach a node
+  // that no owned subdomain has.
+  const std::vector<char> prescribed = feti::prescribedComponents(scene.mesh, constraintSpec(scene));
   forEachDirichletEntry(scene, B, [&](GO row, LO node, int component, double value) {
-    const size_t i = 3 * static_cast<size_t>(node) + component;
-    prescribed[i] = 1;
-    if (row >= first && row < end) local[i] -= value * ownedLambda[row - first];
+    if (row >= first && row < end) local[3 * static_cast<size_t>(node) + component] -= value * ownedLambda[row - first];
   });
   addDroppedContactForces(B, prescribed, first, end, ownedLambda, local);
   std::vector<double> all(rank == 0 ? local.size() : 0);

@@ -110,4 +110,16 @@ struct ConstraintMatrix {
 ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decomposition& decomposition,
                                        const ConstraintSpec& spec, int numRanks);
 
+/// Per (node, component), 3 * numNodes entries: 1 where a displacement condition prescribes
+/// it (the components that have Dirichlet rows and no gluing rows). Throws as
+/// buildConstraintMatrix on conflicting conditions.
+std::vector<char> prescribedComponents(const mesh::Mesh& mesh, const ConstraintSpec& spec);
+
+/// Keeps of B what rank `rank` needs during the solve (issue 11): the blocks of its own
+/// subdomains [firstOwned, endOwned) whole, and of every other subdomain only the rows this
+/// rank owns (the entries g_{s,r} of G on its owned rows need them, TotalFeti). The row data
+/// (kind, c, rowId, contact) stays. B is then fit for TotalFeti, the contact solver and the
+/// result gathering on `rank` only, and no longer for feti::requireRestrainedBodies.
+void keepRankRows(ConstraintMatrix& B, int rank, int firstOwned, int endOwned);
+
 }  // namespace tribos::feti
