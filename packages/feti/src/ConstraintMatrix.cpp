@@ -95,7 +95,7 @@ Vec3 symmetryPlaneNormal(Vec3 normal, const Prescribed& prescribed, LO slaveNode
   return scaled(normal, 1.0 / norm(normal));
 }
 
-Prescribed prescribedNodeComponents(const mesh::Mesh& mesh, const ConstraintSpec& spec) {
+Prescribed prescribedComponents(const mesh::Mesh& mesh, const ConstraintSpec& spec) {
   std::vector<DisplacementCondition> conditions;
   for (const auto& name : spec.dirichletNodeSets)
     conditions.push_back({"Dirichlet Node Sets (" + name + ")", name, {true, true, true}, {0.0, 0.0, 0.0}});
@@ -146,7 +146,7 @@ ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decom
   }
   auto numCopies = [&](LO node) { return copyPtr[node + 1] - copyPtr[node]; };
 
-  const Prescribed prescribed = prescribedNodeComponents(mesh, spec);
+  const Prescribed prescribed = prescribedComponents(mesh, spec);
 
   // A row belongs to the rank that owns the lowest subdomain it touches (header).
   auto ownerOf = [&](const std::vector<Entry>& entries) {
@@ -357,10 +357,6 @@ ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decom
   std::sort(B.contact.begin(), B.contact.end(),
             [](const ContactNode& a, const ContactNode& b) { return a.normalRow < b.normalRow; });
   return B;
-}
-
-std::vector<char> prescribedComponents(const mesh::Mesh& mesh, const ConstraintSpec& spec) {
-  return prescribedNodeComponents(mesh, spec).fixed;
 }
 
 void keepRankRows(ConstraintMatrix& B, int rank, int firstOwned, int endOwned) {

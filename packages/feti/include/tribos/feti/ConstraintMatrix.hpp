@@ -20,7 +20,7 @@
 ///    sides clamped, or a direction fully prescribed, e.g. t2 = the axis of a plane-strain
 ///    slice) is removed and counted. Contact rows of different slave nodes that share
 ///    master vertices are not orthogonal (B B^T != I on those rows; doc/theory.md).
-/// B is built on every rank (it is small next to the subdomain factors); each row is owned
+/// B is built on every rank, then cut to what the rank needs for the solve (keepRankRows); each row is owned
 /// by one rank — the owner of the lowest subdomain it touches — and rows are numbered so
 /// that the rows of rank p are the contiguous range [firstRowOfRank[p], firstRowOfRank[p+1]).
 /// Within a rank: contact triples (N, T1, T2 consecutive per contact node), then gluing,
@@ -109,11 +109,6 @@ struct ConstraintMatrix {
 /// set, a component prescribed twice with different values, folded contact surfaces).
 ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decomposition& decomposition,
                                        const ConstraintSpec& spec, int numRanks);
-
-/// Per (node, component), 3 * numNodes entries: 1 where a displacement condition prescribes
-/// it (the components that have Dirichlet rows and no gluing rows). Throws as
-/// buildConstraintMatrix on conflicting conditions.
-std::vector<char> prescribedComponents(const mesh::Mesh& mesh, const ConstraintSpec& spec);
 
 /// Keeps of B what rank `rank` needs during the solve (issue 11): the blocks of its own
 /// subdomains [firstOwned, endOwned) whole, and of every other subdomain only the rows this

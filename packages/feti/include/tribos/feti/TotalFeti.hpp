@@ -42,6 +42,8 @@ struct TotalFetiSettings {
 class TotalFeti {
  public:
   /// `owned[i]` is the assembled system of subdomain firstOwned + i (mesh::firstSubdomain).
+  /// B may be the whole of B or this rank's part of it (feti::keepRankRows): the blocks of
+  /// the owned subdomains and, of the others, the rows this rank owns.
   /// Factorises every owned K_reg (threads over subdomains), builds the maps, G G^T, e,
   /// d~ and lambda_Im. Collective over `comm`.
   TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decomposition,
