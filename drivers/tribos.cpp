@@ -40,6 +40,7 @@
 #include "tribos/feti/Solvability.hpp"
 #include "tribos/stack/ContactSolve.hpp"
 #include "tribos/stack/LinearFetiSolve.hpp"
+#include "tribos/stack/RankData.hpp"
 #include "tribos/stack/Results.hpp"
 #include "tribos/stack/Scene.hpp"
 #include "tribos/stack/SceneParameters.hpp"
@@ -277,13 +278,13 @@ int run(int argc, char** argv, int rank) {
 
   // (3) Mesh, decomposition, per-subdomain assembly, constraint matrix B.
   core::Stopwatch setup;
-  const stack::Scene scene = stack::buildScene(params, cl.input);
+  stack::Scene scene = stack::buildScene(params, cl.input);
   std::vector<fem::SubdomainSystem> systems;
   const stack::SetupReport report = stack::assembleOwnedSubdomains(scene, MPI_COMM_WORLD, systems);
   int numRanks = 1;
   MPI_Comm_size(MPI_COMM_WORLD, &numRanks);
   core::Stopwatch constraintWatch;
-  const feti::ConstraintMatrix B =
+  feti::ConstraintMatrix B =
       feti::buildConstraintMatrix(scene.mesh, scene.decomposition, stack::constraintSpec(scene), numRanks);
   // Before any solve: every rigid motion of every body must meet a row of B (exit 2 naming
   // the body and its free motions otherwise).
@@ -312,6 +313,9 @@ int run(int argc, char** argv, int rank) {
   nlohmann::json summary = summaryJson(scene, report, B, cl);
   summary["times"]["constraints_s"] = constraintSeconds;
   summary["times"]["setup_s"] = setupSeconds;
+  // From here on a rank holds its own subdomains, its rows of B and (rank 0) the global mesh
+  // for the results: what the set-up alone needed is freed before the factorisation.
+  stack::keepRankData(scene, B, rank, numRanks);
   int status = core::kExitOk;
   stack::LinearFetiResult linear;
   stack::ContactSolveResult contactSolve;

@@ -380,11 +380,13 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
       std::max({globalMax(comm, lambda->normInf()), feti.loadNormInf(), std::numeric_limits<double>::min()});
   const double tau = kktTolerance;  // relative tolerance of the status tests
   const double tinyForce = tau * forceScale;
+  // The inactive rows of this rank's owned rows only (entry i: row first + i): each rank
+  // masks its own rows of G, so no rank needs the n_d-sized mask of all ranks.
   const GO first = B.firstRowOfRank[rank];
-  std::vector<char> inactive(B.numRows, 0);
+  std::vector<char> inactive(B.firstRowOfRank[rank + 1] - first, 0);
   for (GO r = first; r < B.firstRowOfRank[rank + 1]; ++r) {
     const auto kind = B.kind[r];
-    if (kind == feti::RowKind::Gluing || kind == feti::RowKind::Dirichlet) inactive[r] = 1;
+    if (kind == feti::RowKind::Gluing || kind == feti::RowKind::Dirichlet) inactive[r - first] = 1;
   }
   auto tangential = [&](size_t k) {
     std::array<double, 2> t{0.0, 0.0};
@@ -398,15 +400,13 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
   };
   for (size_t k = 0; k < lc.node.size(); ++k) {
     const LO r = lc.normalRow[k];
-    if (lam(r, 0) > tinyForce) inactive[first + r] = 1;
+    if (lam(r, 0) > tinyForce) inactive[r] = 1;
     if (lc.ellipse[k] < 0) continue;
     const auto state = frictionState(tangential(k), lc.tangentialRow[k], lc.axisScale[k], F, slip[k], tinyForce);
     if (!state.degenerate && state.normalised < 1.0 - tau)
       for (LO t : lc.tangentialRow[k])
-        if (t >= 0) inactive[first + t] = 1;
+        if (t >= 0) inactive[t] = 1;
   }
-  std::vector<char> mask(B.numRows, 0);
-  Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, static_cast<int>(B.numRows), inactive.data(), mask.data());
   for (size_t i = 0; i < lam.extent(0); ++i) result.lambda.push_back(lam(i, 0));  // reactions: -lambda_r
   // A body that no constraint active at the end holds leaves G_I G_I^T singular: a load beyond
   // what contact and friction carry (no equilibrium: the iterations stagnate at the cap) or a
@@ -414,7 +414,7 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
   // the flagged results exist (it was an internal error without output).
   std::vector<double> alpha;
   try {
-    alpha = feti.rigidBodyCoefficients(*lambda, mask);
+    alpha = feti.rigidBodyCoefficients(*lambda, inactive);
   } catch (const feti::RigidMotionsUndetermined&) {
     alpha = feti.rigidBodyCoefficients(*lambda);
     result.converged = false;

@@ -359,4 +359,29 @@ ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decom
   return B;
 }
 
+void keepRankRows(ConstraintMatrix& B, int rank, int firstOwned, int endOwned) {
+  const GO first = B.firstRowOfRank.at(rank), end = B.firstRowOfRank.at(rank + 1);
+  for (int s = 0; s < static_cast<int>(B.blocks.size()); ++s) {
+    if (s >= firstOwned && s < endOwned) continue;
+    const SubdomainBlock& full = B.blocks[s];
+    SubdomainBlock kept;
+    kept.rowPtr.push_back(0);
+    // Rows ascend: the owned ones are one contiguous run.
+    const auto lo = std::lower_bound(full.rows.begin(), full.rows.end(), first);
+    const auto hi = std::lower_bound(lo, full.rows.end(), end);
+    for (auto it = lo; it != hi; ++it) {
+      const size_t i = static_cast<size_t>(it - full.rows.begin());
+      kept.rows.push_back(*it);
+      kept.dof.insert(kept.dof.end(), full.dof.begin() + full.rowPtr[i], full.dof.begin() + full.rowPtr[i + 1]);
+      kept.value.insert(kept.value.end(), full.value.begin() + full.rowPtr[i], full.value.begin() + full.rowPtr[i + 1]);
+      kept.rowPtr.push_back(static_cast<LO>(kept.dof.size()));
+    }
+    kept.rows.shrink_to_fit();
+    kept.rowPtr.shrink_to_fit();
+    kept.dof.shrink_to_fit();
+    kept.value.shrink_to_fit();
+    B.blocks[s] = std::move(kept);
+  }
+}
+
 }  // namespace tribos::feti

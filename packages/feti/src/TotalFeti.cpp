@@ -1,5 +1,6 @@
 #include "tribos/feti/TotalFeti.hpp"
 
+#include <Teuchos_DefaultMpiComm.hpp>
 #include <Tpetra_Core.hpp>
 #include <Tpetra_Import.hpp>
 #include <Tpetra_Map.hpp>
@@ -66,6 +67,20 @@ fem::CsrMatrix principalSubmatrix(const fem::CsrMatrix& K, const std::vector<LO>
   return S;
 }
 
+// Every rank's `mine`, concatenated in rank order (all ranks get the whole list).
+std::vector<long long> allGather(const Teuchos::Comm<int>& comm, const std::vector<long long>& mine) {
+  const auto* mpi = dynamic_cast<const Teuchos::MpiComm<int>*>(&comm);
+  TEUCHOS_TEST_FOR_EXCEPTION(!mpi, std::logic_error, "tribos::feti: an all-gather needs an MPI communicator");
+  const MPI_Comm raw = (*mpi->getRawMpiComm())();
+  const int size = comm.getSize(), count = static_cast<int>(mine.size());
+  std::vector<int> counts(size), offsets(size + 1, 0);
+  MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, raw);
+  for (int p = 0; p < size; ++p) offsets[p + 1] = offsets[p] + counts[p];
+  std::vector<long long> all(offsets[size]);
+  MPI_Allgatherv(mine.data(), count, MPI_LONG_LONG, all.data(), counts.data(), offsets.data(), MPI_LONG_LONG, raw);
+  return all;
+}
+
 const double* readOnly(const DualVector& v) { return v.getLocalViewHost(Tpetra::Access::ReadOnly).data(); }
 double* readWrite(DualVector& v) { return v.getLocalViewHost(Tpetra::Access::ReadWrite).data(); }
 }  // namespace
@@ -119,7 +134,15 @@ TotalFeti::~TotalFeti() = default;
 namespace {
 // The rows `rows` and columns with position[col] >= 0 of K, columns renumbered by `position`.
 KBlock extractBlock(const fem::CsrMatrix& K, const std::vector<LO>& rows, const std::vector<LO>& position) {
+  // Counted first, so that the blocks, kept for the whole solve, hold no spare capacity (with
+  // push_back growth alone they held up to twice their entries: doc/scalability.md).
+  size_t entries = 0;
+  for (LO i : rows)
+    for (LO k = K.rowPtr[i]; k < K.rowPtr[i + 1]; ++k) entries += position[K.colInd[k]] >= 0;
   KBlock A;
+  A.rowPtr.reserve(rows.size() + 1);
+  A.colInd.reserve(entries);
+  A.values.reserve(entries);
   A.rowPtr.push_back(0);
   for (LO i : rows) {
     for (LO k = K.rowPtr[i]; k < K.rowPtr[i + 1]; ++k)
@@ -255,6 +278,7 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
 
   // (4) G on the owned rows; G G^T, replicated, factorised once.
   buildCoarseRows();
+  buildCoarsePattern();
   const fem::CsrMatrix GGt = assembleCoarse(nullptr);
   coarse_ = makeSparseCholesky(settings_.factorization);
   try {
@@ -320,26 +344,31 @@ constexpr LO kRowChunk = 8192;
 }  // namespace
 
 void TotalFeti::buildCoarseRows() {
-  // Entry (s, i) = row i of B_s, numbered globally by subdomain then i: the entries of the
-  // owned subdomains are one contiguous range per rank (owned subdomains are contiguous and
-  // ascending with the rank), which is the source map of one import of the 6 columns g.
+  // Entry (s, r) = row r of B in block s, global id r * numSubdomains + s: the same id on every
+  // rank without any rank knowing the sizes of the blocks it does not own. Source: the entries
+  // of the owned subdomains (their owner has R_s); target: the entries of the owned rows (the
+  // rank has those rows of every block, feti::keepRankRows). One import of the 6 columns g.
   const int rank = comm_->getRank();
-  std::vector<GO> entryOffset(numSubdomains_ + 1, 0);
-  for (int s = 0; s < numSubdomains_; ++s) entryOffset[s + 1] = entryOffset[s] + static_cast<GO>(B_.blocks[s].rows.size());
-  const GO ownedEntries = entryOffset[firstOwned_ + numOwnedSubdomains()] - entryOffset[firstOwned_];
-  auto source = Teuchos::rcp(new DualMap(entryOffset.back(), static_cast<size_t>(ownedEntries), 0, comm_));
+  const GO S = numSubdomains_;
+  std::vector<GO> ids;
+  for (const auto& L : local_)
+    for (GO row : L->block->rows) ids.push_back(row * S + L->subdomain);
+  const auto invalid = Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid();
+  auto source = Teuchos::rcp(new DualMap(invalid, Teuchos::ArrayView<const GO>(ids.data(), ids.size()), 0, comm_));
   Tpetra::MultiVector<Scalar, LO, GO> gSource(source, 6);
   {
+    std::vector<LO> first(numOwnedSubdomains() + 1, 0);  // first source entry of each owned subdomain
+    for (int i = 0; i < numOwnedSubdomains(); ++i) first[i + 1] = first[i] + local_[i]->m();
     auto g = gSource.getLocalViewHost(Tpetra::Access::OverwriteAll);
     core::forEachSubdomain(numOwnedSubdomains(), [&](int i) {
       const Local& L = *local_[i];
       const SubdomainBlock& b = *L.block;
-      const LO n = L.n(), first = static_cast<LO>(entryOffset[L.subdomain] - entryOffset[firstOwned_]);
+      const LO n = L.n();
       for (LO r = 0; r < L.m(); ++r)
         for (int j = 0; j < 6; ++j) {
           double sum = 0.0;
           for (LO k = b.rowPtr[r]; k < b.rowPtr[r + 1]; ++k) sum += b.value[k] * L.system.R[static_cast<size_t>(j) * n + b.dof[k]];
-          g(first + r, j) = sum;
+          g(first[i] + r, j) = sum;
         }
     });
   }
@@ -352,20 +381,18 @@ void TotalFeti::buildCoarseRows() {
   struct Entry {
     LO row;
     int subdomain;
-    GO id;
   };
   std::vector<Entry> entries;
   for (int s = 0; s < numSubdomains_; ++s) {
     const auto& rows = B_.blocks[s].rows;
-    for (size_t i = 0; i < rows.size(); ++i)
-      if (rows[i] >= G->firstRow && rows[i] < G->firstRow + G->numRows)
-        entries.push_back({static_cast<LO>(rows[i] - G->firstRow), s, entryOffset[s] + static_cast<GO>(i)});
+    const auto lo = std::lower_bound(rows.begin(), rows.end(), G->firstRow);
+    for (auto it = lo; it != rows.end() && *it < G->firstRow + G->numRows; ++it)
+      entries.push_back({static_cast<LO>(*it - G->firstRow), s});
   }
   std::stable_sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) { return a.row < b.row; });
-  std::vector<GO> ids(entries.size());
-  for (size_t e = 0; e < entries.size(); ++e) ids[e] = entries[e].id;
-  auto target = Teuchos::rcp(new DualMap(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
-                                         Teuchos::ArrayView<const GO>(ids.data(), ids.size()), 0, comm_));
+  ids.resize(entries.size());
+  for (size_t e = 0; e < entries.size(); ++e) ids[e] = (G->firstRow + entries[e].row) * S + entries[e].subdomain;
+  auto target = Teuchos::rcp(new DualMap(invalid, Teuchos::ArrayView<const GO>(ids.data(), ids.size()), 0, comm_));
   Tpetra::MultiVector<Scalar, LO, GO> gTarget(target, 6);
   gTarget.doImport(gSource, Tpetra::Import<LO, GO>(source, target), Tpetra::INSERT);
   auto g = gTarget.getLocalViewHost(Tpetra::Access::ReadOnly);
@@ -428,37 +455,52 @@ void TotalFeti::measureTraffic() {
   factorNonzeros_ = static_cast<long long>(global[1]);
 }
 
-fem::CsrMatrix TotalFeti::assembleCoarse(const std::vector<char>* rowMask) const {
-  // (G G^T)_{st} = sum over rows r touching both s and t of g_{s,r} g_{t,r}^T: 6x6 blocks
-  // for subdomains that share a row of B. The block pattern follows from B alone (every
-  // rank has it); each rank adds the products of its owned rows into the replicated value
-  // array, in row order, and one all-reduce sums the ranks' parts.
-  auto counted = [&](GO row) { return !rowMask || (*rowMask)[row]; };
-  std::vector<std::vector<int>> touching(B_.numRows);
-  for (int s = 0; s < numSubdomains_; ++s)
-    for (GO row : B_.blocks[s].rows)
-      if (counted(row)) touching[row].push_back(s);
+void TotalFeti::buildCoarsePattern() {
+  // Block (s, t) of G G^T is present when a row of B touches both s and t. Every row is owned
+  // by one rank, which holds all its entries g_{s,r} (buildCoarseRows): the pairs of its owned
+  // rows, gathered from every rank, are the whole pattern. The gathered lists are as long as
+  // the pattern itself (which every rank holds in any case), not as long as B.
+  const CoarseRows& G = *G_;
+  std::vector<long long> pairs;  // s * numSubdomains + t, sorted and unique
+  for (LO r = 0; r < G.numRows; ++r)
+    for (LO e = G.rowStart[r]; e < G.rowStart[r + 1]; ++e)
+      for (LO f = G.rowStart[r]; f < G.rowStart[r + 1]; ++f)
+        pairs.push_back(static_cast<long long>(G.rowSubdomain[e]) * numSubdomains_ + G.rowSubdomain[f]);
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  if (comm_->getSize() > 1) pairs = allGather(*comm_, pairs);
   std::vector<std::vector<int>> neighbours(numSubdomains_);
-  for (const auto& subdomains : touching)
-    for (int s : subdomains) neighbours[s].insert(neighbours[s].end(), subdomains.begin(), subdomains.end());
-  touching.clear();
-  touching.shrink_to_fit();
-  std::vector<LO> blockStart(numSubdomains_ + 1, 0);  // first block of block row s
+  for (long long key : pairs) neighbours[key / numSubdomains_].push_back(static_cast<int>(key % numSubdomains_));
+  pairs.clear();
+  pairs.shrink_to_fit();
+  coarseBlockStart_.assign(numSubdomains_ + 1, 0);  // first block of block row s
+  coarseNeighbours_.clear();
   for (int s = 0; s < numSubdomains_; ++s) {
     auto& t = neighbours[s];
     std::sort(t.begin(), t.end());
     t.erase(std::unique(t.begin(), t.end()), t.end());
-    blockStart[s + 1] = blockStart[s] + static_cast<LO>(t.size());
+    coarseBlockStart_[s + 1] = coarseBlockStart_[s] + static_cast<LO>(t.size());
+    coarseNeighbours_.insert(coarseNeighbours_.end(), t.begin(), t.end());
   }
+}
+
+fem::CsrMatrix TotalFeti::assembleCoarse(const std::vector<char>* ownedRowMask) const {
+  // (G G^T)_{st} = sum over rows r touching both s and t of g_{s,r} g_{t,r}^T: 6x6 blocks
+  // for subdomains that share a row of B (buildCoarsePattern; with a mask the same pattern,
+  // the blocks of the rows left out stay zero). Each rank adds the products of its owned
+  // rows into the replicated value array, in row order, and one all-reduce sums the ranks'
+  // parts.
+  auto counted = [&](LO ownedRow) { return !ownedRowMask || (*ownedRowMask)[ownedRow]; };
+  const std::vector<LO>& blockStart = coarseBlockStart_;
   auto blockOf = [&](int s, int t) {
-    const auto& n = neighbours[s];
-    return blockStart[s] + static_cast<LO>(std::lower_bound(n.begin(), n.end(), t) - n.begin());
+    const auto first = coarseNeighbours_.begin() + blockStart[s], last = coarseNeighbours_.begin() + blockStart[s + 1];
+    return blockStart[s] + static_cast<LO>(std::lower_bound(first, last, t) - first);
   };
 
   std::vector<double> local(36 * static_cast<size_t>(blockStart.back()), 0.0);
   const CoarseRows& G = *G_;
   for (LO r = 0; r < G.numRows; ++r) {
-    if (!counted(G.firstRow + r)) continue;
+    if (!counted(r)) continue;
     for (LO e = G.rowStart[r]; e < G.rowStart[r + 1]; ++e)
       for (LO f = G.rowStart[r]; f < G.rowStart[r + 1]; ++f) {
         double* block = &local[36 * static_cast<size_t>(blockOf(G.rowSubdomain[e], G.rowSubdomain[f]))];
@@ -482,7 +524,7 @@ fem::CsrMatrix TotalFeti::assembleCoarse(const std::vector<char>* rowMask) const
     for (int a = 0; a < 6; ++a) {
       for (LO k = blockStart[s]; k < blockStart[s + 1]; ++k)
         for (int c = 0; c < 6; ++c) {
-          GGt.colInd.push_back(6 * neighbours[s][k - blockStart[s]] + c);
+          GGt.colInd.push_back(6 * coarseNeighbours_[k] + c);
           GGt.values.push_back(blocks[36 * static_cast<size_t>(k) + a * 6 + c]);
         }
       GGt.rowPtr[6 * s + a + 1] = static_cast<LO>(GGt.colInd.size());
@@ -491,21 +533,23 @@ fem::CsrMatrix TotalFeti::assembleCoarse(const std::vector<char>* rowMask) const
 }
 
 std::vector<double> TotalFeti::rigidBodyCoefficients(const DualVector& lambda,
-                                                     const std::vector<char>& rowMask) const {
+                                                     const std::vector<char>& ownedRowMask) const {
+  TEUCHOS_TEST_FOR_EXCEPTION(ownedRowMask.size() != static_cast<size_t>(G_->numRows), std::invalid_argument,
+                             "tribos::feti::TotalFeti::rigidBodyCoefficients: the mask has "
+                                 << ownedRowMask.size() << " entries, this rank owns " << G_->numRows << " rows");
   DualVector residual(dualMap_);
   applyF(lambda, residual);
   residual.update(-1.0, *dTilde_, 1.0);
   {
     auto data = residual.getLocalViewHost(Tpetra::Access::ReadWrite);
-    const GO first = B_.firstRowOfRank[comm_->getRank()];
     for (size_t i = 0; i < data.extent(0); ++i)
-      if (!rowMask[first + static_cast<GO>(i)]) data(i, 0) = 0.0;
+      if (!ownedRowMask[i]) data(i, 0) = 0.0;
   }
   std::vector<double> alpha;
   applyG(residual, alpha);
   auto factor = makeSparseCholesky(settings_.factorization);
   try {
-    factor->factorize(assembleCoarse(&rowMask));
+    factor->factorize(assembleCoarse(&ownedRowMask));
   } catch (const std::exception& e) {
     throw RigidMotionsUndetermined(std::string("tribos::feti::TotalFeti::rigidBodyCoefficients: G_I G_I^T is singular "
                                          "(the inactive rows do not fix every rigid body mode): ") + e.what());

@@ -3,6 +3,7 @@
 #include <Teuchos_DefaultMpiComm.hpp>
 #include <Teuchos_ParameterList.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <functional>
 #include <memory>
@@ -11,6 +12,7 @@
 #include "tribos/core/Timer.hpp"
 #include "tribos/feti/TotalFeti.hpp"
 #include "tribos/qp/SolverParameters.hpp"
+#include "tribos/stack/RootGather.hpp"
 #include "tribos/stack/SceneParameters.hpp"
 #include "tribos/stack/SolveBudget.hpp"
 
@@ -151,16 +153,19 @@ void gatherContactFields(const Scene& scene, const feti::ConstraintMatrix& B, MP
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   const size_t numNodes = static_cast<size_t>(scene.mesh.numNodes());
-  constexpr size_t kPerNode = 5;  // force (nu, t1, t2), status, opening
-  std::vector<double> fields(kPerNode * numNodes, 0.0), all(rank == 0 ? fields.size() : 0);
+  constexpr int kPerNode = 5;  // force (nu, t1, t2), status, opening
+  Records mine;  // one per contact node of this rank's rows
+  mine.width = kPerNode;
   for (const auto& node : out.contact.nodes) {
-    double* f = fields.data() + kPerNode * static_cast<size_t>(node.slaveNode);
-    for (int j = 0; j < 3; ++j) f[j] = node.force[j];
-    f[3] = static_cast<double>(node.status);
-    f[4] = node.opening;
+    const double f[kPerNode] = {node.force[0], node.force[1], node.force[2], static_cast<double>(node.status),
+                                node.opening};
+    mine.add(node.slaveNode, f);
   }
-  MPI_Reduce(fields.data(), all.data(), static_cast<int>(fields.size()), MPI_DOUBLE, MPI_SUM, 0, comm);
+  const Records gathered = gatherToRoot(mine, comm);
   if (rank != 0) return;
+  std::vector<double> all(kPerNode * numNodes, 0.0);
+  for (size_t k = 0; k < gathered.size(); ++k)
+    std::copy_n(&gathered.values[kPerNode * k], kPerNode, &all[kPerNode * static_cast<size_t>(gathered.index[k])]);
   for (auto* field : {&out.contactNormal, &out.contactT1, &out.contactT2, &out.contactStatus, &out.contactPressure,
                       &out.contactGap, &out.contactOpening, &out.contactNx, &out.contactNy, &out.contactNz,
                       &out.contactMaster})

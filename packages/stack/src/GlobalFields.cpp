@@ -5,44 +5,45 @@
 #include <limits>
 #include <utility>
 
+#include "tribos/stack/RootGather.hpp"
+
 namespace tribos::stack {
 
 GlobalDisplacement gatherDisplacement(const Scene& scene, int firstOwned, const std::vector<std::vector<double>>& u,
                                       MPI_Comm comm) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
-  const size_t numNodes = static_cast<size_t>(scene.mesh.numNodes());
-  // Per node: sum of the copies (3) and their count; min and max per component.
-  std::vector<double> sum(4 * numNodes, 0.0);
-  std::vector<double> lo(3 * numNodes, std::numeric_limits<double>::max());
-  std::vector<double> hi(3 * numNodes, std::numeric_limits<double>::lowest());
+  // One record per copy of a node in an owned subdomain: its global id and u there.
+  Records mine;
+  mine.width = 3;
   for (size_t i = 0; i < u.size(); ++i) {
     const auto& nodes = scene.decomposition.subdomains[firstOwned + static_cast<int>(i)].nodes;
-    for (size_t k = 0; k < nodes.size(); ++k) {
-      const size_t g = static_cast<size_t>(nodes[k]);
-      for (int c = 0; c < 3; ++c) {
-        const double v = u[i][3 * k + c];
-        sum[4 * g + c] += v;
-        lo[3 * g + c] = std::min(lo[3 * g + c], v);
-        hi[3 * g + c] = std::max(hi[3 * g + c], v);
-      }
-      sum[4 * g + 3] += 1.0;
-    }
+    for (size_t k = 0; k < nodes.size(); ++k) mine.add(nodes[k], &u[i][3 * k]);
   }
-  const bool root = rank == 0;
-  std::vector<double> sumAll(root ? sum.size() : 0), loAll(root ? lo.size() : 0), hiAll(root ? hi.size() : 0);
-  MPI_Reduce(sum.data(), sumAll.data(), static_cast<int>(sum.size()), MPI_DOUBLE, MPI_SUM, 0, comm);
-  MPI_Reduce(lo.data(), loAll.data(), static_cast<int>(lo.size()), MPI_DOUBLE, MPI_MIN, 0, comm);
-  MPI_Reduce(hi.data(), hiAll.data(), static_cast<int>(hi.size()), MPI_DOUBLE, MPI_MAX, 0, comm);
+  const Records all = gatherToRoot(mine, comm);
   GlobalDisplacement out;
-  if (!root) return out;
+  if (rank != 0) return out;
+  // Per node: the sum of the copies (in subdomain order, whatever the number of ranks), their
+  // count, and min and max per component.
+  const size_t numNodes = static_cast<size_t>(scene.mesh.numNodes());
   out.value.assign(numNodes, {0.0, 0.0, 0.0});
-  for (size_t g = 0; g < numNodes; ++g) {
-    const double copies = sumAll[4 * g + 3];
-    if (copies <= 0) continue;
+  std::vector<int> copies(numNodes, 0);
+  std::vector<std::array<double, 3>> lo(numNodes), hi(numNodes);
+  for (size_t k = 0; k < all.size(); ++k) {
+    const size_t g = static_cast<size_t>(all.index[k]);
+    const double* v = &all.values[3 * k];
     for (int c = 0; c < 3; ++c) {
-      out.value[g][c] = sumAll[4 * g + c] / copies;
-      out.maxCopyJump = std::max(out.maxCopyJump, hiAll[3 * g + c] - loAll[3 * g + c]);
+      out.value[g][c] += v[c];
+      lo[g][c] = copies[g] == 0 ? v[c] : std::min(lo[g][c], v[c]);
+      hi[g][c] = copies[g] == 0 ? v[c] : std::max(hi[g][c], v[c]);
+    }
+    ++copies[g];
+  }
+  for (size_t g = 0; g < numNodes; ++g) {
+    if (copies[g] == 0) continue;
+    for (int c = 0; c < 3; ++c) {
+      out.value[g][c] /= copies[g];
+      out.maxCopyJump = std::max(out.maxCopyJump, hi[g][c] - lo[g][c]);
     }
   }
   return out;
@@ -64,15 +65,35 @@ void forEachDirichletEntry(const Scene& scene, const feti::ConstraintMatrix& B, 
   }
 }
 
+/// Whether component c of a node is prescribed, from the displacement conditions (their node
+/// sets are sorted): a rank holds the Dirichlet rows of its own subdomains only
+/// (feti::keepRankRows), and an owned contact row may reach a node that none of them has.
+class PrescribedComponents {
+ public:
+  explicit PrescribedComponents(const Scene& scene) {
+    for (const auto& name : scene.dirichletNodeSets) sets_.push_back({&scene.mesh.nodeSet(name).nodes, {true, true, true}});
+    for (const auto& condition : scene.displacementConditions)
+      sets_.push_back({&scene.mesh.nodeSet(condition.nodeSet).nodes, condition.components});
+  }
+  bool operator()(LO node, int c) const {
+    for (const auto& [nodes, components] : sets_)
+      if (components[c] && std::binary_search(nodes->begin(), nodes->end(), node)) return true;
+    return false;
+  }
+
+ private:
+  std::vector<std::pair<const std::vector<LO>*, std::array<bool, 3>>> sets_;
+};
+
 /// The contact forces that a support takes directly. A contact row drops the prescribed
 /// components of its nodes (feti/ConstraintMatrix.hpp), so K u = f - B^T lambda never applies
 /// its force -B_full lambda to them, yet the body is pressed there all the same and the
 /// support holds that component: its reaction gains + B_full,ri lambda_r (B_full: the row
 /// before dropping, weight 1 on the slave and -w_j on master j, times the direction and the
 /// row's scale). Without this, reactions and load would not balance where a contact surface
-/// meets a symmetry plane.
-void addDroppedContactForces(const feti::ConstraintMatrix& B, const std::vector<char>& prescribed, GO first, GO end,
-                             const std::vector<double>& ownedLambda, std::vector<double>& reaction) {
+/// meets a symmetry plane. One record (3 node + component, force) per term.
+void addDroppedContactForces(const feti::ConstraintMatrix& B, const PrescribedComponents& prescribed, GO first,
+                             GO end, const std::vector<double>& ownedLambda, Records& reaction) {
   for (const auto& node : B.contact) {
     if (node.normalRow < first || node.normalRow >= end) continue;  // its rows are on another rank
     std::vector<std::pair<LO, double>> sides{{node.slaveNode, 1.0}};
@@ -85,8 +106,10 @@ void addDroppedContactForces(const feti::ConstraintMatrix& B, const std::vector<
       const double lambda = ownedLambda[row - first];
       for (const auto& [g, weight] : sides)
         for (int c = 0; c < 3; ++c)
-          if (prescribed[3 * static_cast<size_t>(g) + c])
-            reaction[3 * static_cast<size_t>(g) + c] += weight * (*directions[d])[c] * scale * lambda;
+          if (prescribed(g, c)) {
+            const double force = weight * (*directions[d])[c] * scale * lambda;
+            reaction.add(3 * static_cast<long long>(g) + c, &force);
+          }
     }
   }
 }
@@ -97,21 +120,19 @@ std::vector<std::array<double, 3>> gatherReactions(const Scene& scene, const fet
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   const GO first = B.firstRowOfRank[rank], end = B.firstRowOfRank[rank + 1];
-  const size_t numNodes = static_cast<size_t>(scene.mesh.numNodes());
-  std::vector<double> local(3 * numNodes, 0.0);
-  std::vector<char> prescribed(3 * numNodes, 0);
+  // Records (3 node + component, force) of this rank's rows, summed on rank 0 in rank order.
+  Records mine;
   forEachDirichletEntry(scene, B, [&](GO row, LO node, int component, double value) {
-    const size_t i = 3 * static_cast<size_t>(node) + component;
-    prescribed[i] = 1;
-    if (row >= first && row < end) local[i] -= value * ownedLambda[row - first];
+    if (row < first || row >= end) return;
+    const double force = -(value * ownedLambda[row - first]);
+    mine.add(3 * static_cast<long long>(node) + component, &force);
   });
-  addDroppedContactForces(B, prescribed, first, end, ownedLambda, local);
-  std::vector<double> all(rank == 0 ? local.size() : 0);
-  MPI_Reduce(local.data(), all.data(), static_cast<int>(local.size()), MPI_DOUBLE, MPI_SUM, 0, comm);
+  addDroppedContactForces(B, PrescribedComponents(scene), first, end, ownedLambda, mine);
+  const Records all = gatherToRoot(mine, comm);
   std::vector<std::array<double, 3>> out;
   if (rank != 0) return out;
-  out.resize(numNodes);
-  for (size_t n = 0; n < numNodes; ++n) out[n] = {all[3 * n], all[3 * n + 1], all[3 * n + 2]};
+  out.assign(static_cast<size_t>(scene.mesh.numNodes()), {0.0, 0.0, 0.0});
+  for (size_t k = 0; k < all.size(); ++k) out[all.index[k] / 3][all.index[k] % 3] += all.values[k];
   return out;
 }
 

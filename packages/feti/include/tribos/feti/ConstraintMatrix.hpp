@@ -20,7 +20,7 @@
 ///    sides clamped, or a direction fully prescribed, e.g. t2 = the axis of a plane-strain
 ///    slice) is removed and counted. Contact rows of different slave nodes that share
 ///    master vertices are not orthogonal (B B^T != I on those rows; doc/theory.md).
-/// B is built on every rank (it is small next to the subdomain factors); each row is owned
+/// B is built on every rank, then cut to what the rank needs for the solve (keepRankRows); each row is owned
 /// by one rank — the owner of the lowest subdomain it touches — and rows are numbered so
 /// that the rows of rank p are the contiguous range [firstRowOfRank[p], firstRowOfRank[p+1]).
 /// Within a rank: contact triples (N, T1, T2 consecutive per contact node), then gluing,
@@ -109,5 +109,12 @@ struct ConstraintMatrix {
 /// set, a component prescribed twice with different values, folded contact surfaces).
 ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decomposition& decomposition,
                                        const ConstraintSpec& spec, int numRanks);
+
+/// Keeps of B what rank `rank` needs during the solve (issue 11): the blocks of its own
+/// subdomains [firstOwned, endOwned) whole, and of every other subdomain only the rows this
+/// rank owns (the entries g_{s,r} of G on its owned rows need them, TotalFeti). The row data
+/// (kind, c, rowId, contact) stays. B is then fit for TotalFeti, the contact solver and the
+/// result gathering on `rank` only, and no longer for feti::requireRestrainedBodies.
+void keepRankRows(ConstraintMatrix& B, int rank, int firstOwned, int endOwned);
 
 }  // namespace tribos::feti

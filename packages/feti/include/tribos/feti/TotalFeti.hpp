@@ -49,6 +49,8 @@ struct TotalFetiSettings {
 class TotalFeti {
  public:
   /// `owned[i]` is the assembled system of subdomain firstOwned + i (mesh::firstSubdomain).
+  /// B may be the whole of B or this rank's part of it (feti::keepRankRows): the blocks of
+  /// the owned subdomains and, of the others, the rows this rank owns.
   /// Factorises every owned K_reg (threads over subdomains), builds the maps, G G^T, e,
   /// d~ and lambda_Im. Collective over `comm`.
   TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decomposition,
@@ -89,11 +91,12 @@ class TotalFeti {
   /// alpha = (G G^T)^{-1} G (F lambda - d~) over all rows (all constraints active: the
   /// linear case); returns alpha (length l).
   std::vector<double> rigidBodyCoefficients(const DualVector& lambda) const;
-  /// alpha = (G_I G_I^T)^{-1} G_I (F lambda - d~)_I over the rows I where rowMask[r] != 0
-  /// (rowMask global, identical on every rank): the rows where the dual constraints are not
-  /// active, so that the dual gradient vanishes there (ALGORITHMS.md 7). Throws
-  /// RigidMotionsUndetermined (on every rank) when G_I G_I^T is singular.
-  std::vector<double> rigidBodyCoefficients(const DualVector& lambda, const std::vector<char>& rowMask) const;
+  /// alpha = (G_I G_I^T)^{-1} G_I (F lambda - d~)_I over the rows I where the mask is != 0:
+  /// the rows where the dual constraints are not active, so that the dual gradient vanishes
+  /// there (ALGORITHMS.md 7). `ownedRowMask` covers this rank's owned rows only (entry i: row
+  /// B.firstRowOfRank[rank] + i; one entry per row of dualMap()): no rank needs the others'.
+  /// Throws RigidMotionsUndetermined (on every rank) when G_I G_I^T is singular.
+  std::vector<double> rigidBodyCoefficients(const DualVector& lambda, const std::vector<char>& ownedRowMask) const;
   /// y = B u for displacements u of the owned subdomains (u[i] of subdomain firstOwned + i).
   void applyB(const std::vector<std::vector<double>>& u, DualVector& y) const;
   /// max over owned subdomains of ||K_s u_s - f_s + B_s^T lambda_s||_inf (equilibrium).
@@ -153,8 +156,16 @@ class TotalFeti {
   /// [contributionStart_[row], contributionStart_[row + 1]) points into a subdomain's `out`.
   std::vector<LO> contributionStart_;
   std::vector<const double*> contribution_;
-  /// G_I G_I^T over the rows with mask != 0 (all rows: G G^T), replicated on every rank.
-  fem::CsrMatrix assembleCoarse(const std::vector<char>* rowMask) const;
+  /// G_I G_I^T over the owned rows with mask != 0, summed over the ranks (no mask: G G^T),
+  /// replicated on every rank, on the pattern of G G^T.
+  fem::CsrMatrix assembleCoarse(const std::vector<char>* ownedRowMask) const;
+  /// The block pattern of G G^T from the owned rows of G and one all-gather of their
+  /// subdomain pairs (no rank reads the blocks of B of subdomains it does not own).
+  void buildCoarsePattern();
+  /// Block pattern of G G^T: block row s has the blocks k in [coarseBlockStart_[s],
+  /// coarseBlockStart_[s + 1]), block column coarseNeighbours_[k] (ascending within a row).
+  std::vector<LO> coarseBlockStart_;
+  std::vector<int> coarseNeighbours_;
   /// g_{s,r} for the owned rows, from the owners of the subdomains (one import at set-up).
   void buildCoarseRows();
   /// Sets factorNonzeros_ and bytesPerFApplication_ (collective).

@@ -3,7 +3,7 @@
 /// A scene: the mesh, its decomposition into subdomains, materials, loads and boundary
 /// parts, built from a validated parameter list. Every rank builds the whole (global) mesh
 /// and decomposition — cheap next to the subdomain work — and then works on its own
-/// subdomains (mesh::firstSubdomain).
+/// subdomains (mesh::firstSubdomain); stack::keepRankData frees what the solve does not need.
 #include <array>
 #include <string>
 #include <vector>
