@@ -8,18 +8,8 @@
 # Usage: scripts/fuzz.sh [extra cmake -D options]
 set -euo pipefail
 cd "$(dirname "$0")/.."
-missing=()
-for p in clang libclang-rt-14-dev; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if ((${#missing[@]})); then
-  echo "fuzz: installing ${missing[*]}"
-  sudo_cmd=()
-  [ "$(id -u)" -ne 0 ] && sudo_cmd=(sudo)
-  export DEBIAN_FRONTEND=noninteractive
-  "${sudo_cmd[@]}" apt-get update -qq
-  "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
-fi
+source scripts/install_missing.sh
+install_missing fuzz clang libclang-rt-14-dev
 jobs=${TRIBOS_BUILD_JOBS:-2}
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTRIBOS_FUZZ=ON \
   -DTRIBOS_ENABLE_TESTS=OFF -DTRIBOS_ENABLE_PERF=OFF -DTRIBOS_FUZZ_SECONDS="${TRIBOS_FUZZ_SECONDS:-30}" "$@" >/dev/null
