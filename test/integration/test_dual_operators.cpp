@@ -103,6 +103,28 @@ TEST(TotalFeti, projectorIsIdempotentAndAnnihilatedByG) {
   EXPECT_LT(std::sqrt(diff), 1e-10 * std::sqrt(eNorm));
 }
 
+TEST(TotalFeti, repeatedProjectionReusesTheCoarseSolveWithTheSameBits) {
+  // P x, P y, P x again: the third coarse solve comes from the memo of the last two and
+  // gives the same bits as the first; a third vector z is solved afresh.
+  auto p = makeProblem("4x2x2", 2, false);
+  auto x = p->feti->createDualVector(), y = p->feti->createDualVector(), z = p->feti->createDualVector();
+  auto Px = p->feti->createDualVector(), Py = p->feti->createDualVector(), Px2 = p->feti->createDualVector();
+  randomize(*x, 1);
+  randomize(*y, 2);
+  randomize(*z, 3);
+  const auto before = p->feti->profile();
+  p->feti->project(*x, *Px);
+  p->feti->project(*y, *Py);
+  p->feti->project(*x, *Px2);
+  const auto after = p->feti->profile();
+  EXPECT_EQ(after.coarseSolves - before.coarseSolves, 3);
+  EXPECT_EQ(after.coarseSolvesReused - before.coarseSolvesReused, 1);
+  auto a = Px->getLocalViewHost(Tpetra::Access::ReadOnly), b = Px2->getLocalViewHost(Tpetra::Access::ReadOnly);
+  for (size_t i = 0; i < a.extent(0); ++i) EXPECT_EQ(a(i, 0), b(i, 0));
+  p->feti->project(*z, *Py);
+  EXPECT_EQ(p->feti->profile().coarseSolvesReused, after.coarseSolvesReused);
+}
+
 TEST(TotalFeti, projectedDualOperatorSkipsTheKernelProjectionsOnKerG) {
   // P F x = P B K^+ B^T x for x in Ker G (applyPF): the kernel projections of K^dagger act
   // on nothing there, up to rounding.
