@@ -105,6 +105,7 @@ nlohmann::json profileJson(const feti::OperatorProfile& p) {
           {"projections", p.projections},
           {"coarse_solves", p.coarseSolves},
           {"coarse_solves_reused", p.coarseSolvesReused},
+          {"projections_reused", p.projectionsReused},
           {"preconditioner_applications", p.preconditionerApplications},
           {"f_s", p.fSeconds},
           {"g_s", p.gSeconds},
@@ -112,7 +113,9 @@ nlohmann::json profileJson(const feti::OperatorProfile& p) {
           {"coarse_solve_s", p.coarseSolveSeconds},
           {"preconditioner_s", p.preconditionerSeconds},
           {"coarse_factor_s", p.coarseFactorSeconds},
-          {"coarse_factor_nonzeros", p.coarseFactorNonzeros}};
+          {"coarse_factor_nonzeros", p.coarseFactorNonzeros},
+          {"g_entries", p.gEntries},
+          {"g_rows", p.gRows}};
 }
 
 nlohmann::json historyJson(const std::vector<stack::OuterIterationRecord>& history) {

@@ -44,6 +44,7 @@ struct TotalFetiSettings {
 struct OperatorProfile {
   long long fApplications = 0, projections = 0, coarseSolves = 0, preconditionerApplications = 0;
   long long coarseSolvesReused = 0;    ///< of coarseSolves: answered from the last two (same rhs bits)
+  long long projectionsReused = 0;     ///< of projections: P x copied from the last two (same x bits)
   double fSeconds = 0.0;               ///< B K^+ B^T (imports, subdomain solves, export-add)
   double gSeconds = 0.0;               ///< G x and G^T a of the projections (owned rows)
   double coarseReduceSeconds = 0.0;    ///< the all-reduce of G x (length l)
@@ -51,6 +52,7 @@ struct OperatorProfile {
   double preconditionerSeconds = 0.0;  ///< B K B^T or B S B^T
   double coarseFactorSeconds = 0.0;    ///< assembly + factorisation of G G^T
   long long coarseFactorNonzeros = 0;  ///< stored entries of the factor of G G^T
+  long long gEntries = 0, gRows = 0;   ///< entries (row, subdomain) of G on this rank's rows, rows
 };
 
 class TotalFeti {
@@ -183,6 +185,12 @@ class TotalFeti {
   };
   mutable CoarseMemo coarseMemo_[2];
   mutable int coarseMemoNext_ = 0;
+  /// The last two projections (x and P x on the owned rows): a hit skips G x, the coarse
+  /// solve and G^T a, i.e. two passes over G, which at small H/h weigh more than F.
+  mutable CoarseMemo projectionMemo_[2];
+  mutable int projectionMemoNext_ = 0;
+  /// Index of the memo entry whose input has the bits of x on every rank, or -1 (collective).
+  int findProjection(const double* x) const;
   std::vector<double> e_;
   Teuchos::RCP<DualVector> dTilde_, lambdaIm_;
   mutable long long fApplications_ = 0;
