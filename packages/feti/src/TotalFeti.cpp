@@ -722,6 +722,7 @@ void TotalFeti::solveCoarse(std::vector<double>& a) const {
     }
   CoarseMemo& memo = coarseMemo_[coarseMemoNext_];
   coarseMemoNext_ = 1 - coarseMemoNext_;
+  memo.valid = false;
   memo.rhs.assign(a.begin(), a.end());
   coarse_->solve(memo.rhs.data(), a.data());
   memo.solution.assign(a.begin(), a.end());
@@ -753,7 +754,7 @@ void TotalFeti::project(const DualVector& x, DualVector& y) const {
   }
   CoarseMemo& memo = projectionMemo_[projectionMemoNext_];
   projectionMemoNext_ = 1 - projectionMemoNext_;
-  memo.valid = true;
+  memo.valid = false;           // until its answer is stored below
   memo.rhs.assign(xd, xd + n);  // before y (which may be x) is written
   applyGOwnedRows(xd, coarseLocal_.data());
   profile_.gSeconds += watch.seconds();
@@ -764,6 +765,7 @@ void TotalFeti::project(const DualVector& x, DualVector& y) const {
   watch.restart();
   subtractGt(*G_, coarseVector_.data(), xd, yd);
   memo.solution.assign(yd, yd + n);
+  memo.valid = true;
   profile_.gSeconds += watch.seconds();
 }
 
