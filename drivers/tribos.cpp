@@ -100,6 +100,25 @@ nlohmann::json summaryJson(const stack::Scene& scene, const stack::SetupReport& 
 }
 
 // One object per SMALSE-M outer iteration: what the progress lines showed.
+/// Rank 0's operator counts and times (TotalFeti::profile; doc/coarse_problem.md).
+nlohmann::json profileJson(const feti::OperatorProfile& p) {
+  return {{"f_applications", p.fApplications},
+          {"projections", p.projections},
+          {"coarse_solves", p.coarseSolves},
+          {"coarse_solves_reused", p.coarseSolvesReused},
+          {"projections_reused", p.projectionsReused},
+          {"preconditioner_applications", p.preconditionerApplications},
+          {"f_s", p.fSeconds},
+          {"g_s", p.gSeconds},
+          {"coarse_reduce_s", p.coarseReduceSeconds},
+          {"coarse_solve_s", p.coarseSolveSeconds},
+          {"preconditioner_s", p.preconditionerSeconds},
+          {"coarse_factor_s", p.coarseFactorSeconds},
+          {"coarse_factor_nonzeros", p.coarseFactorNonzeros},
+          {"g_entries", p.gEntries},
+          {"g_rows", p.gRows}};
+}
+
 nlohmann::json historyJson(const std::vector<stack::OuterIterationRecord>& history) {
   nlohmann::json list = nlohmann::json::array();
   for (const auto& h : history)
@@ -371,6 +390,7 @@ int run(int argc, char** argv, int rank) {
     summary["contact_force_on_master"] = contactSolve.totalContactForce;
     summary["times"]["factorization_s"] = contactSolve.factorizationSeconds;
     summary["times"]["solve_s"] = contactSolve.solveSeconds;
+    summary["operator_profile"] = profileJson(contactSolve.profile);
     if (rank == 0)
       std::cout << "  SMALSE-M: " << (r.converged ? "converged" : "NOT CONVERGED (" + r.message + ")") << ": "
                 << r.counters.outerIterations << " outer, " << r.counters.innerIterations << " inner iterations, "

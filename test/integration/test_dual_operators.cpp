@@ -103,6 +103,45 @@ TEST(TotalFeti, projectorIsIdempotentAndAnnihilatedByG) {
   EXPECT_LT(std::sqrt(diff), 1e-10 * std::sqrt(eNorm));
 }
 
+TEST(TotalFeti, repeatedProjectionIsReusedWithTheSameBits) {
+  // P x, P y, P x again: the third projection is copied from the memo of the last two (no
+  // coarse solve) and has the same bits as the first; a third vector z is projected afresh.
+  auto p = makeProblem("4x2x2", 2, false);
+  auto x = p->feti->createDualVector(), y = p->feti->createDualVector(), z = p->feti->createDualVector();
+  auto Px = p->feti->createDualVector(), Py = p->feti->createDualVector(), Px2 = p->feti->createDualVector();
+  randomize(*x, 1);
+  randomize(*y, 2);
+  randomize(*z, 3);
+  const auto before = p->feti->profile();
+  p->feti->project(*x, *Px);
+  p->feti->project(*y, *Py);
+  p->feti->project(*x, *Px2);
+  const auto after = p->feti->profile();
+  EXPECT_EQ(after.projections - before.projections, 3);
+  EXPECT_EQ(after.projectionsReused - before.projectionsReused, 1);
+  EXPECT_EQ(after.coarseSolves - before.coarseSolves, 2);
+  auto a = Px->getLocalViewHost(Tpetra::Access::ReadOnly), b = Px2->getLocalViewHost(Tpetra::Access::ReadOnly);
+  for (size_t i = 0; i < a.extent(0); ++i) EXPECT_EQ(a(i, 0), b(i, 0));
+  // In place (y aliases x) too: P z into z, then P of the original z again from a copy.
+  auto zCopy = p->feti->createDualVector();
+  zCopy->assign(*z);
+  p->feti->project(*z, *z);
+  EXPECT_EQ(p->feti->profile().projectionsReused, after.projectionsReused);
+  p->feti->project(*zCopy, *zCopy);
+  EXPECT_EQ(p->feti->profile().projectionsReused, after.projectionsReused + 1);
+  auto c = z->getLocalViewHost(Tpetra::Access::ReadOnly), d = zCopy->getLocalViewHost(Tpetra::Access::ReadOnly);
+  for (size_t i = 0; i < c.extent(0); ++i) EXPECT_EQ(c(i, 0), d(i, 0));
+  // The coarse solve's own memo: the same right-hand side twice.
+  std::vector<double> r1(p->feti->numCoarse()), r2;
+  for (size_t i = 0; i < r1.size(); ++i) r1[i] = std::cos(0.3 * static_cast<double>(i));
+  r2 = r1;
+  const long long reused = p->feti->profile().coarseSolvesReused;
+  p->feti->solveCoarse(r1);
+  p->feti->solveCoarse(r2);
+  EXPECT_EQ(p->feti->profile().coarseSolvesReused, reused + 1);
+  EXPECT_EQ(r1, r2);
+}
+
 TEST(TotalFeti, projectedDualOperatorSkipsTheKernelProjectionsOnKerG) {
   // P F x = P B K^+ B^T x for x in Ker G (applyPF): the kernel projections of K^dagger act
   // on nothing there, up to rounding.

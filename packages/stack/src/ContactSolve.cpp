@@ -222,6 +222,7 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
   out.solveSeconds = watch.seconds();
   nameTheLimit(budget, *runs, smalse, friction, out.contact);
   out.fApplications = feti.fApplications();
+  out.profile = feti.profile();
   out.factorNonzeros = feti.factorNonzeros();
   out.bytesPerFApplication = feti.bytesPerFApplication();
   out.displacement = gatherDisplacement(scene, feti.firstOwnedSubdomain(), out.contact.displacement, comm);

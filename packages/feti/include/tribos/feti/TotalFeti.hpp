@@ -46,6 +46,22 @@ struct TotalFetiSettings {
   bool dirichletPreconditioner = false;   ///< factorise K_ii per subdomain for applyDirichlet
 };
 
+/// Where the time of the dual operators goes (cumulative over the object's life, this rank;
+/// doc/coarse_problem.md): counts and wall seconds of each operator, read by the summary.
+struct OperatorProfile {
+  long long fApplications = 0, projections = 0, coarseSolves = 0, preconditionerApplications = 0;
+  long long coarseSolvesReused = 0;    ///< of coarseSolves: answered from the last two (same rhs bits)
+  long long projectionsReused = 0;     ///< of projections: P x copied from the last two (same x bits)
+  double fSeconds = 0.0;               ///< B K^+ B^T (imports, subdomain solves, export-add)
+  double gSeconds = 0.0;               ///< G x and G^T a of the projections (owned rows)
+  double coarseReduceSeconds = 0.0;    ///< the all-reduce of G x (length l)
+  double coarseSolveSeconds = 0.0;     ///< (G G^T)^{-1} a
+  double preconditionerSeconds = 0.0;  ///< B K B^T or B S B^T
+  double coarseFactorSeconds = 0.0;    ///< assembly + factorisation of G G^T
+  long long coarseFactorNonzeros = 0;  ///< stored entries of the factor of G G^T
+  long long gEntries = 0, gRows = 0;   ///< entries (row, subdomain) of G on this rank's rows, rows
+};
+
 class TotalFeti {
  public:
   /// `owned[i]` is the assembled system of subdomain firstOwned + i (mesh::firstSubdomain).
@@ -113,6 +129,7 @@ class TotalFeti {
   const ConstraintMatrix& constraints() const { return B_; }
 
   long long fApplications() const { return fApplications_; }
+  const OperatorProfile& profile() const { return profile_; }
   int firstOwnedSubdomain() const { return firstOwned_; }
   int numOwnedSubdomains() const { return static_cast<int>(local_.size()); }
   const SubdomainSolver& subdomainSolver(int i) const;
@@ -176,10 +193,27 @@ class TotalFeti {
   std::unique_ptr<CoarseRows> G_;           ///< G on the owned rows
   std::unique_ptr<SparseCholesky> coarse_;  ///< G G^T, replicated
   /// Coarse work vectors of project() and solveCoarse(), allocated once (length l).
-  mutable std::vector<double> coarseLocal_, coarseVector_, coarseRhs_;
+  mutable std::vector<double> coarseLocal_, coarseVector_;
+  /// The last two coarse solves (right-hand side, solution): the solvers project the same
+  /// vector twice in a row of operator applications (P x inside P F P x, then Q x = x - P x;
+  /// the same around the preconditioner), and a right-hand side with the same bits has the
+  /// same solution (doc/coarse_problem.md).
+  struct CoarseMemo {
+    std::vector<double> rhs, solution;
+    bool valid = false;
+  };
+  mutable CoarseMemo coarseMemo_[2];
+  mutable int coarseMemoNext_ = 0;
+  /// The last two projections (x and P x on the owned rows): a hit skips G x, the coarse
+  /// solve and G^T a, i.e. two passes over G, which at small H/h weigh more than F.
+  mutable CoarseMemo projectionMemo_[2];
+  mutable int projectionMemoNext_ = 0;
+  /// Index of the memo entry whose input has the bits of x on every rank, or -1 (collective).
+  int findProjection(const double* x) const;
   std::vector<double> e_;
   Teuchos::RCP<DualVector> dTilde_, lambdaIm_;
   mutable long long fApplications_ = 0;
+  mutable OperatorProfile profile_;
   double factorizationSeconds_ = 0.0;
   long long factorNonzeros_ = 0;
   double bytesPerFApplication_ = 0.0;
