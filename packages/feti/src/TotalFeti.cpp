@@ -350,9 +350,9 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
 /// instead of R_s and B_s^T per application. Threads work on fixed chunks of kRowChunk rows;
 /// inside a chunk the entries are stored by subdomain ("runs"), then by row, so that
 ///  - G x sums each subdomain's 6 numbers in registers over its run (stored by row, the
-///    entries of one subdomain would add into the same 6 memory cells one after another: a
-///    chain of dependent read-modify-writes, twice the time of the bytes, measured), into the
-///    chunk's own coarse partial vector; the partials are added chunk by chunk in a fixed
+///    entries of one subdomain added into the same 6 memory cells one after another: a
+///    chain of dependent read-modify-writes, about twice the time of this loop at 10x5x5/5,
+///    doc/performance.md), into the chunk's own coarse partial vector; the partials are added chunk by chunk in a fixed
 ///    order, so the result does not depend on the number of threads;
 ///  - G^T a adds each entry's g_{s,r} . a_s into its row's sum in a chunk-sized buffer, runs
 ///    in ascending subdomain order: every row sums its entries in ascending subdomain order,
@@ -526,8 +526,9 @@ void TotalFeti::measureTraffic() {
   }
   const double owned = static_cast<double>(G_->numRows), gEntries = static_cast<double>(G_->rowSubdomain.size());
   f += owned * kDouble;  // y cleared before the sum
-  // One projection: G x and G^T a, each one pass over the entries by row (g, subdomain
-  // index, row pointers); x read twice, y written.
+  // One projection: G x and G^T a, each one pass over the entries (g and one index each;
+  // the run table is small); x read twice, y written. The memo's copies of x and P x are
+  // not counted.
   const double projection = gEntries * 2 * (6 * kDouble + kIndex) + owned * (kIndex + 3 * kDouble);
   if (settings_.dirichletPreconditioner) dirichlet += owned * kDouble;
   double local[4] = {f + 2 * projection, factorEntries, projection, dirichlet}, global[4] = {0.0, 0.0, 0.0, 0.0};
