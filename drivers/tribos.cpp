@@ -116,7 +116,9 @@ nlohmann::json profileJson(const feti::OperatorProfile& p) {
           {"coarse_factor_s", p.coarseFactorSeconds},
           {"coarse_factor_nonzeros", p.coarseFactorNonzeros},
           {"g_entries", p.gEntries},
-          {"g_rows", p.gRows}};
+          {"g_rows", p.gRows},
+          {"projection_bytes", p.projectionBytes},
+          {"preconditioner_bytes", p.preconditionerBytes}};
 }
 
 nlohmann::json historyJson(const std::vector<stack::OuterIterationRecord>& history) {

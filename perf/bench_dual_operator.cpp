@@ -5,7 +5,7 @@
 // `repeats` applications, on the paper's two bricks with their contact rows
 // (Coulomb, the default scene).
 //
-// Usage: build/bin/tribos_bench_dual_operator [grid (10x5x5)] [H/h (5)] [repeats (40)]
+// Usage: build/bin/tribos_bench_dual_operator [grid (10x5x5)] [H/h (5)] [repeats (40)] [only this operation]
 // Threads: OMP_NUM_THREADS; ranks: mpirun. Prints a CSV header and one line: wall and process
 // CPU milliseconds per call of each operation (doc/performance.md).
 #include <mpi.h>
@@ -100,7 +100,14 @@ int main(int argc, char** argv) {
     auto x = feti.createDualVector(), y = feti.createDualVector(), t = feti.createDualVector(),
          q = feti.createDualVector();
     fill(*x);
+    std::vector<Teuchos::RCP<feti::DualVector>> inputs;
+    for (double scale : {1.0, 2.0, 3.0}) {
+      inputs.push_back(feti.createDualVector());
+      inputs.back()->update(scale, *x, 0.0);
+    }
+    size_t next = 0;
     std::vector<double> coarse;
+    feti.applyG(*x, coarse);  // the coarse_solve and Gt calls' input, whichever runs first
     struct Timing {
       const char* name;
       std::function<void()> call;
@@ -132,17 +139,32 @@ int main(int argc, char** argv) {
            feti.applyPF(*t, *y);
            y->update(10.0, *x, -10.0, *t, 1.0);
          }},
+        // One projection that the memo cannot answer (three inputs in turn; it keeps two):
+        // G x, the coarse solve and G^T a, as most projections of a solve.
+        {"P_miss",
+         [&] {
+           feti::DualVector& in = *inputs[next];
+           next = (next + 1) % inputs.size();
+           feti.project(in, *y);
+         }},
         {"D", [&] { feti.applyDirichlet(*x, *y); }},
         {"G", [&] { feti.applyG(*x, coarse); }},
         {"coarse_solve", [&] { feti.solveCoarse(coarse); }},
+        {"Gt", [&] { feti.applyGt(coarse, *y); }},
     };
-    for (auto& timing : timings) timing.wall = medianSeconds(repeats, timing.call, &timing.cpu);
+    // Optional 4th argument: time only the operation of that name (the others print 0), e.g.
+    // under perf record.
+    const std::string only = argc > 4 ? argv[4] : "";
+    for (auto& timing : timings)
+      if (only.empty() || only == timing.name) timing.wall = medianSeconds(repeats, timing.call, &timing.cpu);
     if (rank == 0) {
-      std::printf("grid,h,ranks,threads,subdomains,n_dual,factor_nonzeros,bytes_per_f_application,factorization_s");
+      std::printf("grid,h,ranks,threads,subdomains,n_dual,factor_nonzeros,bytes_per_f_application,projection_bytes,"
+                  "preconditioner_bytes,factorization_s");
       for (const auto& timing : timings) std::printf(",%s_ms,%s_cpu_ms", timing.name, timing.name);
-      std::printf("\n%s,%s,%d,%d,%d,%lld,%lld,%.0f,%.3f", grid.c_str(), h.c_str(), size, core::numThreads(),
+      std::printf("\n%s,%s,%d,%d,%d,%lld,%lld,%.0f,%.0f,%.0f,%.3f", grid.c_str(), h.c_str(), size, core::numThreads(),
                   feti.numCoarse() / 6, static_cast<long long>(feti.numDual()), feti.factorNonzeros(),
-                  feti.bytesPerFApplication(), feti.factorizationSeconds());
+                  feti.bytesPerFApplication(), feti.profile().projectionBytes, feti.profile().preconditionerBytes,
+                  feti.factorizationSeconds());
       for (const auto& timing : timings) std::printf(",%.3f,%.3f", 1e3 * timing.wall, 1e3 * timing.cpu);
       std::printf("\n");
     }

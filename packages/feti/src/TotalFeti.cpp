@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <map>
 
@@ -88,19 +89,37 @@ double* readWrite(DualVector& v) { return v.getLocalViewHost(Tpetra::Access::Rea
 
 /// A rectangular block of K in CSR (rows and columns renumbered), kept with K's column
 /// order inside each row, so that its products add the same terms in the same order as
-/// K's own (the terms it leaves out multiply zeros).
+/// K's own (the terms it leaves out multiply zeros). Column indices take 2 bytes when the
+/// block has at most 65 536 columns (a subdomain's boundary or interior unknowns: always
+/// at the H/h of Table 1): 10 bytes per entry instead of 12, and the preconditioner reads
+/// these blocks once per application (doc/performance.md).
 struct KBlock {
-  std::vector<LO> rowPtr, colInd;
+  std::vector<LO> rowPtr, colInd;      ///< colInd: only when the columns need 4 bytes
+  std::vector<std::uint16_t> colShort;  ///< otherwise
   std::vector<double> values;
   // y = A x (subtract: y -= A x)
   void apply(const double* x, double* y, bool subtract = false) const {
-    for (size_t i = 0; i + 1 < rowPtr.size(); ++i) {
+    if (colInd.empty())
+      applyWith(colShort.data(), x, y, subtract);
+    else
+      applyWith(colInd.data(), x, y, subtract);
+  }
+  double bytes() const {
+    return 8.0 * values.size() + 4.0 * (colInd.size() + rowPtr.size()) + 2.0 * colShort.size();
+  }
+
+ private:
+  template <class Index>
+  void applyWith(const Index* __restrict col, const double* __restrict x, double* __restrict y, bool subtract) const {
+    const double* __restrict v = values.data();
+    const LO* __restrict start = rowPtr.data();
+    const LO rows = static_cast<LO>(rowPtr.size()) - 1;
+    for (LO i = 0; i < rows; ++i) {
       double s = 0.0;
-      for (LO k = rowPtr[i]; k < rowPtr[i + 1]; ++k) s += values[k] * x[colInd[k]];
+      for (LO k = start[i]; k < start[i + 1]; ++k) s += v[k] * x[col[k]];
       y[i] = subtract ? y[i] - s : s;
     }
   }
-  double bytes() const { return 8.0 * values.size() + 4.0 * (colInd.size() + rowPtr.size()); }
 };
 
 /// The Dirichlet preconditioner S = K_bb - K_bi K_ii^{-1} K_ib of one subdomain, b = the dofs
@@ -152,6 +171,11 @@ KBlock extractBlock(const fem::CsrMatrix& K, const std::vector<LO>& rows, const 
         A.values.push_back(K.values[k]);
       }
     A.rowPtr.push_back(static_cast<LO>(A.colInd.size()));
+  }
+  const LO columns = static_cast<LO>(std::count_if(position.begin(), position.end(), [](LO p) { return p >= 0; }));
+  if (columns <= 65536) {
+    A.colShort.assign(A.colInd.begin(), A.colInd.end());
+    std::vector<LO>().swap(A.colInd);
   }
   return A;
 }
@@ -321,24 +345,37 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
   applyGt(a, *lambdaIm_);
 }
 
-/// G on this rank's owned rows of B, by row: one entry = one row r and one subdomain s it
-/// touches, with g_{s,r} = R_s^T b_{s,r}^T (6 numbers); 52 bytes per entry (~2 entries per
-/// row) instead of R_s and B_s^T per application. Both products stream the entries in row
-/// order, threads over fixed chunks of rows:
-///  - G^T a: each row on its own;
-///  - G x: each chunk sums into its own coarse partial vector (over the range of subdomains
-///    its rows touch), and the partials are added chunk by chunk in a fixed order, so the
-///    result does not depend on the number of threads.
+/// G on this rank's owned rows of B: one entry = one row r and one subdomain s it touches,
+/// with g_{s,r} = R_s^T b_{s,r}^T (6 numbers); 52 bytes per entry (~2.5 entries per row)
+/// instead of R_s and B_s^T per application. Threads work on fixed chunks of kRowChunk rows;
+/// inside a chunk the entries are stored by subdomain ("runs"), then by row, so that
+///  - G x sums each subdomain's 6 numbers in registers over its run (stored by row, the
+///    entries of one subdomain added into the same 6 memory cells one after another: a
+///    chain of dependent read-modify-writes, about twice the time of this loop at 10x5x5/5,
+///    doc/performance.md), into the chunk's own coarse partial vector; the partials are added chunk by chunk in a fixed
+///    order, so the result does not depend on the number of threads;
+///  - G^T a adds each entry's g_{s,r} . a_s into its row's sum in a chunk-sized buffer, runs
+///    in ascending subdomain order: every row sums its entries in ascending subdomain order,
+///    the order of the by-row loop it replaces (the same bits).
+/// The by-row view (rowStart, rowSubdomain, rowEntry) serves the set-up (G G^T).
 struct TotalFeti::CoarseRows {
   GO firstRow = 0;
   LO numRows = 0;
   std::vector<LO> rowStart;       ///< numRows + 1; a row's entries in ascending subdomain order
-  std::vector<int> rowSubdomain;  ///< per entry
-  std::vector<double> rowG;       ///< 6 per entry
+  std::vector<int> rowSubdomain;  ///< per entry in row order
+  std::vector<LO> rowEntry;       ///< per entry in row order: its index in the stored order
+  // Stored order: chunk, subdomain, row.
+  std::vector<LO> entryRow;       ///< per entry
+  std::vector<double> g;          ///< 6 per entry
+  std::vector<LO> runStart;       ///< per run + 1: its entries
+  std::vector<int> runSubdomain;  ///< per run
+  std::vector<int> chunkRunStart;  ///< per chunk + 1: its runs
   std::vector<int> chunkFirstSubdomain, chunkEndSubdomain;  ///< per chunk of kRowChunk rows
   std::vector<size_t> partialOffset;  ///< per chunk, into partial: 6 x its subdomain range
   mutable std::vector<double> partial;
+  mutable std::vector<double> rowSum;  ///< numRows: G^T a's sums, each chunk its own rows
   int numChunks() const { return static_cast<int>(chunkFirstSubdomain.size()); }
+  const double* rowG(LO rowOrderEntry) const { return &g[6 * static_cast<size_t>(rowEntry[rowOrderEntry])]; }
 };
 
 namespace {
@@ -403,13 +440,40 @@ void TotalFeti::buildCoarseRows() {
 
   G->rowStart.assign(G->numRows + 1, 0);
   G->rowSubdomain.resize(entries.size());
-  G->rowG.resize(6 * entries.size());
   for (size_t e = 0; e < entries.size(); ++e) {
     ++G->rowStart[entries[e].row + 1];
     G->rowSubdomain[e] = entries[e].subdomain;
-    for (int j = 0; j < 6; ++j) G->rowG[6 * e + j] = g(e, j);
   }
   for (LO r = 0; r < G->numRows; ++r) G->rowStart[r + 1] += G->rowStart[r];
+
+  // The stored order: by chunk, then subdomain, then row (entries are in row order: a stable
+  // sort by (chunk, subdomain) keeps the rows ascending within a run).
+  std::vector<LO> order(entries.size());
+  for (size_t e = 0; e < order.size(); ++e) order[e] = static_cast<LO>(e);
+  std::stable_sort(order.begin(), order.end(), [&](LO a, LO b) {
+    const LO ca = entries[a].row / kRowChunk, cb = entries[b].row / kRowChunk;
+    return ca != cb ? ca < cb : entries[a].subdomain < entries[b].subdomain;
+  });
+  G->rowEntry.resize(entries.size());
+  G->entryRow.resize(entries.size());
+  G->g.resize(6 * entries.size());
+  const LO numChunks = (G->numRows + kRowChunk - 1) / kRowChunk;
+  G->chunkRunStart.assign(numChunks + 1, 0);  // runs per chunk, then their prefix sums
+  for (size_t k = 0; k < order.size(); ++k) {
+    const Entry& entry = entries[order[k]];
+    G->rowEntry[order[k]] = static_cast<LO>(k);
+    G->entryRow[k] = entry.row;
+    for (int j = 0; j < 6; ++j) G->g[6 * k + j] = g(order[k], j);
+    const LO chunk = entry.row / kRowChunk;
+    if (k == 0 || chunk != entries[order[k - 1]].row / kRowChunk || entry.subdomain != entries[order[k - 1]].subdomain) {
+      G->runStart.push_back(static_cast<LO>(k));
+      G->runSubdomain.push_back(entry.subdomain);
+      ++G->chunkRunStart[chunk + 1];
+    }
+  }
+  G->runStart.push_back(static_cast<LO>(order.size()));
+  for (LO c = 0; c < numChunks; ++c) G->chunkRunStart[c + 1] += G->chunkRunStart[c];
+  G->rowSum.assign(G->numRows, 0.0);
 
   // The subdomain range of each chunk of rows, and room for its partial sums of G x.
   for (LO first = 0; first < G->numRows; first += kRowChunk) {
@@ -449,15 +513,30 @@ void TotalFeti::measureTraffic() {
     f += rows * (2 * kIndex + 3 * kDouble);  // overlap indices in and out; x gathered, y added
     factorEntries += static_cast<double>(L->solver.factor().factorNonzeros());
   }
+  // The Dirichlet preconditioner: its three blocks of K, the K_ii factor (both
+  // substitutions), B_s^T and B_s (values, dofs, row pointers), the dual entries.
+  double dirichlet = 0.0;
+  for (const auto& L : local_) {
+    if (!settings_.dirichletPreconditioner) break;
+    const DirichletBlocks& D = L->dirichlet;
+    const double entries = static_cast<double>(L->block->value.size()), rows = L->m();
+    dirichlet += D.Kbb.bytes() + D.Kib.bytes() + D.Kbi.bytes() + 2 * (entries * (kDouble + 2 * kIndex) + rows * kIndex) +
+                 rows * (2 * kIndex + 3 * kDouble);
+    if (D.interiorFactor) dirichlet += static_cast<double>(D.interiorFactor->solveBytes());
+  }
   const double owned = static_cast<double>(G_->numRows), gEntries = static_cast<double>(G_->rowSubdomain.size());
   f += owned * kDouble;  // y cleared before the sum
-  // One projection: G x and G^T a, each one pass over the entries by row (g, subdomain
-  // index, row pointers); x read twice, y written.
+  // One projection: G x and G^T a, each one pass over the entries (g and one index each;
+  // the run table is small); x read twice, y written. The memo's copies of x and P x are
+  // not counted.
   const double projection = gEntries * 2 * (6 * kDouble + kIndex) + owned * (kIndex + 3 * kDouble);
-  double local[2] = {f + 2 * projection, factorEntries}, global[2] = {0.0, 0.0};
-  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, 2, local, global);
+  if (settings_.dirichletPreconditioner) dirichlet += owned * kDouble;
+  double local[4] = {f + 2 * projection, factorEntries, projection, dirichlet}, global[4] = {0.0, 0.0, 0.0, 0.0};
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, 4, local, global);
   bytesPerFApplication_ = global[0];
   factorNonzeros_ = static_cast<long long>(global[1]);
+  profile_.projectionBytes = global[2];
+  profile_.preconditionerBytes = global[3];
 }
 
 void TotalFeti::buildCoarsePattern() {
@@ -509,7 +588,7 @@ fem::CsrMatrix TotalFeti::assembleCoarse(const std::vector<char>* ownedRowMask) 
     for (LO e = G.rowStart[r]; e < G.rowStart[r + 1]; ++e)
       for (LO f = G.rowStart[r]; f < G.rowStart[r + 1]; ++f) {
         double* block = &local[36 * static_cast<size_t>(blockOf(G.rowSubdomain[e], G.rowSubdomain[f]))];
-        const double *gs = &G.rowG[6 * e], *gt = &G.rowG[6 * f];
+        const double *gs = G.rowG(e), *gt = G.rowG(f);
         for (int a = 0; a < 6; ++a)
           for (int c = 0; c < 6; ++c) block[a * 6 + c] += gs[a] * gt[c];
       }
@@ -689,7 +768,7 @@ void TotalFeti::applyDirichlet(const DualVector& x, DualVector& y) const {
   profile_.preconditionerSeconds += watch.seconds();
 }
 
-void TotalFeti::applyGOwnedRows(const double* x, double* gx) const {
+void TotalFeti::applyGOwnedRows(const double* x, double* gx, double* copyOfX) const {
   // (G x)_s = sum over the owned rows r that s touches of g_{s,r} x_r: per chunk of rows
   // into its partial vector (threads), then the partials in chunk order (main thread).
   const CoarseRows& G = *G_;
@@ -697,14 +776,23 @@ void TotalFeti::applyGOwnedRows(const double* x, double* gx) const {
     const int lo = G.chunkFirstSubdomain[c];
     double* partial = G.partial.data() + G.partialOffset[c];
     std::fill(partial, partial + 6 * (G.chunkEndSubdomain[c] - lo), 0.0);
-    const LO end = std::min<LO>(G.numRows, (c + 1) * kRowChunk);
-    for (LO r = c * kRowChunk; r < end; ++r) {
-      const double xr = x[r];
-      for (LO e = G.rowStart[r]; e < G.rowStart[r + 1]; ++e) {
-        const double* __restrict g = &G.rowG[6 * static_cast<size_t>(e)];
-        double* __restrict sum = partial + 6 * (G.rowSubdomain[e] - lo);
+    if (copyOfX) {
+      // The memo's copy of x, while the chunk's x is read anyway (and on the threads).
+      const LO first = c * kRowChunk, end = std::min<LO>(G.numRows, first + kRowChunk);
+      std::copy(x + first, x + end, copyOfX + first);
+    }
+    const LO* __restrict entryRow = G.entryRow.data();
+    for (int run = G.chunkRunStart[c]; run < G.chunkRunStart[c + 1]; ++run) {
+      // Each sum adds its terms in ascending row order, starting from 0: the order (and the
+      // bits) of the by-row loop this replaced.
+      double sum[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+      const double* __restrict g = &G.g[6 * static_cast<size_t>(G.runStart[run])];
+      for (LO e = G.runStart[run], last = G.runStart[run + 1]; e < last; ++e, g += 6) {
+        const double xr = x[entryRow[e]];
         for (int j = 0; j < 6; ++j) sum[j] += g[j] * xr;
       }
+      double* __restrict out = partial + 6 * (G.runSubdomain[run] - lo);
+      for (int j = 0; j < 6; ++j) out[j] = sum[j];
     }
   });
   std::fill(gx, gx + numCoarse(), 0.0);
@@ -723,33 +811,37 @@ void TotalFeti::applyG(const DualVector& x, std::vector<double>& gx) const {
 }
 
 namespace {
-// y_r = x_r - sum over the entries of row r of g_{s,r} . a_s, for the owned rows
-// (y may be x: each row reads its x_r before writing y_r).
-void subtractGt(const TotalFeti::CoarseRows& G, const double* a, const double* x, double* y) {
-  const int chunks = static_cast<int>((G.numRows + kRowChunk - 1) / kRowChunk);
-  core::forEachSubdomain(chunks, [&](int chunk) {
-    const LO end = std::min<LO>(G.numRows, (chunk + 1) * kRowChunk);
-    for (LO r = chunk * kRowChunk; r < end; ++r) {
-      double sum = 0.0;
-      for (LO e = G.rowStart[r]; e < G.rowStart[r + 1]; ++e) {
-        const double* g = &G.rowG[6 * static_cast<size_t>(e)];
-        const double* as = a + 6 * G.rowSubdomain[e];
+// y_r = x_r - sum over the entries of row r of g_{s,r} . a_s, for the owned rows (y may be
+// x: each row reads its x_r before writing y_r); copyOfY (optional) gets y as well.
+void subtractGt(const TotalFeti::CoarseRows& G, const double* a, const double* x, double* y, double* copyOfY) {
+  core::forEachSubdomain(G.numChunks(), [&](int c) {
+    const LO first = c * kRowChunk, end = std::min<LO>(G.numRows, first + kRowChunk);
+    double* __restrict rowSum = G.rowSum.data();
+    std::fill(rowSum + first, rowSum + end, 0.0);
+    // Runs in ascending subdomain order: each row adds its terms in ascending subdomain
+    // order (the rows of one run are distinct: no chain between consecutive updates).
+    const LO* __restrict entryRow = G.entryRow.data();
+    for (int run = G.chunkRunStart[c]; run < G.chunkRunStart[c + 1]; ++run) {
+      const double* as = a + 6 * G.runSubdomain[run];
+      const double a0 = as[0], a1 = as[1], a2 = as[2], a3 = as[3], a4 = as[4], a5 = as[5];
+      const double* __restrict g = &G.g[6 * static_cast<size_t>(G.runStart[run])];
+      for (LO e = G.runStart[run], last = G.runStart[run + 1]; e < last; ++e, g += 6)
         // Pairwise, not one running sum: three short dependency chains instead of six.
-        sum += (g[0] * as[0] + g[1] * as[1]) + (g[2] * as[2] + g[3] * as[3]) + (g[4] * as[4] + g[5] * as[5]);
-      }
-      y[r] = x[r] - sum;
+        rowSum[entryRow[e]] += (g[0] * a0 + g[1] * a1) + (g[2] * a2 + g[3] * a3) + (g[4] * a4 + g[5] * a5);
     }
+    for (LO r = first; r < end; ++r) y[r] = x[r] - rowSum[r];
+    if (copyOfY) std::copy(y + first, y + end, copyOfY + first);
   });
 }
 }  // namespace
 
 void TotalFeti::applyGt(const std::vector<double>& a, DualVector& y) const {
-  // y = G^T a = 0 - (-G^T a)
+  // y = G^T a = 0 - (-G^T a) (set-up only: lambda_Im)
   std::vector<double> minusA(a.size());
   for (size_t i = 0; i < a.size(); ++i) minusA[i] = -a[i];
   y.putScalar(0.0);
   double* yd = readWrite(y);
-  subtractGt(*G_, minusA.data(), yd, yd);
+  subtractGt(*G_, minusA.data(), yd, yd, nullptr);
 }
 
 void TotalFeti::solveCoarse(std::vector<double>& a) const {
@@ -798,17 +890,17 @@ void TotalFeti::project(const DualVector& x, DualVector& y) const {
   }
   CoarseMemo& memo = projectionMemo_[projectionMemoNext_];
   projectionMemoNext_ = 1 - projectionMemoNext_;
-  memo.valid = false;           // until its answer is stored below
-  memo.rhs.assign(xd, xd + n);  // before y (which may be x) is written
-  applyGOwnedRows(xd, coarseLocal_.data());
+  memo.valid = false;  // until its answer is stored below
+  memo.rhs.resize(n);
+  memo.solution.resize(n);
+  applyGOwnedRows(xd, coarseLocal_.data(), memo.rhs.data());  // x copied before y (maybe x) is written
   profile_.gSeconds += watch.seconds();
   watch.restart();
   Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, numCoarse(), coarseLocal_.data(), coarseVector_.data());
   profile_.coarseReduceSeconds += watch.seconds();
   solveCoarse(coarseVector_);
   watch.restart();
-  subtractGt(*G_, coarseVector_.data(), xd, yd);
-  memo.solution.assign(yd, yd + n);
+  subtractGt(*G_, coarseVector_.data(), xd, yd, memo.solution.data());
   memo.valid = true;
   profile_.gSeconds += watch.seconds();
 }

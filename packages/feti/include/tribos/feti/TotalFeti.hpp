@@ -60,6 +60,9 @@ struct OperatorProfile {
   double coarseFactorSeconds = 0.0;    ///< assembly + factorisation of G G^T
   long long coarseFactorNonzeros = 0;  ///< stored entries of the factor of G G^T
   long long gEntries = 0, gRows = 0;   ///< entries (row, subdomain) of G on this rank's rows, rows
+  /// The least bytes one projection (G x and G^T a) and one Dirichlet preconditioner
+  /// application (B S B^T; 0 without it) move, summed over the ranks (measureTraffic).
+  double projectionBytes = 0.0, preconditionerBytes = 0.0;
 };
 
 class TotalFeti {
@@ -187,8 +190,9 @@ class TotalFeti {
   void buildCoarseRows();
   /// Sets factorNonzeros_ and bytesPerFApplication_ (collective).
   void measureTraffic();
-  /// The part of G x that this rank's owned rows contribute (length l, not reduced).
-  void applyGOwnedRows(const double* x, double* gx) const;
+  /// The part of G x that this rank's owned rows contribute (length l, not reduced);
+  /// copyOfX (optional, owned rows) gets a copy of x.
+  void applyGOwnedRows(const double* x, double* gx, double* copyOfX = nullptr) const;
 
   std::unique_ptr<CoarseRows> G_;           ///< G on the owned rows
   std::unique_ptr<SparseCholesky> coarse_;  ///< G G^T, replicated
