@@ -9,20 +9,26 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <map>
+#include <numeric>
 
 #include "tribos/core/Errors.hpp"
 #include "tribos/core/Parallel.hpp"
+#include "tribos/core/ReproducibleSum.hpp"
 #include "tribos/core/Timer.hpp"
 #include "tribos/fem/SubdomainSystem.hpp"
 
 namespace tribos::feti {
 
 namespace {
-// x = B_s^T lambda_s (x has n entries, zeroed here).
-void applyBlockTranspose(const SubdomainBlock& b, const double* lambda, double* x, LO n) {
+// x = B_s^T lambda_s (x has n entries, zeroed here). A dof in several rows sums them in
+// `order` (the rows by their global id, B.rowId): B's own row order follows the number of
+// ranks, and with it the rounding of these sums.
+void applyBlockTranspose(const SubdomainBlock& b, const std::vector<LO>& order, const double* lambda, double* x,
+                         LO n) {
   std::fill(x, x + n, 0.0);
-  for (size_t i = 0; i + 1 < b.rowPtr.size(); ++i)
+  for (LO i : order)
     for (LO k = b.rowPtr[i]; k < b.rowPtr[i + 1]; ++k) x[b.dof[k]] += b.value[k] * lambda[i];
 }
 
@@ -37,9 +43,10 @@ void applyBlock(const SubdomainBlock& b, const double* y, double* out) {
 
 // The same two products with the dofs of B_s renumbered (`dof[k]` for entry k): F works in
 // the factor's order (SubdomainSolver::permutation).
-void applyBlockTranspose(const SubdomainBlock& b, const std::vector<LO>& dof, const double* lambda, double* x, LO n) {
+void applyBlockTranspose(const SubdomainBlock& b, const std::vector<LO>& order, const std::vector<LO>& dof,
+                         const double* lambda, double* x, LO n) {
   std::fill(x, x + n, 0.0);
-  for (size_t i = 0; i + 1 < b.rowPtr.size(); ++i)
+  for (LO i : order)
     for (LO k = b.rowPtr[i]; k < b.rowPtr[i + 1]; ++k) x[dof[k]] += b.value[k] * lambda[i];
 }
 void applyBlock(const SubdomainBlock& b, const std::vector<LO>& dof, const double* y, double* out) {
@@ -121,6 +128,7 @@ struct TotalFeti::Local {
   const SubdomainBlock* block = nullptr;
   std::vector<LO> overlapIndex;  ///< local index in the overlap map of each block row
   std::vector<LO> factorDof;     ///< per entry of the block: its dof in the factor's order
+  std::vector<LO> rowOrder;      ///< the block's rows by ascending global id (B.rowId)
   fem::SubdomainSystem system;
   SubdomainSolver solver;
   std::vector<double> denseF;    ///< explicit F_s (m x m, column-major) when requested
@@ -221,7 +229,6 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
   importer_ = Teuchos::rcp(new Tpetra::Import<LO, GO>(dualMap_, overlapMap_));
   overlapIsOwned_ = overlapMap_->isSameAs(*dualMap_);
   xOverlap_ = Teuchos::rcp(new DualVector(overlapMap_));
-  yOverlap_ = Teuchos::rcp(new DualVector(overlapMap_));
 
   // (2) Rigid body modes of the owned subdomains (a rank needs no other R_s: the g_{s,r}
   // of foreign subdomains come from their owners, buildCoarseRows).
@@ -243,6 +250,10 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
     L->system = std::move(owned[i]);
     L->system.R = std::move(R[i]);
     for (GO row : L->block->rows) L->overlapIndex.push_back(overlapMap_->getLocalElement(rowId(row)));
+    L->rowOrder.resize(L->m());
+    std::iota(L->rowOrder.begin(), L->rowOrder.end(), 0);
+    std::sort(L->rowOrder.begin(), L->rowOrder.end(),
+              [&](LO a, LO b) { return rowId(L->block->rows[a]) < rowId(L->block->rows[b]); });
     L->in.assign(L->m(), 0.0);
     L->out.assign(L->m(), 0.0);
     L->x.assign(L->n(), 0.0);
@@ -250,6 +261,11 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
     local_[i] = std::move(L);
   }
   gatherOverlapContributions();
+  {
+    long long mine = 0;
+    for (const auto& L : local_) mine += L->n();
+    Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, 1, &mine, &primalDofs_);
+  }
   core::Stopwatch watch;
   core::forEachSubdomain(numOwned, [&](int i) {
     Local& L = *local_[i];
@@ -345,6 +361,8 @@ namespace {
 /// Rows per task of the row loops of the projector: fixed, so that the work split (and with
 /// it the order of every sum in G x) does not depend on the number of threads.
 constexpr LO kRowChunk = 8192;
+/// Slots per coarse entry of the reproducible sums of G x and G G^T.
+constexpr int kSlots = core::SumBins::kSlices;
 }  // namespace
 
 void TotalFeti::buildCoarseRows() {
@@ -398,8 +416,16 @@ void TotalFeti::buildCoarseRows() {
   for (size_t e = 0; e < entries.size(); ++e) ids[e] = (G->firstRow + entries[e].row) * S + entries[e].subdomain;
   auto target = Teuchos::rcp(new DualMap(invalid, Teuchos::ArrayView<const GO>(ids.data(), ids.size()), 0, comm_));
   Tpetra::MultiVector<Scalar, LO, GO> gTarget(target, 6);
-  gTarget.doImport(gSource, Tpetra::Import<LO, GO>(source, target), Tpetra::INSERT);
+  auto entryImport = Teuchos::rcp(new Tpetra::Import<LO, GO>(source, target));
+  gTarget.doImport(gSource, *entryImport, Tpetra::INSERT);
   auto g = gTarget.getLocalViewHost(Tpetra::Access::ReadOnly);
+  if (!overlapIsOwned_) {  // applyBlockwise's entry-wise sums (several ranks)
+    entryImport_ = entryImport;
+    entrySource_ = Teuchos::rcp(new DualVector(source));
+    entryTarget_ = Teuchos::rcp(new DualVector(target));
+    entrySourceFirst_.assign(numOwnedSubdomains() + 1, 0);
+    for (int i = 0; i < numOwnedSubdomains(); ++i) entrySourceFirst_[i + 1] = entrySourceFirst_[i] + local_[i]->m();
+  }
 
   G->rowStart.assign(G->numRows + 1, 0);
   G->rowSubdomain.resize(entries.size());
@@ -410,6 +436,10 @@ void TotalFeti::buildCoarseRows() {
     for (int j = 0; j < 6; ++j) G->rowG[6 * e + j] = g(e, j);
   }
   for (LO r = 0; r < G->numRows; ++r) G->rowStart[r + 1] += G->rowStart[r];
+  // The bound of every term of G x and G G^T (core::SumBins): the same on every layout.
+  double gMax = 0.0;
+  for (double v : G->rowG) gMax = std::max(gMax, std::abs(v));
+  gMax_ = core::globalMax(comm_.get(), gMax);
 
   // The subdomain range of each chunk of rows, and room for its partial sums of G x.
   for (LO first = 0; first < G->numRows; first += kRowChunk) {
@@ -422,12 +452,12 @@ void TotalFeti::buildCoarseRows() {
     G->partialOffset.push_back(G->partial.size());
     G->chunkFirstSubdomain.push_back(lo);
     G->chunkEndSubdomain.push_back(std::max(lo, hi));
-    G->partial.resize(G->partial.size() + 6 * static_cast<size_t>(std::max(0, hi - lo)));
+    G->partial.resize(G->partial.size() + kSlots * 6 * static_cast<size_t>(std::max(0, hi - lo)));
   }
   profile_.gEntries = static_cast<long long>(G->rowSubdomain.size());
   profile_.gRows = G->numRows;
   G_ = std::move(G);
-  coarseLocal_.assign(numCoarse(), 0.0);
+  coarseLocal_.assign(kSlots * static_cast<size_t>(numCoarse()), 0.0);
   coarseVector_.assign(numCoarse(), 0.0);
 }
 
@@ -502,23 +532,24 @@ fem::CsrMatrix TotalFeti::assembleCoarse(const std::vector<char>* ownedRowMask) 
     return blockStart[s] + static_cast<LO>(std::lower_bound(first, last, t) - first);
   };
 
-  std::vector<double> local(36 * static_cast<size_t>(blockStart.back()), 0.0);
+  // Reproducible sums (core::SumBins): the rows of a block are owned by different ranks on
+  // different layouts. |g_s[a] g_t[c]| <= gMax^2; at most one term per row of B.
+  const core::SumBins bins(gMax_ * gMax_, static_cast<long long>(B_.numRows));
+  std::vector<double> local(kSlots * 36 * static_cast<size_t>(blockStart.back()), 0.0);
   const CoarseRows& G = *G_;
   for (LO r = 0; r < G.numRows; ++r) {
     if (!counted(r)) continue;
     for (LO e = G.rowStart[r]; e < G.rowStart[r + 1]; ++e)
       for (LO f = G.rowStart[r]; f < G.rowStart[r + 1]; ++f) {
-        double* block = &local[36 * static_cast<size_t>(blockOf(G.rowSubdomain[e], G.rowSubdomain[f]))];
+        double* block = &local[kSlots * 36 * static_cast<size_t>(blockOf(G.rowSubdomain[e], G.rowSubdomain[f]))];
         const double *gs = &G.rowG[6 * e], *gt = &G.rowG[6 * f];
         for (int a = 0; a < 6; ++a)
-          for (int c = 0; c < 6; ++c) block[a * 6 + c] += gs[a] * gt[c];
+          for (int c = 0; c < 6; ++c) bins.deposit(gs[a] * gt[c], block + kSlots * (a * 6 + c));
       }
   }
-  std::vector<double> blocks(local.size(), 0.0);
-  if (comm_->getSize() == 1)
-    blocks.swap(local);
-  else
-    Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, static_cast<int>(local.size()), local.data(), blocks.data());
+  core::allReduceSlots(comm_.get(), local);
+  std::vector<double> blocks(local.size() / kSlots);
+  for (size_t i = 0; i < blocks.size(); ++i) blocks[i] = core::SumBins::combine(&local[kSlots * i]);
 
   fem::CsrMatrix GGt;
   GGt.n = numCoarse();
@@ -591,20 +622,44 @@ void TotalFeti::gatherOverlapContributions() {
 
 template <class LocalOp>
 void TotalFeti::applyBlockwise(const DualVector& x, DualVector& y, LocalOp op) const {
-  // Import (main thread), per-subdomain work on threads with raw pointers only, then a
-  // sequential, deterministic sum into the overlap vector and an export-add. The overlap
-  // vectors live as long as this object (no allocation per application); when the overlap
-  // is the owned rows themselves (one rank), x and y serve as their own overlap vectors.
+  // Import (main thread), per-subdomain work on threads with raw pointers only, then each
+  // row's sum over its subdomains in ascending subdomain order, on any layout: with several
+  // ranks the entries travel to the row's owner one by one (a per-rank pre-sum, then an
+  // export-add, would group three or more terms differently on different layouts). The
+  // work vectors live as long as this object (no allocation per application); when the
+  // overlap is the owned rows themselves (one rank), x serves as its own overlap vector.
   const double* xo = overlapValues(x);
+  if (!overlapIsOwned_) {
+    // Several ranks: each entry to the owner of its row, summed there in subdomain order.
+    double* source = entrySource_->getLocalViewHost(Tpetra::Access::OverwriteAll).data();
+    core::forEachSubdomain(numOwnedSubdomains(), [&](int i) {
+      Local& L = *local_[i];
+      for (LO r = 0; r < L.m(); ++r) L.in[r] = xo[L.overlapIndex[r]];
+      op(L, true);
+      std::copy(L.out.begin(), L.out.end(), source + entrySourceFirst_[i]);
+    });
+    entryTarget_->doImport(*entrySource_, *entryImport_, Tpetra::INSERT);
+    const double* entry = readOnly(*entryTarget_);
+    double* yo = y.getLocalViewHost(Tpetra::Access::OverwriteAll).data();
+    const CoarseRows& G = *G_;
+    core::forEachSubdomain((G.numRows + kRowChunk - 1) / kRowChunk, [&](int chunk) {
+      const LO end = std::min<LO>(G.numRows, (chunk + 1) * kRowChunk);
+      for (LO r = chunk * kRowChunk; r < end; ++r) {
+        double total = 0.0;
+        for (LO e = G.rowStart[r]; e < G.rowStart[r + 1]; ++e) total += entry[e];
+        yo[r] = total;
+      }
+    });
+    return;
+  }
   core::forEachSubdomain(numOwnedSubdomains(), [&](int i) {
     Local& L = *local_[i];
     for (LO r = 0; r < L.m(); ++r) L.in[r] = xo[L.overlapIndex[r]];
     op(L, true);
   });
-  // Every overlap row has a contribution (that is what puts it in the overlap), so the
-  // gather overwrites the whole vector.
-  DualVector& sum = overlapIsOwned_ ? y : *yOverlap_;
-  double* yo = sum.getLocalViewHost(Tpetra::Access::OverwriteAll).data();
+  // One rank (or no shared rows): the overlap is the owned rows; every one has a
+  // contribution (that is what puts it in the overlap), so the gather overwrites y.
+  double* yo = y.getLocalViewHost(Tpetra::Access::OverwriteAll).data();
   const LO numOverlap = static_cast<LO>(contributionStart_.size()) - 1;
   core::forEachSubdomain((numOverlap + kRowChunk - 1) / kRowChunk, [&](int chunk) {
     const LO end = std::min<LO>(numOverlap, (chunk + 1) * kRowChunk);
@@ -614,9 +669,6 @@ void TotalFeti::applyBlockwise(const DualVector& x, DualVector& y, LocalOp op) c
       yo[o] = total;
     }
   });
-  if (overlapIsOwned_) return;
-  y.putScalar(0.0);
-  y.doExport(*yOverlap_, *importer_, Tpetra::ADD);
 }
 
 void TotalFeti::applyF(const DualVector& x, DualVector& y) const { applyF(x, y, true); }
@@ -639,7 +691,7 @@ void TotalFeti::applyF(const DualVector& x, DualVector& y, bool removeKernel) co
       // call from several threads at once (doc/factorization.md).
       const LO m = L.m();
       std::fill(L.out.begin(), L.out.end(), 0.0);
-      for (LO c = 0; c < m; ++c) {
+      for (LO c : L.rowOrder) {  // columns in the order of their global ids, as B_s^T sums
         const double x = L.in[c];
         const double* column = &L.denseF[static_cast<size_t>(c) * m];
         for (LO r = 0; r < m; ++r) L.out[r] += column[r] * x;
@@ -647,7 +699,7 @@ void TotalFeti::applyF(const DualVector& x, DualVector& y, bool removeKernel) co
       return;
     }
     // Two triangular solves in the factor's order: B_s^T scatters into it, B_s gathers from it.
-    applyBlockTranspose(*L.block, L.factorDof, L.in.data(), L.x.data(), L.n());
+    applyBlockTranspose(*L.block, L.rowOrder, L.factorDof, L.in.data(), L.x.data(), L.n());
     if (removeKernel)
       L.solver.applyPseudoInversePermuted(L.x.data());
     else
@@ -660,7 +712,7 @@ void TotalFeti::applyF(const DualVector& x, DualVector& y, bool removeKernel) co
 void TotalFeti::applyLumped(const DualVector& x, DualVector& y) const {
   core::Stopwatch watch;
   applyBlockwise(x, y, [](Local& L, bool) {
-    applyBlockTranspose(*L.block, L.in.data(), L.x.data(), L.n());
+    applyBlockTranspose(*L.block, L.rowOrder, L.in.data(), L.x.data(), L.n());
     L.system.K.apply(L.x.data(), L.y.data());
     applyBlock(*L.block, L.y.data(), L.out.data());
   });
@@ -676,7 +728,7 @@ void TotalFeti::applyDirichlet(const DualVector& x, DualVector& y) const {
   applyBlockwise(x, y, [](Local& L, bool) {
     // x_b = B_s^T in; y_b = K_bb x_b - K_bi K_ii^{-1} K_ib x_b; out = B_s y_b.
     DirichletBlocks& D = L.dirichlet;
-    applyBlockTranspose(*L.block, D.boundaryDof, L.in.data(), D.xb.data(), static_cast<LO>(D.xb.size()));
+    applyBlockTranspose(*L.block, L.rowOrder, D.boundaryDof, L.in.data(), D.xb.data(), static_cast<LO>(D.xb.size()));
     D.Kbb.apply(D.xb.data(), D.yb.data());
     if (D.interiorFactor) {
       D.Kib.apply(D.xb.data(), D.t.data());
@@ -689,37 +741,54 @@ void TotalFeti::applyDirichlet(const DualVector& x, DualVector& y) const {
   profile_.preconditionerSeconds += watch.seconds();
 }
 
-void TotalFeti::applyGOwnedRows(const double* x, double* gx) const {
-  // (G x)_s = sum over the owned rows r that s touches of g_{s,r} x_r: per chunk of rows
-  // into its partial vector (threads), then the partials in chunk order (main thread).
+void TotalFeti::applyGOwnedRows(const double* x, double* slots) const {
+  // (G x)_s = sum over the rows r that s touches of g_{s,r} x_r, rows owned by different
+  // ranks on different layouts: each term deposited into fixed-quantum slices
+  // (core::SumBins), whose sums are exact in any order. Per chunk of rows into its partial
+  // slots (threads), then the partials (main thread). |g x_r| <= gMax max|x|; at most one
+  // term per row of B in any entry.
   const CoarseRows& G = *G_;
+  double xMax = 0.0;
+  bool finite = true;
+  for (LO r = 0; r < G.numRows; ++r) {
+    finite = finite && std::isfinite(x[r]);
+    xMax = std::max(xMax, std::abs(x[r]));
+  }
+  if (!finite) xMax = std::numeric_limits<double>::infinity();
+  const core::SumBins bins(gMax_ * core::globalMax(comm_.get(), xMax), static_cast<long long>(B_.numRows));
   core::forEachSubdomain(G.numChunks(), [&](int c) {
     const int lo = G.chunkFirstSubdomain[c];
     double* partial = G.partial.data() + G.partialOffset[c];
-    std::fill(partial, partial + 6 * (G.chunkEndSubdomain[c] - lo), 0.0);
+    std::fill(partial, partial + kSlots * 6 * (G.chunkEndSubdomain[c] - lo), 0.0);
     const LO end = std::min<LO>(G.numRows, (c + 1) * kRowChunk);
     for (LO r = c * kRowChunk; r < end; ++r) {
       const double xr = x[r];
+      if (xr == 0.0) continue;  // adds +0 to every slot: nothing
       for (LO e = G.rowStart[r]; e < G.rowStart[r + 1]; ++e) {
         const double* __restrict g = &G.rowG[6 * static_cast<size_t>(e)];
-        double* __restrict sum = partial + 6 * (G.rowSubdomain[e] - lo);
-        for (int j = 0; j < 6; ++j) sum[j] += g[j] * xr;
+        double* __restrict sum = partial + kSlots * 6 * (G.rowSubdomain[e] - lo);
+        for (int j = 0; j < 6; ++j) bins.deposit(g[j] * xr, sum + kSlots * j);
       }
     }
   });
-  std::fill(gx, gx + numCoarse(), 0.0);
+  std::fill(slots, slots + kSlots * static_cast<size_t>(numCoarse()), 0.0);
   for (int c = 0; c < G.numChunks(); ++c) {
     const double* partial = G.partial.data() + G.partialOffset[c];
-    double* out = gx + 6 * G.chunkFirstSubdomain[c];
-    const int count = 6 * (G.chunkEndSubdomain[c] - G.chunkFirstSubdomain[c]);
+    double* out = slots + kSlots * 6 * G.chunkFirstSubdomain[c];
+    const int count = kSlots * 6 * (G.chunkEndSubdomain[c] - G.chunkFirstSubdomain[c]);
     for (int i = 0; i < count; ++i) out[i] += partial[i];
   }
+}
+
+void TotalFeti::reduceCoarse(std::vector<double>& slots, double* gx) const {
+  core::allReduceSlots(comm_.get(), slots);
+  for (int i = 0; i < numCoarse(); ++i) gx[i] = core::SumBins::combine(&slots[kSlots * static_cast<size_t>(i)]);
 }
 
 void TotalFeti::applyG(const DualVector& x, std::vector<double>& gx) const {
   applyGOwnedRows(readOnly(x), coarseLocal_.data());
   gx.resize(numCoarse());
-  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, numCoarse(), coarseLocal_.data(), gx.data());
+  reduceCoarse(coarseLocal_, gx.data());
 }
 
 namespace {
@@ -803,7 +872,7 @@ void TotalFeti::project(const DualVector& x, DualVector& y) const {
   applyGOwnedRows(xd, coarseLocal_.data());
   profile_.gSeconds += watch.seconds();
   watch.restart();
-  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, numCoarse(), coarseLocal_.data(), coarseVector_.data());
+  reduceCoarse(coarseLocal_, coarseVector_.data());
   profile_.coarseReduceSeconds += watch.seconds();
   solveCoarse(coarseVector_);
   watch.restart();
@@ -850,7 +919,7 @@ double TotalFeti::equilibriumResidual(const DualVector& lambda, const std::vecto
   for (size_t i = 0; i < local_.size(); ++i) {
     Local& L = *local_[i];
     for (LO r = 0; r < L.m(); ++r) L.in[r] = lo[L.overlapIndex[r]];
-    applyBlockTranspose(*L.block, L.in.data(), L.x.data(), L.n());
+    applyBlockTranspose(*L.block, L.rowOrder, L.in.data(), L.x.data(), L.n());
     L.system.K.apply(u[i].data(), L.y.data());
     for (LO k = 0; k < L.n(); ++k) worst = std::max(worst, std::abs(L.y[k] - L.system.f[k] + L.x[k]));
   }
@@ -860,15 +929,14 @@ double TotalFeti::equilibriumResidual(const DualVector& lambda, const std::vecto
 }
 
 double TotalFeti::energy(const std::vector<std::vector<double>>& u) const {
-  double local = 0.0;
+  // One term per dof, summed independently of the layout (core::ReproducibleSum.hpp).
+  std::vector<double> terms;
   for (size_t i = 0; i < local_.size(); ++i) {
     Local& L = *local_[i];
     L.system.K.apply(u[i].data(), L.y.data());
-    for (LO k = 0; k < L.n(); ++k) local += 0.5 * u[i][k] * L.y[k] - L.system.f[k] * u[i][k];
+    for (LO k = 0; k < L.n(); ++k) terms.push_back(0.5 * u[i][k] * L.y[k] - L.system.f[k] * u[i][k]);
   }
-  double global = 0.0;
-  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, 1, &local, &global);
-  return global;
+  return core::reproducibleSum(comm_.get(), terms.data(), terms.size(), primalDofs_);
 }
 
 double TotalFeti::loadNormInf() const {
@@ -888,7 +956,7 @@ std::vector<std::vector<double>> TotalFeti::recoverDisplacements(const DualVecto
     Local& L = *local_[i];
     const LO n = L.n();
     for (LO r = 0; r < L.m(); ++r) L.in[r] = lo[L.overlapIndex[r]];
-    applyBlockTranspose(*L.block, L.in.data(), L.x.data(), n);
+    applyBlockTranspose(*L.block, L.rowOrder, L.in.data(), L.x.data(), n);
     for (LO k = 0; k < n; ++k) L.x[k] = L.system.f[k] - L.x[k];
     u[i].assign(n, 0.0);
     L.solver.applyPseudoInverse(L.x.data(), u[i].data());
