@@ -756,33 +756,39 @@ void TotalFeti::applyGOwnedRows(const double* x, double* slots) const {
   }
   if (!finite) xMax = std::numeric_limits<double>::infinity();
   const core::SumBins bins(gMax_ * core::globalMax(comm_.get(), xMax), static_cast<long long>(B_.numRows));
+  // Slots: the first slices of all l entries, then the second ones (a chunk's partial: the
+  // same for its range of subdomains).
   core::forEachSubdomain(G.numChunks(), [&](int c) {
-    const int lo = G.chunkFirstSubdomain[c];
-    double* partial = G.partial.data() + G.partialOffset[c];
-    std::fill(partial, partial + kSlots * 6 * (G.chunkEndSubdomain[c] - lo), 0.0);
+    const int lo = G.chunkFirstSubdomain[c], width = 6 * (G.chunkEndSubdomain[c] - lo);
+    double* first = G.partial.data() + G.partialOffset[c];
+    double* second = first + width;
+    std::fill(first, first + kSlots * width, 0.0);
     const LO end = std::min<LO>(G.numRows, (c + 1) * kRowChunk);
     for (LO r = c * kRowChunk; r < end; ++r) {
       const double xr = x[r];
       if (xr == 0.0) continue;  // adds +0 to every slot: nothing
       for (LO e = G.rowStart[r]; e < G.rowStart[r + 1]; ++e) {
-        const double* __restrict g = &G.rowG[6 * static_cast<size_t>(e)];
-        double* __restrict sum = partial + kSlots * 6 * (G.rowSubdomain[e] - lo);
-        for (int j = 0; j < 6; ++j) bins.deposit(g[j] * xr, sum + kSlots * j);
+        const size_t at = 6 * static_cast<size_t>(G.rowSubdomain[e] - lo);
+        bins.depositSixProducts(&G.rowG[6 * static_cast<size_t>(e)], xr, first + at, second + at);
       }
     }
   });
-  std::fill(slots, slots + kSlots * static_cast<size_t>(numCoarse()), 0.0);
+  const size_t l = static_cast<size_t>(numCoarse());
+  std::fill(slots, slots + kSlots * l, 0.0);
   for (int c = 0; c < G.numChunks(); ++c) {
+    const int width = 6 * (G.chunkEndSubdomain[c] - G.chunkFirstSubdomain[c]);
     const double* partial = G.partial.data() + G.partialOffset[c];
-    double* out = slots + kSlots * 6 * G.chunkFirstSubdomain[c];
-    const int count = kSlots * 6 * (G.chunkEndSubdomain[c] - G.chunkFirstSubdomain[c]);
-    for (int i = 0; i < count; ++i) out[i] += partial[i];
+    for (int k = 0; k < kSlots; ++k) {
+      double* out = slots + k * l + 6 * G.chunkFirstSubdomain[c];
+      for (int i = 0; i < width; ++i) out[i] += partial[k * width + i];
+    }
   }
 }
 
 void TotalFeti::reduceCoarse(std::vector<double>& slots, double* gx) const {
   core::allReduceSlots(comm_.get(), slots);
-  for (int i = 0; i < numCoarse(); ++i) gx[i] = core::SumBins::combine(&slots[kSlots * static_cast<size_t>(i)]);
+  const size_t l = static_cast<size_t>(numCoarse());
+  for (size_t i = 0; i < l; ++i) gx[i] = core::SumBins::combine(slots[i], slots[l + i]);
 }
 
 void TotalFeti::applyG(const DualVector& x, std::vector<double>& gx) const {
