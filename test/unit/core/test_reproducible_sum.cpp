@@ -105,6 +105,11 @@ TEST(ReproducibleSum, everyRankSplitGivesTheBitsOfOneProcess) {
   const double dotWhole = tribos::core::reproducibleDot(nullptr, x.data(), y.data(), x.size(), n);
   const double dotParted = tribos::core::reproducibleDot(comm.get(), x.data() + first, y.data() + first, end - first, n);
   EXPECT_TRUE(sameBits(dotWhole, dotParted));
+  // The dot product is the reproducible sum of the rounded products (vectorised or not).
+  std::vector<double> products(x.size());
+  for (size_t i = 0; i < x.size(); ++i) products[i] = x[i] * y[i];
+  EXPECT_TRUE(sameBits(dotWhole, tribos::core::reproducibleSum(nullptr, products.data(), products.size(), n)));
+  EXPECT_TRUE(sameBits(dotWhole, splitSum(products, 7)));
   double both[2];
   tribos::core::reproducibleDots(comm.get(), x.data() + first, y.data() + first, x.data() + first, x.data() + first,
                                  end - first, n, both);

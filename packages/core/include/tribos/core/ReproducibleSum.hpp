@@ -80,6 +80,8 @@ class SumBins {
   static double combine(double first, double second) { return second + first; }
   /// False when the bound forced plain addition (see the file comment).
   bool reproducible() const { return reproducible_; }
+  /// sigma of slice j (1.5 * 2^k_j; 0 for plain addition).
+  double sigma(int j) const { return sigma_[j]; }
 
  private:
   double sigma_[kSlices];
