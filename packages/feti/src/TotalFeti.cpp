@@ -129,6 +129,7 @@ struct TotalFeti::Local {
   std::vector<LO> overlapIndex;  ///< local index in the overlap map of each block row
   std::vector<LO> factorDof;     ///< per entry of the block: its dof in the factor's order
   std::vector<LO> rowOrder;      ///< the block's rows by ascending global id (B.rowId)
+  std::vector<double> g;         ///< g_{s,r} = R_s^T b_{s,r}^T, 6 per block row (G x)
   fem::SubdomainSystem system;
   SubdomainSolver solver;
   std::vector<double> denseF;    ///< explicit F_s (m x m, column-major) when requested
@@ -339,22 +340,16 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
 
 /// G on this rank's owned rows of B, by row: one entry = one row r and one subdomain s it
 /// touches, with g_{s,r} = R_s^T b_{s,r}^T (6 numbers); 52 bytes per entry (~2 entries per
-/// row) instead of R_s and B_s^T per application. Both products stream the entries in row
-/// order, threads over fixed chunks of rows:
-///  - G^T a: each row on its own;
-///  - G x: each chunk sums into its own coarse partial vector (over the range of subdomains
-///    its rows touch), and the partials are added chunk by chunk in a fixed order, so the
-///    result does not depend on the number of threads.
+/// row) instead of R_s and B_s^T per application. G^T a streams the entries in row order,
+/// threads over fixed chunks of rows, each row on its own. G x is summed by subdomain
+/// instead (Local::g, applyGOwnedSubdomains): a subdomain's rows are owned by different
+/// ranks on different layouts, its owner has them all.
 struct TotalFeti::CoarseRows {
   GO firstRow = 0;
   LO numRows = 0;
   std::vector<LO> rowStart;       ///< numRows + 1; a row's entries in ascending subdomain order
   std::vector<int> rowSubdomain;  ///< per entry
   std::vector<double> rowG;       ///< 6 per entry
-  std::vector<int> chunkFirstSubdomain, chunkEndSubdomain;  ///< per chunk of kRowChunk rows
-  std::vector<size_t> partialOffset;  ///< per chunk, into partial: 6 x its subdomain range
-  mutable std::vector<double> partial;
-  int numChunks() const { return static_cast<int>(chunkFirstSubdomain.size()); }
 };
 
 namespace {
@@ -383,14 +378,16 @@ void TotalFeti::buildCoarseRows() {
     for (int i = 0; i < numOwnedSubdomains(); ++i) first[i + 1] = first[i] + local_[i]->m();
     auto g = gSource.getLocalViewHost(Tpetra::Access::OverwriteAll);
     core::forEachSubdomain(numOwnedSubdomains(), [&](int i) {
-      const Local& L = *local_[i];
+      Local& L = *local_[i];
       const SubdomainBlock& b = *L.block;
       const LO n = L.n();
+      L.g.assign(6 * static_cast<size_t>(L.m()), 0.0);
       for (LO r = 0; r < L.m(); ++r)
         for (int j = 0; j < 6; ++j) {
           double sum = 0.0;
           for (LO k = b.rowPtr[r]; k < b.rowPtr[r + 1]; ++k) sum += b.value[k] * L.system.R[static_cast<size_t>(j) * n + b.dof[k]];
           g(first[i] + r, j) = sum;
+          L.g[6 * static_cast<size_t>(r) + j] = sum;
         }
     });
   }
@@ -441,23 +438,10 @@ void TotalFeti::buildCoarseRows() {
   for (double v : G->rowG) gMax = std::max(gMax, std::abs(v));
   gMax_ = core::globalMax(comm_.get(), gMax);
 
-  // The subdomain range of each chunk of rows, and room for its partial sums of G x.
-  for (LO first = 0; first < G->numRows; first += kRowChunk) {
-    const LO end = std::min<LO>(G->numRows, first + kRowChunk);
-    int lo = numSubdomains_, hi = 0;
-    for (LO e = G->rowStart[first]; e < G->rowStart[end]; ++e) {
-      lo = std::min(lo, G->rowSubdomain[e]);
-      hi = std::max(hi, G->rowSubdomain[e] + 1);
-    }
-    G->partialOffset.push_back(G->partial.size());
-    G->chunkFirstSubdomain.push_back(lo);
-    G->chunkEndSubdomain.push_back(std::max(lo, hi));
-    G->partial.resize(G->partial.size() + kSlots * 6 * static_cast<size_t>(std::max(0, hi - lo)));
-  }
   profile_.gEntries = static_cast<long long>(G->rowSubdomain.size());
   profile_.gRows = G->numRows;
   G_ = std::move(G);
-  coarseLocal_.assign(kSlots * static_cast<size_t>(numCoarse()), 0.0);
+  coarseLocal_.assign(numCoarse(), 0.0);
   coarseVector_.assign(numCoarse(), 0.0);
 }
 
@@ -741,58 +725,32 @@ void TotalFeti::applyDirichlet(const DualVector& x, DualVector& y) const {
   profile_.preconditionerSeconds += watch.seconds();
 }
 
-void TotalFeti::applyGOwnedRows(const double* x, double* slots) const {
-  // (G x)_s = sum over the rows r that s touches of g_{s,r} x_r, rows owned by different
-  // ranks on different layouts: each term deposited into fixed-quantum slices
-  // (core::SumBins), whose sums are exact in any order. Per chunk of rows into its partial
-  // slots (threads), then the partials (main thread). |g x_r| <= gMax max|x|; at most one
-  // term per row of B in any entry.
-  const CoarseRows& G = *G_;
-  double xMax = 0.0;
-  bool finite = true;
-  for (LO r = 0; r < G.numRows; ++r) {
-    finite = finite && std::isfinite(x[r]);
-    xMax = std::max(xMax, std::abs(x[r]));
-  }
-  if (!finite) xMax = std::numeric_limits<double>::infinity();
-  const core::SumBins bins(gMax_ * core::globalMax(comm_.get(), xMax), static_cast<long long>(B_.numRows));
-  // Slots: the first slices of all l entries, then the second ones (a chunk's partial: the
-  // same for its range of subdomains).
-  core::forEachSubdomain(G.numChunks(), [&](int c) {
-    const int lo = G.chunkFirstSubdomain[c], width = 6 * (G.chunkEndSubdomain[c] - lo);
-    double* first = G.partial.data() + G.partialOffset[c];
-    double* second = first + width;
-    std::fill(first, first + kSlots * width, 0.0);
-    const LO end = std::min<LO>(G.numRows, (c + 1) * kRowChunk);
-    for (LO r = c * kRowChunk; r < end; ++r) {
-      const double xr = x[r];
-      if (xr == 0.0) continue;  // adds +0 to every slot: nothing
-      for (LO e = G.rowStart[r]; e < G.rowStart[r + 1]; ++e) {
-        const size_t at = 6 * static_cast<size_t>(G.rowSubdomain[e] - lo);
-        bins.depositSixProducts(&G.rowG[6 * static_cast<size_t>(e)], xr, first + at, second + at);
-      }
+void TotalFeti::applyGOwnedSubdomains(const double* xOverlap, double* gx) const {
+  // (G x)_s = sum over the rows r of B_s of g_{s,r} x_r, in the rows' global-id order, by the
+  // owner of s (threads over the owned subdomains): the same sum in the same order on every
+  // layout. The other entries stay zero, so the all-reduce adds one term and zeros (exact).
+  std::fill(gx, gx + numCoarse(), 0.0);
+  core::forEachSubdomain(numOwnedSubdomains(), [&](int i) {
+    const Local& L = *local_[i];
+    double sum[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+    for (LO r : L.rowOrder) {
+      const double xr = xOverlap[L.overlapIndex[r]];
+      const double* g = &L.g[6 * static_cast<size_t>(r)];
+      for (int j = 0; j < 6; ++j) sum[j] += g[j] * xr;
     }
+    std::copy(sum, sum + 6, gx + 6 * L.subdomain);
   });
-  const size_t l = static_cast<size_t>(numCoarse());
-  std::fill(slots, slots + kSlots * l, 0.0);
-  for (int c = 0; c < G.numChunks(); ++c) {
-    const int width = 6 * (G.chunkEndSubdomain[c] - G.chunkFirstSubdomain[c]);
-    const double* partial = G.partial.data() + G.partialOffset[c];
-    for (int k = 0; k < kSlots; ++k) {
-      double* out = slots + k * l + 6 * G.chunkFirstSubdomain[c];
-      for (int i = 0; i < width; ++i) out[i] += partial[k * width + i];
-    }
-  }
 }
 
-void TotalFeti::reduceCoarse(std::vector<double>& slots, double* gx) const {
-  core::allReduceSlots(comm_.get(), slots);
-  const size_t l = static_cast<size_t>(numCoarse());
-  for (size_t i = 0; i < l; ++i) gx[i] = core::SumBins::combine(slots[i], slots[l + i]);
+void TotalFeti::reduceCoarse(std::vector<double>& local, double* gx) const {
+  if (comm_->getSize() == 1)
+    std::copy(local.begin(), local.end(), gx);
+  else
+    Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, numCoarse(), local.data(), gx);
 }
 
 void TotalFeti::applyG(const DualVector& x, std::vector<double>& gx) const {
-  applyGOwnedRows(readOnly(x), coarseLocal_.data());
+  applyGOwnedSubdomains(overlapValues(x), coarseLocal_.data());
   gx.resize(numCoarse());
   reduceCoarse(coarseLocal_, gx.data());
 }
@@ -850,22 +808,17 @@ void TotalFeti::solveCoarse(std::vector<double>& a) const {
 }
 
 void TotalFeti::project(const DualVector& x, DualVector& y) const {
-  // y = x - G^T (G G^T)^{-1} G x on the owned rows: one all-reduce of length l, no import,
-  // no allocation.
-  const double* xd = nullptr;
+  // y = x - G^T (G G^T)^{-1} G x on the owned rows: x on the overlap rows (several ranks),
+  // one all-reduce of length l, no allocation.
+  const double* xd = readOnly(x);
   double* yd = nullptr;
-  if (&x == &y) {
-    yd = readWrite(y);
-    xd = yd;
-  } else {
-    xd = readOnly(x);
-    yd = y.getLocalViewHost(Tpetra::Access::OverwriteAll).data();
-  }
+  auto yView = [&]() { return &x == &y ? readWrite(y) : y.getLocalViewHost(Tpetra::Access::OverwriteAll).data(); };
   ++profile_.projections;
   core::Stopwatch watch;
   const size_t n = static_cast<size_t>(G_->numRows);
   const int hit = findProjection(xd);
   if (hit >= 0) {
+    yd = yView();
     std::copy(projectionMemo_[hit].solution.begin(), projectionMemo_[hit].solution.end(), yd);
     ++profile_.projectionsReused;
     profile_.gSeconds += watch.seconds();
@@ -875,13 +828,15 @@ void TotalFeti::project(const DualVector& x, DualVector& y) const {
   projectionMemoNext_ = 1 - projectionMemoNext_;
   memo.valid = false;           // until its answer is stored below
   memo.rhs.assign(xd, xd + n);  // before y (which may be x) is written
-  applyGOwnedRows(xd, coarseLocal_.data());
+  applyGOwnedSubdomains(overlapValues(x), coarseLocal_.data());
   profile_.gSeconds += watch.seconds();
   watch.restart();
   reduceCoarse(coarseLocal_, coarseVector_.data());
   profile_.coarseReduceSeconds += watch.seconds();
   solveCoarse(coarseVector_);
   watch.restart();
+  yd = yView();
+  if (&x == &y) xd = yd;
   subtractGt(*G_, coarseVector_.data(), xd, yd);
   memo.solution.assign(yd, yd + n);
   memo.valid = true;

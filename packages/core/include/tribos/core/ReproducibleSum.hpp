@@ -51,33 +51,12 @@ class SumBins {
       x -= q;
     }
   }
-  /// deposit of the six products g[j] x into slices kept apart (first[j], second[j]): the
-  /// same operations element by element (the same bits), two at a time (G x: GCC does not
-  /// vectorise the scalar form, which took twice the time of the plain sum).
-  void depositSixProducts(const double* g, double x, double* first, double* second) const {
-    static_assert(kSlices == 2, "depositSixProducts is written for two slices");
-    typedef double Pair __attribute__((vector_size(16)));
-    const Pair xx = {x, x}, s0 = {sigma_[0], sigma_[0]}, s1 = {sigma_[1], sigma_[1]};
-    for (int j = 0; j < 6; j += 2) {
-      Pair gj, f, sc;
-      __builtin_memcpy(&gj, g + j, sizeof(Pair));
-      __builtin_memcpy(&f, first + j, sizeof(Pair));
-      __builtin_memcpy(&sc, second + j, sizeof(Pair));
-      const Pair p = gj * xx, q0 = (p + s0) - s0, r = p - q0;
-      f += q0;
-      sc += (r + s1) - s1;
-      __builtin_memcpy(first + j, &f, sizeof(Pair));
-      __builtin_memcpy(second + j, &sc, sizeof(Pair));
-    }
-  }
   /// The sum from its slots, added in a fixed order (smallest slice first).
   static double combine(const double* slots) {
     double s = slots[kSlices - 1];
     for (int j = kSlices - 2; j >= 0; --j) s += slots[j];
     return s;
   }
-  /// combine for two slices kept apart.
-  static double combine(double first, double second) { return second + first; }
   /// False when the bound forced plain addition (see the file comment).
   bool reproducible() const { return reproducible_; }
   /// sigma of slice j (1.5 * 2^k_j; 0 for plain addition).

@@ -197,18 +197,17 @@ class TotalFeti {
   void buildCoarseRows();
   /// Sets factorNonzeros_ and bytesPerFApplication_ (collective).
   void measureTraffic();
-  /// The slices (core::SumBins, kSlices per entry) of the part of G x that this rank's owned
-  /// rows contribute, not reduced (collective: one MAX all-reduce for the bound).
-  void applyGOwnedRows(const double* x, double* slots) const;
-  /// G x from all ranks' slots (reduced in place), into gx (length l).
-  void reduceCoarse(std::vector<double>& slots, double* gx) const;
+  /// The entries of G x of this rank's subdomains (the others zero; length l, not reduced),
+  /// from x on the overlap rows.
+  void applyGOwnedSubdomains(const double* xOverlap, double* gx) const;
+  /// G x = the sum of every rank's applyGOwnedSubdomains (exact: one nonzero term each).
+  void reduceCoarse(std::vector<double>& local, double* gx) const;
   double gMax_ = 0.0;            ///< max |g_{s,r,j}| over all ranks
   long long primalDofs_ = 0;     ///< sum of n_s over all subdomains
 
   std::unique_ptr<CoarseRows> G_;           ///< G on the owned rows
   std::unique_ptr<SparseCholesky> coarse_;  ///< G G^T, replicated
-  /// Coarse work vectors of project() and solveCoarse(), allocated once (coarseLocal_: the
-  /// slots of G x, kSlices x l; coarseVector_: length l).
+  /// Coarse work vectors of project() and solveCoarse(), allocated once (length l).
   mutable std::vector<double> coarseLocal_, coarseVector_;
   /// The last two coarse solves (right-hand side, solution): the solvers project the same
   /// vector twice in a row of operator applications (P x inside P F P x, then Q x = x - P x;
