@@ -353,10 +353,10 @@ struct TotalFeti::CoarseRows {
 };
 
 namespace {
-/// Rows per task of the row loops of the projector: fixed, so that the work split (and with
-/// it the order of every sum in G x) does not depend on the number of threads.
+/// Rows per task of the row loops (G^T a, the sums of applyBlockwise): fixed, so that the
+/// work split does not depend on the number of threads.
 constexpr LO kRowChunk = 8192;
-/// Slots per coarse entry of the reproducible sums of G x and G G^T.
+/// Slots per entry of the reproducible sums of G G^T.
 constexpr int kSlots = core::SumBins::kSlices;
 }  // namespace
 
@@ -433,7 +433,7 @@ void TotalFeti::buildCoarseRows() {
     for (int j = 0; j < 6; ++j) G->rowG[6 * e + j] = g(e, j);
   }
   for (LO r = 0; r < G->numRows; ++r) G->rowStart[r + 1] += G->rowStart[r];
-  // The bound of every term of G x and G G^T (core::SumBins): the same on every layout.
+  // The bound of every term of G G^T (core::SumBins): the same on every layout.
   double gMax = 0.0;
   for (double v : G->rowG) gMax = std::max(gMax, std::abs(v));
   gMax_ = core::globalMax(comm_.get(), gMax);
