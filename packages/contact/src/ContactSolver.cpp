@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "tribos/core/Errors.hpp"
+#include "tribos/core/ReproducibleSum.hpp"
 
 namespace tribos::contact {
 
@@ -149,10 +150,10 @@ FrictionState frictionState(const std::array<double, 2>& lambdaT, const std::arr
   return s;
 }
 
-double globalSum(const Teuchos::Comm<int>& comm, double v) {
-  double out = 0.0;
-  Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, 1, &v, &out);
-  return out;
+// The sum of every rank's terms, the same bits on any layout (core/ReproducibleSum.hpp);
+// `count` bounds the number of terms over all ranks and is the same on every rank.
+double globalSum(const Teuchos::Comm<int>& comm, const std::vector<double>& terms, long long count) {
+  return core::reproducibleSum(&comm, terms.data(), terms.size(), count);
 }
 double globalMax(const Teuchos::Comm<int>& comm, double v) {
   double out = 0.0;
@@ -216,13 +217,12 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
   };
   // ||g_new - g_old|| / ||g_old|| (global).
   auto relativeChange = [&](const std::vector<double>& gNew, const std::vector<double>& gOld) {
-    double d = 0.0, n = 0.0;
+    std::vector<double> dTerms(gNew.size()), nTerms(gNew.size());
     for (size_t k = 0; k < gNew.size(); ++k) {
-      d += (gNew[k] - gOld[k]) * (gNew[k] - gOld[k]);
-      n += gOld[k] * gOld[k];
+      dTerms[k] = (gNew[k] - gOld[k]) * (gNew[k] - gOld[k]);
+      nTerms[k] = gOld[k] * gOld[k];
     }
-    d = globalSum(comm, d);
-    n = globalSum(comm, n);
+    const double d = globalSum(comm, dTerms, B.numRows), n = globalSum(comm, nTerms, B.numRows);
     return n > 0.0 ? std::sqrt(d / n) : (d > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
   };
 
@@ -436,22 +436,22 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
   uInf = globalMax(comm, uInf);
   const double uScale = uInf > 0.0 ? uInf : 1.0;
   const double lScale = std::max(lambdaNuMax, tinyForce);
-  double equality = 0.0, uNorm2 = 0.0;
+  std::vector<double> equality, uNorm2;  // terms of the sums
   for (const auto& us : result.displacement)
-    for (double v : us) uNorm2 += v * v;
+    for (double v : us) uNorm2.push_back(v * v);
   for (GO r = first; r < B.firstRowOfRank[rank + 1]; ++r)
     if (B.kind[r] == feti::RowKind::Gluing || B.kind[r] == feti::RowKind::Dirichlet) {
       const double residual = bu(r - first, 0) - B.c[r];  // B_E u = c_E (prescribed values)
-      equality += residual * residual;
+      equality.push_back(residual * residual);
     }
   KktReport& kkt = result.kkt;
   kkt.equilibrium = feti.equilibriumResidual(*lambda, result.displacement) /
                     std::max(feti.loadNormInf(), std::numeric_limits<double>::min());
-  const double uNorm = std::sqrt(globalSum(comm, uNorm2));
-  kkt.equality = std::sqrt(globalSum(comm, equality)) / (uNorm > 0.0 ? uNorm : 1.0);
+  const double uNorm = std::sqrt(globalSum(comm, uNorm2, feti.primalDofs()));
+  kkt.equality = std::sqrt(globalSum(comm, equality, B.numRows)) / (uNorm > 0.0 ? uNorm : 1.0);
 
-  double penetration = 0.0, complementarity = 0.0, lambdaNu2 = 0.0, negative = 0.0, admissibility = 0.0,
-         slipRule = 0.0, stickRule = 0.0;
+  double penetration = 0.0, negative = 0.0, admissibility = 0.0, slipRule = 0.0, stickRule = 0.0;
+  std::vector<double> complementarity, lambdaNu2;  // terms of the sums
   for (size_t k = 0; k < lc.node.size(); ++k) {
     const auto& node = B.contact[lc.node[k]];
     const LO r = lc.normalRow[k];
@@ -460,8 +460,8 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
     // Multipliers below the status tests' resolution count as zero (the node is out of
     // contact): a round-off lambda_nu ~ 1e-14 over an open gap is no violation, and
     // normalised by its own size it would read as one.
-    complementarity += (lam(r, 0) > tinyForce ? lam(r, 0) : 0.0) * gap;
-    lambdaNu2 += lam(r, 0) * lam(r, 0);
+    complementarity.push_back((lam(r, 0) > tinyForce ? lam(r, 0) : 0.0) * gap);
+    lambdaNu2.push_back(lam(r, 0) * lam(r, 0));
     negative = std::max(negative, -lam(r, 0));
     ContactNodeResult out;
     out.slaveNode = node.slaveNode;
@@ -509,8 +509,8 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
     result.nodes.push_back(out);
   }
   kkt.nonPenetration = std::max(globalMax(comm, penetration), 0.0) / uScale;
-  kkt.complementarity = std::abs(globalSum(comm, complementarity)) /
-                        (std::max(std::sqrt(globalSum(comm, lambdaNu2)), tinyForce) * uScale);
+  kkt.complementarity = std::abs(globalSum(comm, complementarity, B.numRows)) /
+                        (std::max(std::sqrt(globalSum(comm, lambdaNu2, B.numRows)), tinyForce) * uScale);
   kkt.normalSign = globalMax(comm, negative) / lScale;
   kkt.frictionAdmissibility = std::max(globalMax(comm, admissibility), 0.0) / lScale;
   kkt.slipRule = globalMax(comm, slipRule);

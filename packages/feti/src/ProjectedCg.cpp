@@ -5,11 +5,22 @@
 #include <cmath>
 
 #include "tribos/core/Errors.hpp"
+#include "tribos/core/ReproducibleSum.hpp"
 
 extern "C" void dstev_(const char* jobz, const int* n, double* d, double* e, double* z, const int* ldz,
                        double* work, int* info);
 
 namespace tribos::feti {
+
+namespace {
+// a^T b, the same bits on any rank layout (core/ReproducibleSum.hpp).
+double dot(const DualVector& a, const DualVector& b) {
+  return core::reproducibleDot(a.getMap()->getComm().get(), a.getLocalViewHost(Tpetra::Access::ReadOnly).data(),
+                               b.getLocalViewHost(Tpetra::Access::ReadOnly).data(), a.getLocalLength(),
+                               static_cast<long long>(a.getGlobalLength()));
+}
+double norm2(const DualVector& x) { return std::sqrt(dot(x, x)); }
+}  // namespace
 
 std::pair<double, double> lanczosExtremes(const std::vector<double>& alpha, const std::vector<double>& beta) {
   // CG's Lanczos matrix: T_kk = 1/alpha_k + beta_{k-1}/alpha_{k-1}, T_k,k+1 = sqrt(beta_k)/alpha_k.
@@ -52,7 +63,7 @@ ProjectedCgResult solveProjectedCg(const TotalFeti& feti, DualVector& lambda, co
   w->assign(feti.dTilde());
   w->update(-1.0, *q, 1.0);
   feti.project(*w, *w);
-  const double normPh = w->norm2();
+  const double normPh = norm2(*w);
   if (normPh == 0.0) {
     result.converged = true;
     result.fApplications = feti.fApplications() - fStart;
@@ -60,21 +71,21 @@ ProjectedCgResult solveProjectedCg(const TotalFeti& feti, DualVector& lambda, co
   }
   precondition(*w, *z);
   p->assign(*z);
-  double wz = w->dot(*z);
+  double wz = dot(*w, *z);
   std::vector<double> alphas, betas;
   double relative = 1.0;
   int it = 0;
   auto stopRequested = [&] { return settings.stopRequested && settings.stopRequested(); };
   for (; it < settings.maxIterations && relative > settings.tolerance && !stopRequested(); ++it) {
     feti.applyPF(*p, *q);  // p = P M P w lies in Ker G
-    const double pq = p->dot(*q);
+    const double pq = dot(*p, *q);
     if (!(pq > 0.0)) break;  // breakdown: F not positive on Ker G (bad constraints)
     const double alpha = wz / pq;
     lambda.update(alpha, *p, 1.0);
     w->update(-alpha, *q, 1.0);
-    relative = w->norm2() / normPh;
+    relative = norm2(*w) / normPh;
     precondition(*w, *z);
-    const double wzNew = w->dot(*z);
+    const double wzNew = dot(*w, *z);
     const double beta = wzNew / wz;
     wz = wzNew;
     alphas.push_back(alpha);

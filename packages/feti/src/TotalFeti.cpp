@@ -10,20 +10,26 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <map>
+#include <numeric>
 
 #include "tribos/core/Errors.hpp"
 #include "tribos/core/Parallel.hpp"
+#include "tribos/core/ReproducibleSum.hpp"
 #include "tribos/core/Timer.hpp"
 #include "tribos/fem/SubdomainSystem.hpp"
 
 namespace tribos::feti {
 
 namespace {
-// x = B_s^T lambda_s (x has n entries, zeroed here).
-void applyBlockTranspose(const SubdomainBlock& b, const double* lambda, double* x, LO n) {
+// x = B_s^T lambda_s (x has n entries, zeroed here). A dof in several rows sums them in
+// `order` (the rows by their global id, B.rowId): B's own row order follows the number of
+// ranks, and with it the rounding of these sums.
+void applyBlockTranspose(const SubdomainBlock& b, const std::vector<LO>& order, const double* lambda, double* x,
+                         LO n) {
   std::fill(x, x + n, 0.0);
-  for (size_t i = 0; i + 1 < b.rowPtr.size(); ++i)
+  for (LO i : order)
     for (LO k = b.rowPtr[i]; k < b.rowPtr[i + 1]; ++k) x[b.dof[k]] += b.value[k] * lambda[i];
 }
 
@@ -38,9 +44,10 @@ void applyBlock(const SubdomainBlock& b, const double* y, double* out) {
 
 // The same two products with the dofs of B_s renumbered (`dof[k]` for entry k): F works in
 // the factor's order (SubdomainSolver::permutation).
-void applyBlockTranspose(const SubdomainBlock& b, const std::vector<LO>& dof, const double* lambda, double* x, LO n) {
+void applyBlockTranspose(const SubdomainBlock& b, const std::vector<LO>& order, const std::vector<LO>& dof,
+                         const double* lambda, double* x, LO n) {
   std::fill(x, x + n, 0.0);
-  for (size_t i = 0; i + 1 < b.rowPtr.size(); ++i)
+  for (LO i : order)
     for (LO k = b.rowPtr[i]; k < b.rowPtr[i + 1]; ++k) x[dof[k]] += b.value[k] * lambda[i];
 }
 void applyBlock(const SubdomainBlock& b, const std::vector<LO>& dof, const double* y, double* out) {
@@ -140,6 +147,8 @@ struct TotalFeti::Local {
   const SubdomainBlock* block = nullptr;
   std::vector<LO> overlapIndex;  ///< local index in the overlap map of each block row
   std::vector<LO> factorDof;     ///< per entry of the block: its dof in the factor's order
+  std::vector<LO> rowOrder;      ///< the block's rows by ascending global id (B.rowId)
+  std::vector<double> g;         ///< g_{s,r} = R_s^T b_{s,r}^T, 6 per block row (G x)
   fem::SubdomainSystem system;
   SubdomainSolver solver;
   std::vector<double> denseF;    ///< explicit F_s (m x m, column-major) when requested
@@ -245,7 +254,6 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
   importer_ = Teuchos::rcp(new Tpetra::Import<LO, GO>(dualMap_, overlapMap_));
   overlapIsOwned_ = overlapMap_->isSameAs(*dualMap_);
   xOverlap_ = Teuchos::rcp(new DualVector(overlapMap_));
-  yOverlap_ = Teuchos::rcp(new DualVector(overlapMap_));
 
   // (2) Rigid body modes of the owned subdomains (a rank needs no other R_s: the g_{s,r}
   // of foreign subdomains come from their owners, buildCoarseRows).
@@ -267,6 +275,10 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
     L->system = std::move(owned[i]);
     L->system.R = std::move(R[i]);
     for (GO row : L->block->rows) L->overlapIndex.push_back(overlapMap_->getLocalElement(rowId(row)));
+    L->rowOrder.resize(L->m());
+    std::iota(L->rowOrder.begin(), L->rowOrder.end(), 0);
+    std::sort(L->rowOrder.begin(), L->rowOrder.end(),
+              [&](LO a, LO b) { return rowId(L->block->rows[a]) < rowId(L->block->rows[b]); });
     L->in.assign(L->m(), 0.0);
     L->out.assign(L->m(), 0.0);
     L->x.assign(L->n(), 0.0);
@@ -274,6 +286,11 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
     local_[i] = std::move(L);
   }
   gatherOverlapContributions();
+  {
+    long long mine = 0;
+    for (const auto& L : local_) mine += L->n();
+    Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, 1, &mine, &primalDofs_);
+  }
   core::Stopwatch watch;
   core::forEachSubdomain(numOwned, [&](int i) {
     Local& L = *local_[i];
@@ -348,15 +365,12 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
 /// G on this rank's owned rows of B: one entry = one row r and one subdomain s it touches,
 /// with g_{s,r} = R_s^T b_{s,r}^T (6 numbers); 52 bytes per entry (~2.5 entries per row)
 /// instead of R_s and B_s^T per application. Threads work on fixed chunks of kRowChunk rows;
-/// inside a chunk the entries are stored by subdomain ("runs"), then by row, so that
-///  - G x sums each subdomain's 6 numbers in registers over its run (stored by row, the
-///    entries of one subdomain added into the same 6 memory cells one after another: a
-///    chain of dependent read-modify-writes, about twice the time of this loop at 10x5x5/5,
-///    doc/performance.md), into the chunk's own coarse partial vector; the partials are added chunk by chunk in a fixed
-///    order, so the result does not depend on the number of threads;
-///  - G^T a adds each entry's g_{s,r} . a_s into its row's sum in a chunk-sized buffer, runs
-///    in ascending subdomain order: every row sums its entries in ascending subdomain order,
-///    the order of the by-row loop it replaces (the same bits).
+/// inside a chunk the entries are stored by subdomain ("runs"), then by row, so that G^T a
+/// adds each entry's g_{s,r} . a_s into its row's sum in a chunk-sized buffer, runs in
+/// ascending subdomain order: every row sums its entries in ascending subdomain order (the
+/// rows of one run are distinct, so there is no chain of dependent updates). G x is summed
+/// by subdomain instead (Local::g, applyGOwnedSubdomains): a subdomain's rows are owned by
+/// different ranks on different layouts, its owner has them all.
 /// The by-row view (rowStart, rowSubdomain, rowEntry) serves the set-up (G G^T).
 struct TotalFeti::CoarseRows {
   GO firstRow = 0;
@@ -370,18 +384,17 @@ struct TotalFeti::CoarseRows {
   std::vector<LO> runStart;       ///< per run + 1: its entries
   std::vector<int> runSubdomain;  ///< per run
   std::vector<int> chunkRunStart;  ///< per chunk + 1: its runs
-  std::vector<int> chunkFirstSubdomain, chunkEndSubdomain;  ///< per chunk of kRowChunk rows
-  std::vector<size_t> partialOffset;  ///< per chunk, into partial: 6 x its subdomain range
-  mutable std::vector<double> partial;
   mutable std::vector<double> rowSum;  ///< numRows: G^T a's sums, each chunk its own rows
-  int numChunks() const { return static_cast<int>(chunkFirstSubdomain.size()); }
+  int numChunks() const { return static_cast<int>(chunkRunStart.size()) - 1; }
   const double* rowG(LO rowOrderEntry) const { return &g[6 * static_cast<size_t>(rowEntry[rowOrderEntry])]; }
 };
 
 namespace {
-/// Rows per task of the row loops of the projector: fixed, so that the work split (and with
-/// it the order of every sum in G x) does not depend on the number of threads.
+/// Rows per task of the row loops (G^T a, the sums of applyBlockwise): fixed, so that the
+/// work split does not depend on the number of threads.
 constexpr LO kRowChunk = 8192;
+/// Slots per entry of the reproducible sums of G G^T.
+constexpr int kSlots = core::SumBins::kSlices;
 }  // namespace
 
 void TotalFeti::buildCoarseRows() {
@@ -402,14 +415,16 @@ void TotalFeti::buildCoarseRows() {
     for (int i = 0; i < numOwnedSubdomains(); ++i) first[i + 1] = first[i] + local_[i]->m();
     auto g = gSource.getLocalViewHost(Tpetra::Access::OverwriteAll);
     core::forEachSubdomain(numOwnedSubdomains(), [&](int i) {
-      const Local& L = *local_[i];
+      Local& L = *local_[i];
       const SubdomainBlock& b = *L.block;
       const LO n = L.n();
+      L.g.assign(6 * static_cast<size_t>(L.m()), 0.0);
       for (LO r = 0; r < L.m(); ++r)
         for (int j = 0; j < 6; ++j) {
           double sum = 0.0;
           for (LO k = b.rowPtr[r]; k < b.rowPtr[r + 1]; ++k) sum += b.value[k] * L.system.R[static_cast<size_t>(j) * n + b.dof[k]];
           g(first[i] + r, j) = sum;
+          L.g[6 * static_cast<size_t>(r) + j] = sum;
         }
     });
   }
@@ -435,8 +450,16 @@ void TotalFeti::buildCoarseRows() {
   for (size_t e = 0; e < entries.size(); ++e) ids[e] = (G->firstRow + entries[e].row) * S + entries[e].subdomain;
   auto target = Teuchos::rcp(new DualMap(invalid, Teuchos::ArrayView<const GO>(ids.data(), ids.size()), 0, comm_));
   Tpetra::MultiVector<Scalar, LO, GO> gTarget(target, 6);
-  gTarget.doImport(gSource, Tpetra::Import<LO, GO>(source, target), Tpetra::INSERT);
+  auto entryImport = Teuchos::rcp(new Tpetra::Import<LO, GO>(source, target));
+  gTarget.doImport(gSource, *entryImport, Tpetra::INSERT);
   auto g = gTarget.getLocalViewHost(Tpetra::Access::ReadOnly);
+  if (!overlapIsOwned_) {  // applyBlockwise's entry-wise sums (several ranks)
+    entryImport_ = entryImport;
+    entrySource_ = Teuchos::rcp(new DualVector(source));
+    entryTarget_ = Teuchos::rcp(new DualVector(target));
+    entrySourceFirst_.assign(numOwnedSubdomains() + 1, 0);
+    for (int i = 0; i < numOwnedSubdomains(); ++i) entrySourceFirst_[i + 1] = entrySourceFirst_[i] + local_[i]->m();
+  }
 
   G->rowStart.assign(G->numRows + 1, 0);
   G->rowSubdomain.resize(entries.size());
@@ -445,7 +468,6 @@ void TotalFeti::buildCoarseRows() {
     G->rowSubdomain[e] = entries[e].subdomain;
   }
   for (LO r = 0; r < G->numRows; ++r) G->rowStart[r + 1] += G->rowStart[r];
-
   // The stored order: by chunk, then subdomain, then row (entries are in row order: a stable
   // sort by (chunk, subdomain) keeps the rows ascending within a run).
   std::vector<LO> order(entries.size());
@@ -475,19 +497,10 @@ void TotalFeti::buildCoarseRows() {
   for (LO c = 0; c < numChunks; ++c) G->chunkRunStart[c + 1] += G->chunkRunStart[c];
   G->rowSum.assign(G->numRows, 0.0);
 
-  // The subdomain range of each chunk of rows, and room for its partial sums of G x.
-  for (LO first = 0; first < G->numRows; first += kRowChunk) {
-    const LO end = std::min<LO>(G->numRows, first + kRowChunk);
-    int lo = numSubdomains_, hi = 0;
-    for (LO e = G->rowStart[first]; e < G->rowStart[end]; ++e) {
-      lo = std::min(lo, G->rowSubdomain[e]);
-      hi = std::max(hi, G->rowSubdomain[e] + 1);
-    }
-    G->partialOffset.push_back(G->partial.size());
-    G->chunkFirstSubdomain.push_back(lo);
-    G->chunkEndSubdomain.push_back(std::max(lo, hi));
-    G->partial.resize(G->partial.size() + 6 * static_cast<size_t>(std::max(0, hi - lo)));
-  }
+  // The bound of every term of G G^T (core::SumBins): the same on every layout.
+  double gMax = 0.0;
+  for (double v : G->g) gMax = std::max(gMax, std::abs(v));
+  gMax_ = core::globalMax(comm_.get(), gMax);
   profile_.gEntries = static_cast<long long>(G->rowSubdomain.size());
   profile_.gRows = G->numRows;
   G_ = std::move(G);
@@ -581,23 +594,24 @@ fem::CsrMatrix TotalFeti::assembleCoarse(const std::vector<char>* ownedRowMask) 
     return blockStart[s] + static_cast<LO>(std::lower_bound(first, last, t) - first);
   };
 
-  std::vector<double> local(36 * static_cast<size_t>(blockStart.back()), 0.0);
+  // Reproducible sums (core::SumBins): the rows of a block are owned by different ranks on
+  // different layouts. |g_s[a] g_t[c]| <= gMax^2; at most one term per row of B.
+  const core::SumBins bins(gMax_ * gMax_, static_cast<long long>(B_.numRows));
+  std::vector<double> local(kSlots * 36 * static_cast<size_t>(blockStart.back()), 0.0);
   const CoarseRows& G = *G_;
   for (LO r = 0; r < G.numRows; ++r) {
     if (!counted(r)) continue;
     for (LO e = G.rowStart[r]; e < G.rowStart[r + 1]; ++e)
       for (LO f = G.rowStart[r]; f < G.rowStart[r + 1]; ++f) {
-        double* block = &local[36 * static_cast<size_t>(blockOf(G.rowSubdomain[e], G.rowSubdomain[f]))];
+        double* block = &local[kSlots * 36 * static_cast<size_t>(blockOf(G.rowSubdomain[e], G.rowSubdomain[f]))];
         const double *gs = G.rowG(e), *gt = G.rowG(f);
         for (int a = 0; a < 6; ++a)
-          for (int c = 0; c < 6; ++c) block[a * 6 + c] += gs[a] * gt[c];
+          for (int c = 0; c < 6; ++c) bins.deposit(gs[a] * gt[c], block + kSlots * (a * 6 + c));
       }
   }
-  std::vector<double> blocks(local.size(), 0.0);
-  if (comm_->getSize() == 1)
-    blocks.swap(local);
-  else
-    Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, static_cast<int>(local.size()), local.data(), blocks.data());
+  core::allReduceSlots(comm_.get(), local);
+  std::vector<double> blocks(local.size() / kSlots);
+  for (size_t i = 0; i < blocks.size(); ++i) blocks[i] = core::SumBins::combine(&local[kSlots * i]);
 
   fem::CsrMatrix GGt;
   GGt.n = numCoarse();
@@ -670,20 +684,44 @@ void TotalFeti::gatherOverlapContributions() {
 
 template <class LocalOp>
 void TotalFeti::applyBlockwise(const DualVector& x, DualVector& y, LocalOp op) const {
-  // Import (main thread), per-subdomain work on threads with raw pointers only, then a
-  // sequential, deterministic sum into the overlap vector and an export-add. The overlap
-  // vectors live as long as this object (no allocation per application); when the overlap
-  // is the owned rows themselves (one rank), x and y serve as their own overlap vectors.
+  // Import (main thread), per-subdomain work on threads with raw pointers only, then each
+  // row's sum over its subdomains in ascending subdomain order, on any layout: with several
+  // ranks the entries travel to the row's owner one by one (a per-rank pre-sum, then an
+  // export-add, would group three or more terms differently on different layouts). The
+  // work vectors live as long as this object (no allocation per application); when the
+  // overlap is the owned rows themselves (one rank), x serves as its own overlap vector.
   const double* xo = overlapValues(x);
+  if (!overlapIsOwned_) {
+    // Several ranks: each entry to the owner of its row, summed there in subdomain order.
+    double* source = entrySource_->getLocalViewHost(Tpetra::Access::OverwriteAll).data();
+    core::forEachSubdomain(numOwnedSubdomains(), [&](int i) {
+      Local& L = *local_[i];
+      for (LO r = 0; r < L.m(); ++r) L.in[r] = xo[L.overlapIndex[r]];
+      op(L, true);
+      std::copy(L.out.begin(), L.out.end(), source + entrySourceFirst_[i]);
+    });
+    entryTarget_->doImport(*entrySource_, *entryImport_, Tpetra::INSERT);
+    const double* entry = readOnly(*entryTarget_);
+    double* yo = y.getLocalViewHost(Tpetra::Access::OverwriteAll).data();
+    const CoarseRows& G = *G_;
+    core::forEachSubdomain((G.numRows + kRowChunk - 1) / kRowChunk, [&](int chunk) {
+      const LO end = std::min<LO>(G.numRows, (chunk + 1) * kRowChunk);
+      for (LO r = chunk * kRowChunk; r < end; ++r) {
+        double total = 0.0;
+        for (LO e = G.rowStart[r]; e < G.rowStart[r + 1]; ++e) total += entry[e];
+        yo[r] = total;
+      }
+    });
+    return;
+  }
   core::forEachSubdomain(numOwnedSubdomains(), [&](int i) {
     Local& L = *local_[i];
     for (LO r = 0; r < L.m(); ++r) L.in[r] = xo[L.overlapIndex[r]];
     op(L, true);
   });
-  // Every overlap row has a contribution (that is what puts it in the overlap), so the
-  // gather overwrites the whole vector.
-  DualVector& sum = overlapIsOwned_ ? y : *yOverlap_;
-  double* yo = sum.getLocalViewHost(Tpetra::Access::OverwriteAll).data();
+  // One rank (or no shared rows): the overlap is the owned rows; every one has a
+  // contribution (that is what puts it in the overlap), so the gather overwrites y.
+  double* yo = y.getLocalViewHost(Tpetra::Access::OverwriteAll).data();
   const LO numOverlap = static_cast<LO>(contributionStart_.size()) - 1;
   core::forEachSubdomain((numOverlap + kRowChunk - 1) / kRowChunk, [&](int chunk) {
     const LO end = std::min<LO>(numOverlap, (chunk + 1) * kRowChunk);
@@ -693,9 +731,6 @@ void TotalFeti::applyBlockwise(const DualVector& x, DualVector& y, LocalOp op) c
       yo[o] = total;
     }
   });
-  if (overlapIsOwned_) return;
-  y.putScalar(0.0);
-  y.doExport(*yOverlap_, *importer_, Tpetra::ADD);
 }
 
 void TotalFeti::applyF(const DualVector& x, DualVector& y) const { applyF(x, y, true); }
@@ -718,7 +753,7 @@ void TotalFeti::applyF(const DualVector& x, DualVector& y, bool removeKernel) co
       // call from several threads at once (doc/factorization.md).
       const LO m = L.m();
       std::fill(L.out.begin(), L.out.end(), 0.0);
-      for (LO c = 0; c < m; ++c) {
+      for (LO c : L.rowOrder) {  // columns in the order of their global ids, as B_s^T sums
         const double x = L.in[c];
         const double* column = &L.denseF[static_cast<size_t>(c) * m];
         for (LO r = 0; r < m; ++r) L.out[r] += column[r] * x;
@@ -726,7 +761,7 @@ void TotalFeti::applyF(const DualVector& x, DualVector& y, bool removeKernel) co
       return;
     }
     // Two triangular solves in the factor's order: B_s^T scatters into it, B_s gathers from it.
-    applyBlockTranspose(*L.block, L.factorDof, L.in.data(), L.x.data(), L.n());
+    applyBlockTranspose(*L.block, L.rowOrder, L.factorDof, L.in.data(), L.x.data(), L.n());
     if (removeKernel)
       L.solver.applyPseudoInversePermuted(L.x.data());
     else
@@ -739,7 +774,7 @@ void TotalFeti::applyF(const DualVector& x, DualVector& y, bool removeKernel) co
 void TotalFeti::applyLumped(const DualVector& x, DualVector& y) const {
   core::Stopwatch watch;
   applyBlockwise(x, y, [](Local& L, bool) {
-    applyBlockTranspose(*L.block, L.in.data(), L.x.data(), L.n());
+    applyBlockTranspose(*L.block, L.rowOrder, L.in.data(), L.x.data(), L.n());
     L.system.K.apply(L.x.data(), L.y.data());
     applyBlock(*L.block, L.y.data(), L.out.data());
   });
@@ -755,7 +790,7 @@ void TotalFeti::applyDirichlet(const DualVector& x, DualVector& y) const {
   applyBlockwise(x, y, [](Local& L, bool) {
     // x_b = B_s^T in; y_b = K_bb x_b - K_bi K_ii^{-1} K_ib x_b; out = B_s y_b.
     DirichletBlocks& D = L.dirichlet;
-    applyBlockTranspose(*L.block, D.boundaryDof, L.in.data(), D.xb.data(), static_cast<LO>(D.xb.size()));
+    applyBlockTranspose(*L.block, L.rowOrder, D.boundaryDof, L.in.data(), D.xb.data(), static_cast<LO>(D.xb.size()));
     D.Kbb.apply(D.xb.data(), D.yb.data());
     if (D.interiorFactor) {
       D.Kib.apply(D.xb.data(), D.t.data());
@@ -768,46 +803,34 @@ void TotalFeti::applyDirichlet(const DualVector& x, DualVector& y) const {
   profile_.preconditionerSeconds += watch.seconds();
 }
 
-void TotalFeti::applyGOwnedRows(const double* x, double* gx, double* copyOfX) const {
-  // (G x)_s = sum over the owned rows r that s touches of g_{s,r} x_r: per chunk of rows
-  // into its partial vector (threads), then the partials in chunk order (main thread).
-  const CoarseRows& G = *G_;
-  core::forEachSubdomain(G.numChunks(), [&](int c) {
-    const int lo = G.chunkFirstSubdomain[c];
-    double* partial = G.partial.data() + G.partialOffset[c];
-    std::fill(partial, partial + 6 * (G.chunkEndSubdomain[c] - lo), 0.0);
-    if (copyOfX) {
-      // The memo's copy of x, while the chunk's x is read anyway (and on the threads).
-      const LO first = c * kRowChunk, end = std::min<LO>(G.numRows, first + kRowChunk);
-      std::copy(x + first, x + end, copyOfX + first);
-    }
-    const LO* __restrict entryRow = G.entryRow.data();
-    for (int run = G.chunkRunStart[c]; run < G.chunkRunStart[c + 1]; ++run) {
-      // Each sum adds its terms in ascending row order, starting from 0: the order (and the
-      // bits) of the by-row loop this replaced.
-      double sum[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
-      const double* __restrict g = &G.g[6 * static_cast<size_t>(G.runStart[run])];
-      for (LO e = G.runStart[run], last = G.runStart[run + 1]; e < last; ++e, g += 6) {
-        const double xr = x[entryRow[e]];
-        for (int j = 0; j < 6; ++j) sum[j] += g[j] * xr;
-      }
-      double* __restrict out = partial + 6 * (G.runSubdomain[run] - lo);
-      for (int j = 0; j < 6; ++j) out[j] = sum[j];
-    }
-  });
+void TotalFeti::applyGOwnedSubdomains(const double* xOverlap, double* gx) const {
+  // (G x)_s = sum over the rows r of B_s of g_{s,r} x_r, in the rows' global-id order, by the
+  // owner of s (threads over the owned subdomains): the same sum in the same order on every
+  // layout. The other entries stay zero, so the all-reduce adds one term and zeros (exact).
   std::fill(gx, gx + numCoarse(), 0.0);
-  for (int c = 0; c < G.numChunks(); ++c) {
-    const double* partial = G.partial.data() + G.partialOffset[c];
-    double* out = gx + 6 * G.chunkFirstSubdomain[c];
-    const int count = 6 * (G.chunkEndSubdomain[c] - G.chunkFirstSubdomain[c]);
-    for (int i = 0; i < count; ++i) out[i] += partial[i];
-  }
+  core::forEachSubdomain(numOwnedSubdomains(), [&](int i) {
+    const Local& L = *local_[i];
+    double sum[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+    for (LO r : L.rowOrder) {
+      const double xr = xOverlap[L.overlapIndex[r]];
+      const double* g = &L.g[6 * static_cast<size_t>(r)];
+      for (int j = 0; j < 6; ++j) sum[j] += g[j] * xr;
+    }
+    std::copy(sum, sum + 6, gx + 6 * L.subdomain);
+  });
+}
+
+void TotalFeti::reduceCoarse(std::vector<double>& local, double* gx) const {
+  if (comm_->getSize() == 1)
+    std::copy(local.begin(), local.end(), gx);
+  else
+    Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, numCoarse(), local.data(), gx);
 }
 
 void TotalFeti::applyG(const DualVector& x, std::vector<double>& gx) const {
-  applyGOwnedRows(readOnly(x), coarseLocal_.data());
+  applyGOwnedSubdomains(overlapValues(x), coarseLocal_.data());
   gx.resize(numCoarse());
-  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, numCoarse(), coarseLocal_.data(), gx.data());
+  reduceCoarse(coarseLocal_, gx.data());
 }
 
 namespace {
@@ -867,22 +890,17 @@ void TotalFeti::solveCoarse(std::vector<double>& a) const {
 }
 
 void TotalFeti::project(const DualVector& x, DualVector& y) const {
-  // y = x - G^T (G G^T)^{-1} G x on the owned rows: one all-reduce of length l, no import,
-  // no allocation.
-  const double* xd = nullptr;
+  // y = x - G^T (G G^T)^{-1} G x on the owned rows: x on the overlap rows (several ranks),
+  // one all-reduce of length l, no allocation.
+  const double* xd = readOnly(x);
   double* yd = nullptr;
-  if (&x == &y) {
-    yd = readWrite(y);
-    xd = yd;
-  } else {
-    xd = readOnly(x);
-    yd = y.getLocalViewHost(Tpetra::Access::OverwriteAll).data();
-  }
+  auto yView = [&]() { return &x == &y ? readWrite(y) : y.getLocalViewHost(Tpetra::Access::OverwriteAll).data(); };
   ++profile_.projections;
   core::Stopwatch watch;
   const size_t n = static_cast<size_t>(G_->numRows);
   const int hit = findProjection(xd);
   if (hit >= 0) {
+    yd = yView();
     std::copy(projectionMemo_[hit].solution.begin(), projectionMemo_[hit].solution.end(), yd);
     ++profile_.projectionsReused;
     profile_.gSeconds += watch.seconds();
@@ -890,16 +908,18 @@ void TotalFeti::project(const DualVector& x, DualVector& y) const {
   }
   CoarseMemo& memo = projectionMemo_[projectionMemoNext_];
   projectionMemoNext_ = 1 - projectionMemoNext_;
-  memo.valid = false;  // until its answer is stored below
-  memo.rhs.resize(n);
+  memo.valid = false;           // until its answer is stored below
+  memo.rhs.assign(xd, xd + n);  // before y (which may be x) is written
   memo.solution.resize(n);
-  applyGOwnedRows(xd, coarseLocal_.data(), memo.rhs.data());  // x copied before y (maybe x) is written
+  applyGOwnedSubdomains(overlapValues(x), coarseLocal_.data());
   profile_.gSeconds += watch.seconds();
   watch.restart();
-  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, numCoarse(), coarseLocal_.data(), coarseVector_.data());
+  reduceCoarse(coarseLocal_, coarseVector_.data());
   profile_.coarseReduceSeconds += watch.seconds();
   solveCoarse(coarseVector_);
   watch.restart();
+  yd = yView();
+  if (&x == &y) xd = yd;
   subtractGt(*G_, coarseVector_.data(), xd, yd, memo.solution.data());
   memo.valid = true;
   profile_.gSeconds += watch.seconds();
@@ -942,7 +962,7 @@ double TotalFeti::equilibriumResidual(const DualVector& lambda, const std::vecto
   for (size_t i = 0; i < local_.size(); ++i) {
     Local& L = *local_[i];
     for (LO r = 0; r < L.m(); ++r) L.in[r] = lo[L.overlapIndex[r]];
-    applyBlockTranspose(*L.block, L.in.data(), L.x.data(), L.n());
+    applyBlockTranspose(*L.block, L.rowOrder, L.in.data(), L.x.data(), L.n());
     L.system.K.apply(u[i].data(), L.y.data());
     for (LO k = 0; k < L.n(); ++k) worst = std::max(worst, std::abs(L.y[k] - L.system.f[k] + L.x[k]));
   }
@@ -952,15 +972,14 @@ double TotalFeti::equilibriumResidual(const DualVector& lambda, const std::vecto
 }
 
 double TotalFeti::energy(const std::vector<std::vector<double>>& u) const {
-  double local = 0.0;
+  // One term per dof, summed independently of the layout (core::ReproducibleSum.hpp).
+  std::vector<double> terms;
   for (size_t i = 0; i < local_.size(); ++i) {
     Local& L = *local_[i];
     L.system.K.apply(u[i].data(), L.y.data());
-    for (LO k = 0; k < L.n(); ++k) local += 0.5 * u[i][k] * L.y[k] - L.system.f[k] * u[i][k];
+    for (LO k = 0; k < L.n(); ++k) terms.push_back(0.5 * u[i][k] * L.y[k] - L.system.f[k] * u[i][k]);
   }
-  double global = 0.0;
-  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, 1, &local, &global);
-  return global;
+  return core::reproducibleSum(comm_.get(), terms.data(), terms.size(), primalDofs_);
 }
 
 double TotalFeti::loadNormInf() const {
@@ -980,7 +999,7 @@ std::vector<std::vector<double>> TotalFeti::recoverDisplacements(const DualVecto
     Local& L = *local_[i];
     const LO n = L.n();
     for (LO r = 0; r < L.m(); ++r) L.in[r] = lo[L.overlapIndex[r]];
-    applyBlockTranspose(*L.block, L.in.data(), L.x.data(), n);
+    applyBlockTranspose(*L.block, L.rowOrder, L.in.data(), L.x.data(), n);
     for (LO k = 0; k < n; ++k) L.x[k] = L.system.f[k] - L.x[k];
     u[i].assign(n, 0.0);
     L.solver.applyPseudoInverse(L.x.data(), u[i].data());

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tribos/qp/Reductions.hpp"
+
 namespace tribos::qp {
 
 MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const SeparableSet& omega, double normA,
@@ -45,7 +47,7 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
   // f(x) = 1/2 x^T A x - b^T x = 1/2 x^T (g - b), free given g.
   auto objective = [&](const Vector& at, const Vector& gradientAt) {
     trial.update(1.0, gradientAt, -1.0, b, 0.0);
-    return 0.5 * at.dot(trial);
+    return 0.5 * dot(at, trial);
   };
   // x := P(x - alpha_bar d), then g.
   auto projectedStep = [&](const Vector& direction) {
@@ -73,7 +75,7 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
     A.apply(beta, Ap);
     ++counters.operatorApplications;
     // The second derivative along the arc: beta^T A beta plus what the curved boundary adds.
-    const double betaAbeta = beta.dot(Ap) + omega.boundaryCurvature(x, g, beta), betaNorm2 = beta.dot(beta);
+    const double betaAbeta = dot(beta, Ap) + omega.boundaryCurvature(x, g, beta), betaNorm2 = dot(beta, beta);
     // Only where alpha_bar is too short for it: a shorter exact step (e.g. at the sharp end of
     // a flat ellipse) does less than the gradient projection step, which moves the free part too.
     const double alpha = betaAbeta > 0.0 ? betaNorm2 / betaAbeta : 0.0;
@@ -109,7 +111,7 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
   };
   auto projectedGradientNorm = [&]() {
     gradientProjected.update(1.0, phi, 1.0, beta, 0.0);
-    return gradientProjected.norm2();
+    return norm2(gradientProjected);
   };
 
   omega.project(x);
@@ -136,18 +138,18 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
 
     // Proportional iterate: the chopped gradient is small against the reduced free one.
     omega.reducedFreeGradient(x, phi, alphaBar, reduced);
-    const double betaNorm2 = beta.dot(beta);
-    const double proportion = settings_.gamma * settings_.gamma * reduced.dot(phi);
+    const double betaNorm2 = dot(beta, beta);
+    const double proportion = settings_.gamma * settings_.gamma * dot(reduced, phi);
     if (betaNorm2 <= proportion) {
       proportioningRun = 0;
       A.apply(p, Ap);
       ++counters.operatorApplications;
-      const double pAp = p.dot(Ap);
+      const double pAp = dot(p, Ap);
       if (!(pAp > 0.0)) {  // p = 0 or A not positive on p: fall back to a gradient projection
         gradientProjectionStep();
         continue;
       }
-      const double alphaCg = g.dot(p) / pAp;
+      const double alphaCg = dot(g, p) / pAp;
       const double alphaFeasible = omega.maxFeasibleStep(x, p);
       if (alphaCg <= alphaFeasible) {
         // Conjugate gradient step on the current face.
@@ -155,7 +157,7 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
         g.update(-alphaCg, Ap, 1.0);
         omega.splitGradient(x, g, phi, beta);
         preconditionedFreeGradient();
-        const double gammaCg = z.dot(Ap) / pAp;
+        const double gammaCg = dot(z, Ap) / pAp;
         p.update(1.0, z, -gammaCg);
         ++counters.cgSteps;
       } else {
@@ -169,18 +171,18 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
           // kept only if it decreases f (monotonicity safeguard); else the fixed alpha_bar.
           A.apply(phi, Ap);
           ++counters.operatorApplications;
-          const double phiAphi = phi.dot(Ap);
-          const double alphaOpt = phiAphi > 0.0 ? phi.dot(phi) / phiAphi : 0.0;
+          const double phiAphi = dot(phi, Ap);
+          const double alphaOpt = phiAphi > 0.0 ? dot(phi, phi) / phiAphi : 0.0;
           if (alphaOpt > alphaBar) {
             reduced.update(1.0, g, -1.0, b, 0.0);
-            const double fHalf = 0.5 * x.dot(reduced);
+            const double fHalf = 0.5 * dot(x, reduced);
             trial.update(1.0, x, -alphaOpt, phi, 0.0);
             omega.project(trial);
             A.apply(trial, trialGradient);
             ++counters.operatorApplications;
             trialGradient.update(-1.0, b, 1.0);
             reduced.update(1.0, trialGradient, -1.0, b, 0.0);
-            if (0.5 * trial.dot(reduced) <= fHalf) {
+            if (0.5 * dot(trial, reduced) <= fHalf) {
               x.assign(trial);
               g.assign(trialGradient);
               omega.splitGradient(x, g, phi, beta);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "tribos/qp/Mpgp.hpp"
+#include "tribos/qp/Reductions.hpp"
 
 namespace tribos::qp {
 
@@ -56,7 +57,7 @@ double lanczosNorm(const SymmetricOperator& A, const Map& map, int maxSteps, dou
   const auto m = Teuchos::rcpFromRef(map);
   Vector v(m), previous(m), w(m);
   deterministicStart(map, v);
-  const double norm = v.norm2();
+  const double norm = norm2(v);
   if (norm == 0.0) return 0.0;
   v.scale(1.0 / norm);
   previous.putScalar(0.0);
@@ -65,9 +66,9 @@ double lanczosNorm(const SymmetricOperator& A, const Map& map, int maxSteps, dou
   for (int j = 0; j < maxSteps; ++j) {
     A.apply(v, w);
     if (applications) ++*applications;
-    alpha.push_back(w.dot(v));
+    alpha.push_back(dot(w, v));
     w.update(-alpha.back(), v, -(beta.empty() ? 0.0 : beta.back()), previous, 1.0);
-    const double b = w.norm2();
+    const double b = norm2(w);
     if (!std::isfinite(b) || !std::isfinite(alpha.back())) return std::numeric_limits<double>::quiet_NaN();
     const double next = largestTridiagonalEigenvalue(alpha, beta);
     const bool done = std::abs(next - estimate) <= tolerance * next || b <= 1e-14 * std::abs(next);
@@ -84,13 +85,13 @@ double powerMethod(const SymmetricOperator& A, const Map& map, int iterations, d
                    long long* applications) {
   Vector x(Teuchos::rcpFromRef(map)), y(Teuchos::rcpFromRef(map));
   deterministicStart(map, x);
-  double norm = x.norm2(), estimate = 0.0;
+  double norm = norm2(x), estimate = 0.0;
   if (norm == 0.0) return 0.0;
   x.scale(1.0 / norm);
   for (int it = 0; it < iterations; ++it) {
     A.apply(x, y);
     if (applications) ++*applications;
-    const double next = y.norm2();  // ||A x|| with ||x|| = 1
+    const double next = norm2(y);  // ||A x|| with ||x|| = 1
     if (next == 0.0) return 0.0;
     if (!std::isfinite(next)) return next;  // a NaN / Inf in A: the caller stops (no more products)
     x.update(1.0 / next, y, 0.0);

@@ -6,6 +6,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
+
+#include "tribos/qp/Reductions.hpp"
 
 namespace tribos::qp {
 
@@ -265,7 +268,7 @@ double SeparableSet::boundaryCurvature(const Vector& x, const Vector& g, const V
   auto xv = x.getLocalViewHost(Tpetra::Access::ReadOnly);
   auto gv = g.getLocalViewHost(Tpetra::Access::ReadOnly);
   auto dv = d.getLocalViewHost(Tpetra::Access::ReadOnly);
-  double sum = 0.0;
+  std::vector<double> terms;  // one per active ellipse, summed independently of the layout
   for (size_t k = 0; k < ellipseIndex_.size(); ++k) {
     const auto [i, j] = ellipseIndex_[k];
     const auto a = effectiveAxes(k);
@@ -278,11 +281,10 @@ double SeparableSet::boundaryCurvature(const Vector& x, const Vector& g, const V
     const std::array<double, 2> n{y[0] / (a[0] * a[0]), y[1] / (a[1] * a[1])};
     const double nn = std::hypot(n[0], n[1]);
     const double pressing = std::max(-(n[0] * at(gv, i) + n[1] * at(gv, j)) / nn, 0.0);
-    sum += kappa * pressing * (at(dv, i) * at(dv, i) + at(dv, j) * at(dv, j));
+    terms.push_back(kappa * pressing * (at(dv, i) * at(dv, i) + at(dv, j) * at(dv, j)));
   }
-  double global = 0.0;
-  Teuchos::reduceAll(*x.getMap()->getComm(), Teuchos::REDUCE_SUM, 1, &sum, &global);
-  return global;
+  // At most one term per two entries of x.
+  return sumOver(x, terms.data(), terms.size(), static_cast<long long>(x.getGlobalLength()));
 }
 
 void SeparableSet::reducedFreeGradient(const Vector& x, const Vector& phi, double alpha, Vector& out) const {

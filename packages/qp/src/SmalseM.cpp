@@ -6,11 +6,13 @@
 #include <cmath>
 #include <memory>
 
+#include "tribos/qp/Reductions.hpp"
+
 namespace tribos::qp {
 
 double EqualityProjector::normQ(const Vector& x, Vector& scratch) const {
   applyQ(x, scratch);
-  return scratch.norm2();
+  return norm2(scratch);
 }
 
 namespace {
@@ -71,7 +73,7 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
   const auto map = mu.getMap();
   // Scale-free parameters: rho and M relative to ||A||, eta relative to ||c|| (= ||P h||).
   counters.normA = lanczosNorm(A, *map, s.normEstimateSteps, 1e-4, &counters.operatorApplications);
-  double normC = c.norm2();
+  double normC = norm2(c);
   if (!std::isfinite(counters.normA) || !std::isfinite(normC)) {
     counters.nonFinite = true;  // a NaN / Inf in A or c: nothing to iterate on
     return counters;
@@ -88,7 +90,7 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
     // tolerances need another scale of the gradient: ||A|| ||P_Omega(0)||.
     mu.putScalar(0.0);
     omega.project(mu);
-    normC = counters.normA * mu.norm2();
+    normC = counters.normA * norm2(mu);
     if (normC == 0.0) {
       counters.converged = true;
       return counters;
@@ -123,7 +125,7 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
   const Mpgp mpgp(mpgpSettings);
   auto equalityNorm = [&](const Vector& x) {
     Q.applyQ(x, Qmu);
-    return Qmu.norm2();
+    return norm2(Qmu);
   };
   // ||G mu|| is measured as ||A|| ||Q mu|| in the Conventional outer test and in what is
   // reported: the paper states its tests for the problem scaled to ||PFP|| = 1
@@ -135,7 +137,7 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
   const double normA = counters.normA;
   auto smalseConverged = [&](double gp, double gmu, const Vector& x) {
     if (gp > eps) return false;
-    if (s.equalityTest == "Paper") return gmu <= s.tolerance * s.M0 * x.norm2();
+    if (s.equalityTest == "Paper") return gmu <= s.tolerance * s.M0 * norm2(x);
     return normA * gmu <= eps;
   };
 
@@ -173,7 +175,7 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
     // L_rho(mu, beta) = 1/2 mu^T A_rho mu - b^T mu = 1/2 mu^T (g - b) with g = A_rho mu - b.
     Vector gMinusB(map);
     gMinusB.update(1.0, g, -1.0, b, 0.0);
-    const double L = 0.5 * mu.dot(gMinusB);
+    const double L = 0.5 * dot(mu, gMinusB);
     const bool done = smalseConverged(gp, gmu, mu);
 
     // Step 3: beta^{k+1} = beta^k + rho G mu^k, kept as G^T beta (+= rho Q mu).

@@ -145,12 +145,14 @@ class TotalFeti {
   /// (G read twice each). All ranks. Divided by the memory bandwidth it bounds
   /// the time of one product from below (doc/performance.md).
   double bytesPerFApplication() const { return bytesPerFApplication_; }
+  /// sum of n_s over all subdomains (the same on every layout).
+  long long primalDofs() const { return primalDofs_; }
 
   struct Local;       ///< one owned subdomain (implementation detail, defined in TotalFeti.cpp)
   struct CoarseRows;  ///< G on the owned rows (implementation detail, defined in TotalFeti.cpp)
 
  private:
-  // x (owned) -> overlap values -> per-subdomain op -> export-add into y (owned).
+  // x (owned) -> overlap values -> per-subdomain op -> each row's entries summed into y (owned).
   template <class LocalOp>
   void applyBlockwise(const DualVector& x, DualVector& y, LocalOp op) const;
   /// y = B K^dagger B^T x, or B K^+ B^T x without `removeKernel` (implicit F only).
@@ -171,11 +173,19 @@ class TotalFeti {
   Teuchos::RCP<const DualMap> dualMap_, overlapMap_;
   Teuchos::RCP<const Tpetra::Import<LO, GO>> importer_;
   bool overlapIsOwned_ = false;  ///< one rank: the overlap map is the owned map
-  Teuchos::RCP<DualVector> xOverlap_, yOverlap_;  ///< applyBlockwise's, allocated once
+  Teuchos::RCP<DualVector> xOverlap_;  ///< applyBlockwise's, allocated once
   /// Per overlap row, where its sum comes from: contribution_[k] for k in
   /// [contributionStart_[row], contributionStart_[row + 1]) points into a subdomain's `out`.
   std::vector<LO> contributionStart_;
   std::vector<const double*> contribution_;
+  /// Several ranks: the subdomains' `out` entries travel one by one to the owner of their
+  /// row (source: entry (s, r) of the owned subdomains, first entry of each at
+  /// entrySourceFirst_; target: the entries of the owned rows, G_'s order), which adds them
+  /// in ascending subdomain order: a row of three or more subdomains (mortar contact) sums
+  /// in the same order on every layout, not pre-summed per rank.
+  Teuchos::RCP<DualVector> entrySource_, entryTarget_;
+  Teuchos::RCP<const Tpetra::Import<LO, GO>> entryImport_;
+  std::vector<LO> entrySourceFirst_;
   /// G_I G_I^T over the owned rows with mask != 0, summed over the ranks (no mask: G G^T),
   /// replicated on every rank, on the pattern of G G^T.
   fem::CsrMatrix assembleCoarse(const std::vector<char>* ownedRowMask) const;
@@ -190,9 +200,13 @@ class TotalFeti {
   void buildCoarseRows();
   /// Sets factorNonzeros_ and bytesPerFApplication_ (collective).
   void measureTraffic();
-  /// The part of G x that this rank's owned rows contribute (length l, not reduced);
-  /// copyOfX (optional, owned rows) gets a copy of x.
-  void applyGOwnedRows(const double* x, double* gx, double* copyOfX = nullptr) const;
+  /// The entries of G x of this rank's subdomains (the others zero; length l, not reduced),
+  /// from x on the overlap rows.
+  void applyGOwnedSubdomains(const double* xOverlap, double* gx) const;
+  /// G x = the sum of every rank's applyGOwnedSubdomains (exact: one nonzero term each).
+  void reduceCoarse(std::vector<double>& local, double* gx) const;
+  double gMax_ = 0.0;            ///< max |g_{s,r,j}| over all ranks
+  long long primalDofs_ = 0;     ///< sum of n_s over all subdomains
 
   std::unique_ptr<CoarseRows> G_;           ///< G on the owned rows
   std::unique_ptr<SparseCholesky> coarse_;  ///< G G^T, replicated
