@@ -107,6 +107,8 @@ nlohmann::json profileJson(const feti::OperatorProfile& p) {
           {"coarse_solves", p.coarseSolves},
           {"coarse_solves_reused", p.coarseSolvesReused},
           {"projections_reused", p.projectionsReused},
+          {"coarse_coordinates", p.coarseCoordinates},
+          {"coarse_coordinates_reused", p.coarseCoordinatesReused},
           {"preconditioner_applications", p.preconditionerApplications},
           {"f_s", p.fSeconds},
           {"g_s", p.gSeconds},
@@ -115,6 +117,7 @@ nlohmann::json profileJson(const feti::OperatorProfile& p) {
           {"preconditioner_s", p.preconditionerSeconds},
           {"coarse_factor_s", p.coarseFactorSeconds},
           {"coarse_factor_nonzeros", p.coarseFactorNonzeros},
+          {"coarse_subtrees", p.coarseSubtrees},
           {"g_entries", p.gEntries},
           {"g_rows", p.gRows}};
 }
