@@ -24,7 +24,7 @@ namespace tribos::feti {
 namespace {
 /// The split stops at this many subtrees: enough for the dynamic schedule to balance two to
 /// sixteen threads, few enough that the top (the separators above them) stays a small share.
-constexpr int kTargetSubtrees = 16;
+constexpr int kTargetSubtrees = 4;
 }  // namespace
 
 struct PackedFactor::Subtrees {

@@ -190,7 +190,7 @@ TEST(SparseCholesky, subtreeSolvesGiveTheSameBitsOnAnyThreadCountAndSolveTheSyst
   // The replicated coarse factor's concurrent solves (setSubtreeSolve): the elimination
   // tree split into subtrees solved on the threads of forEachSubdomain. From any size here
   // (the environment override of the threshold), on a supernodal factor (>= 4000 rows) and a
-  // simplicial one (merged into supernodes by tribos), both with several levels of subtrees.
+  // simplicial one (merged into supernodes by tribos), each split into at least three subtrees.
   setenv("TRIBOS_SUBTREE_SOLVE_FROM", "0", 1);
   for (int m : {8, 12}) {
     const fem::CsrMatrix A = randomSpd(m, 0.1, 7u + m);
@@ -199,7 +199,7 @@ TEST(SparseCholesky, subtreeSolvesGiveTheSameBitsOnAnyThreadCountAndSolveTheSyst
     serial->factorize(A);
     split->factorize(A);
     EXPECT_EQ(serial->subtreeCount(), 0);
-    EXPECT_GE(split->subtreeCount(), 8) << "m = " << m;
+    EXPECT_GE(split->subtreeCount(), 3) << "m = " << m;
     const auto b = randomVector(static_cast<size_t>(A.n), 3u + m);
     std::vector<double> reference(b.size());
     serial->solve(b.data(), reference.data());
