@@ -32,7 +32,7 @@ inline __attribute__((always_inline)) void subtractScaled(double* __restrict y, 
 }  // namespace
 
 TRIBOS_KERNEL void PackedFactor::forward(LO first, LO last, double* x, double* panelWork, LO columnEnd,
-                                        const LO* topIndex, double* topUpdates) const {
+                                        double* topUpdates) const {
   // L y = x, supernode by supernode: the diagonal triangle by columns, then the panel as
   // t = panel * x_d (one axpy per column into the contiguous t), scattered: x_rows -= t.
   const double* values = values_.data();
@@ -60,7 +60,7 @@ TRIBOS_KERNEL void PackedFactor::forward(LO first, LO last, double* x, double* p
     if (panelRows[nr - 1] >= columnEnd)
       inside = static_cast<LO>(std::lower_bound(panelRows, panelRows + nr, columnEnd) - panelRows);
     for (LO r = 0; r < inside; ++r) x[panelRows[r]] -= t[r];
-    for (LO r = inside; r < nr; ++r) topUpdates[topIndex[panelRows[r]]] += t[r];
+    for (LO r = inside; r < nr; ++r) *topUpdates++ = t[r];
   }
 }
 
@@ -90,12 +90,26 @@ TRIBOS_KERNEL void PackedFactor::backward(LO first, LO last, double* x, double* 
   }
 }
 
+void PackedFactor::applyTopUpdates(LO first, LO last, double* x, LO columnEnd, const double* topUpdates) const {
+  // The subtractions that forward() left out, in its order: the same operations on every
+  // entry of x as the serial forward substitution.
+  for (LO k = first; k < last; ++k) {
+    const Supernode& s = supernodes_[k];
+    const LO nr = s.numPanelRows;
+    if (nr == 0) continue;
+    const LO* panelRows = rows_.data() + s.rowOffset;
+    if (panelRows[nr - 1] < columnEnd) continue;
+    const LO inside = static_cast<LO>(std::lower_bound(panelRows, panelRows + nr, columnEnd) - panelRows);
+    for (LO r = inside; r < nr; ++r) x[panelRows[r]] -= *topUpdates++;
+  }
+}
+
 void PackedFactor::solvePermuted(double* v, double* work) const {
   if (subtrees_) {
     solveSubtrees(v);
     return;
   }
-  forward(0, numSupernodes(), v, work, size(), nullptr, nullptr);
+  forward(0, numSupernodes(), v, work, size(), nullptr);
   backward(0, numSupernodes(), v, work);
 }
 

@@ -57,10 +57,9 @@ class PackedFactor {
   /// Splits the elimination tree into independent subtrees for solve() and solvePermuted()
   /// when the factor has at least `fromValues` stored values (and the supernodes are in
   /// postorder, as CHOLMOD's are): the subtrees' substitutions then run on the threads of
-  /// core::forEachSubdomain, the rest (the top separators) on the calling thread. The split
-  /// depends on the factor alone and the partial sums are added in a fixed order, so the
-  /// solves give the same bits for any number of threads (not the bits of the serial solve:
-  /// the updates of the top rows are summed per subtree first). Returns whether it split.
+  /// core::forEachSubdomain, the rest (the top separators) on the calling thread. Every
+  /// entry of x sees the operations of the serial solve in the same order, so the bits are
+  /// those of the serial solve for any number of threads. Returns whether it split.
   /// Such a factor must not be solved from inside forEachSubdomain.
   bool planSubtrees(long long fromValues);
   /// Number of subtrees of the split (0: solved serially).
@@ -81,10 +80,11 @@ class PackedFactor {
     long long panelOffset;     ///< into values_: numPanelRows x numColumns, column-major
   };
   /// Forward substitution over supernodes [first, last). Panel rows below `columnEnd` are
-  /// updated in x; those at or above it (the top rows of a subtree) are summed into
-  /// topUpdates[topIndex[row]] instead (+=), for the caller to subtract.
-  void forward(LO first, LO last, double* x, double* panelWork, LO columnEnd, const LO* topIndex,
-               double* topUpdates) const;
+  /// updated in x; for those at or above it (the top rows of a subtree) the update t_r is
+  /// stored in topUpdates instead, in order, for applyTopUpdates.
+  void forward(LO first, LO last, double* x, double* panelWork, LO columnEnd, double* topUpdates) const;
+  /// x_row -= the stored updates of forward(first, last, ..., columnEnd, topUpdates).
+  void applyTopUpdates(LO first, LO last, double* x, LO columnEnd, const double* topUpdates) const;
   /// Backward substitution over supernodes [first, last), from the last.
   void backward(LO first, LO last, double* x, double* panelWork) const;
   struct Subtrees;  ///< the split of planSubtrees (PackedFactorSubtrees.cpp)

@@ -5,13 +5,14 @@
 // In postorder a subtree is a contiguous range of supernodes, and its columns a contiguous
 // range of columns; its panel rows are either its own columns or columns of its ancestors,
 // which lie outside every subtree (the "top"). So:
-//  - forward: the subtrees run concurrently, each updating its own rows in x and summing
-//    its updates of top rows into its own buffer; the buffers are then subtracted from x in
-//    subtree order, and the top supernodes solved in order on the calling thread;
+//  - forward: the subtrees run concurrently, each updating its own rows in x and storing its
+//    updates of top rows (t_r, one per panel row) in order; then, on the calling thread and
+//    in supernode order, the stored updates of each subtree are subtracted and the top
+//    supernodes solved. Top rows are only written while a subtree runs, never read, so every
+//    entry of x sees the subtractions of the serial solve in the serial order;
 //  - backward: the top supernodes first (calling thread), then the subtrees concurrently,
 //    each reading top rows that no longer change.
-// Which thread runs which subtree does not enter any sum, so the bits do not depend on the
-// number of threads; the same buffered sums run on one thread.
+// The bits are those of the serial solve, for any number of threads.
 #include <algorithm>
 #include <numeric>
 #include <stdexcept>
@@ -31,13 +32,16 @@ struct PackedFactor::Subtrees {
   std::vector<LO> first, last;      ///< supernode range [first, last) of each subtree, ascending
   std::vector<LO> columnEnd;        ///< one past the last column of each subtree
   std::vector<int> schedule;        ///< the subtrees by decreasing size: the order of the tasks only
-  std::vector<std::pair<LO, LO>> topRuns;  ///< ranges of supernodes outside every subtree
-  std::vector<LO> topColumns;       ///< columns of the top supernodes, ascending
-  std::vector<LO> topIndex;         ///< column -> its index in topColumns (-1: not a top column)
-  std::vector<size_t> workOffset;   ///< per subtree: its panel work (maxPanelRows) and top updates
-  size_t workStride = 0;
+  /// The supernodes in order as segments: a subtree (index >= 0) or a top run [first, last).
+  struct Segment {
+    int subtree;
+    LO first, last;
+  };
+  std::vector<Segment> segments;
+  std::vector<size_t> panelOffset, updateOffset;  ///< per subtree, into work
+  size_t topPanelOffset = 0;                      ///< panel work of the top supernodes
   double topShare = 0.0;
-  mutable std::vector<double> work;  ///< per subtree, workStride entries
+  mutable std::vector<double> work;  ///< per subtree: panel work, then its stored top updates
 };
 
 PackedFactor::PackedFactor() = default;
@@ -95,36 +99,44 @@ bool PackedFactor::planSubtrees(long long fromValues) {
   std::sort(chosen.begin(), chosen.end());
 
   auto plan = std::make_unique<Subtrees>();
-  std::vector<char> inSubtree(ns, 0);
   long long subtreeValues = 0;
-  LO maxRows = 0;
+  size_t workSize = 0;
   for (LO root : chosen) {
-    plan->first.push_back(firstDescendant[root]);
+    const LO first = firstDescendant[root], columnEnd = supernodes_[root].firstColumn + supernodes_[root].numColumns;
+    LO maxRows = 0;
+    size_t topUpdates = 0;
+    for (LO k = first; k <= root; ++k) {
+      const Supernode& s = supernodes_[k];
+      maxRows = std::max(maxRows, s.numPanelRows);
+      const LO* rows = rows_.data() + s.rowOffset;
+      topUpdates += static_cast<size_t>(rows + s.numPanelRows - std::lower_bound(rows, rows + s.numPanelRows, columnEnd));
+    }
+    plan->first.push_back(first);
     plan->last.push_back(root + 1);
-    plan->columnEnd.push_back(supernodes_[root].firstColumn + supernodes_[root].numColumns);
+    plan->columnEnd.push_back(columnEnd);
+    plan->panelOffset.push_back(workSize);
+    plan->updateOffset.push_back(workSize + static_cast<size_t>(maxRows));
+    workSize += static_cast<size_t>(maxRows) + topUpdates;
     subtreeValues += values[root];
-    for (LO k = firstDescendant[root]; k <= root; ++k) {
-      inSubtree[k] = 1;
-      maxRows = std::max(maxRows, supernodes_[k].numPanelRows);
-    }
   }
-  plan->topIndex.assign(n, -1);
-  for (LO k = 0; k < ns; ++k) {
-    if (inSubtree[k]) continue;
-    if (plan->topRuns.empty() || plan->topRuns.back().second != k) plan->topRuns.push_back({k, k});
-    plan->topRuns.back().second = k + 1;
-    for (LO j = 0; j < supernodes_[k].numColumns; ++j) {
-      plan->topIndex[supernodes_[k].firstColumn + j] = static_cast<LO>(plan->topColumns.size());
-      plan->topColumns.push_back(supernodes_[k].firstColumn + j);
+  LO maxTopRows = 0;
+  for (LO k = 0, i = 0; k < ns;) {
+    if (i < static_cast<LO>(chosen.size()) && k == plan->first[i]) {
+      plan->segments.push_back({static_cast<int>(i), plan->first[i], plan->last[i]});
+      k = plan->last[i++];
+      continue;
     }
+    if (plan->segments.empty() || plan->segments.back().subtree >= 0) plan->segments.push_back({-1, k, k});
+    maxTopRows = std::max(maxTopRows, supernodes_[k].numPanelRows);
+    plan->segments.back().last = ++k;
   }
   const int count = static_cast<int>(chosen.size());
   plan->schedule.resize(count);
   std::iota(plan->schedule.begin(), plan->schedule.end(), 0);
   std::stable_sort(plan->schedule.begin(), plan->schedule.end(),
                    [&](int a, int b) { return values[chosen[a]] > values[chosen[b]]; });
-  plan->workStride = static_cast<size_t>(maxRows) + plan->topColumns.size();
-  plan->work.assign(plan->workStride * count, 0.0);
+  plan->topPanelOffset = workSize;
+  plan->work.assign(workSize + static_cast<size_t>(maxTopRows), 0.0);
   long long total = 0;
   for (LO root : roots) total += values[root];
   plan->topShare = total > 0 ? 1.0 - static_cast<double>(subtreeValues) / static_cast<double>(total) : 0.0;
@@ -135,27 +147,27 @@ bool PackedFactor::planSubtrees(long long fromValues) {
 void PackedFactor::solveSubtrees(double* v) const {
   const Subtrees& p = *subtrees_;
   const int count = static_cast<int>(p.first.size());
-  const size_t numTop = p.topColumns.size();
   double* work = p.work.data();
   const LO n = size();
-  // Forward: the subtrees (any thread), their top updates in subtree order, then the top.
+  // Forward: the subtrees (any thread), then in supernode order their stored top updates and
+  // the top supernodes.
   core::forEachSubdomain(count, [&](int task) {
     const int i = p.schedule[task];
-    double* panelWork = work + p.workStride * i;
-    double* updates = panelWork + (p.workStride - numTop);
-    std::fill(updates, updates + numTop, 0.0);
-    forward(p.first[i], p.last[i], v, panelWork, p.columnEnd[i], p.topIndex.data(), updates);
+    forward(p.first[i], p.last[i], v, work + p.panelOffset[i], p.columnEnd[i], work + p.updateOffset[i]);
   });
-  for (int i = 0; i < count; ++i) {
-    const double* updates = work + p.workStride * i + (p.workStride - numTop);
-    for (size_t j = 0; j < numTop; ++j) v[p.topColumns[j]] -= updates[j];
+  double* panelWork = work + p.topPanelOffset;
+  for (const auto& segment : p.segments) {
+    if (segment.subtree >= 0)
+      applyTopUpdates(segment.first, segment.last, v, p.columnEnd[segment.subtree], work + p.updateOffset[segment.subtree]);
+    else
+      forward(segment.first, segment.last, v, panelWork, n, nullptr);
   }
-  for (const auto& run : p.topRuns) forward(run.first, run.second, v, work, n, nullptr, nullptr);
   // Backward: the top from its last supernode, then the subtrees (any thread).
-  for (auto run = p.topRuns.rbegin(); run != p.topRuns.rend(); ++run) backward(run->first, run->second, v, work);
+  for (auto segment = p.segments.rbegin(); segment != p.segments.rend(); ++segment)
+    if (segment->subtree < 0) backward(segment->first, segment->last, v, panelWork);
   core::forEachSubdomain(count, [&](int task) {
     const int i = p.schedule[task];
-    backward(p.first[i], p.last[i], v, work + p.workStride * i);
+    backward(p.first[i], p.last[i], v, work + p.panelOffset[i]);
   });
 }
 
