@@ -142,6 +142,48 @@ TEST(TotalFeti, repeatedProjectionIsReusedWithTheSameBits) {
   EXPECT_EQ(r1, r2);
 }
 
+TEST(TotalFeti, coarseCoordinatesOfARecentProjectionAreCopiedAndGiveNormQ) {
+  // coarseCoordinates(x) = (G x, (G G^T)^{-1} G x): copied from the projection memo (no coarse
+  // solve) while x is one of the last four projected vectors, with the bits of a fresh
+  // computation; gx^T a = ||Q x||^2 = ||x - P x||^2 to round-off.
+  auto p = makeProblem("4x2x2", 2, false);
+  auto x = p->feti->createDualVector(), Px = p->feti->createDualVector(), other = p->feti->createDualVector();
+  randomize(*x, 5);
+  p->feti->project(*x, *Px);
+  for (int k = 0; k < 3; ++k) {  // three more projections: x is the oldest of four
+    randomize(*other, 10 + k);
+    p->feti->project(*other, *other);
+  }
+  std::vector<double> gx, a;
+  const auto before = p->feti->profile();
+  p->feti->coarseCoordinates(*x, gx, a);
+  const auto after = p->feti->profile();
+  EXPECT_EQ(after.coarseCoordinatesReused - before.coarseCoordinatesReused, 1);
+  EXPECT_EQ(after.coarseSolves, before.coarseSolves);
+  std::vector<double> freshG, freshA;
+  p->feti->applyG(*x, freshG);
+  freshA = freshG;
+  p->feti->solveCoarse(freshA);
+  EXPECT_EQ(gx, freshG);
+  EXPECT_EQ(a, freshA);
+  double q = 0.0;
+  for (size_t i = 0; i < gx.size(); ++i) q += gx[i] * a[i];
+  auto Qx = p->feti->createDualVector();
+  Qx->update(1.0, *x, -1.0, *Px, 0.0);
+  const double normQ = Qx->norm2();
+  EXPECT_NEAR(std::sqrt(q), normQ, 1e-10 * normQ);
+  // A fifth projection pushes x out: computed afresh (one coarse solve, same bits).
+  randomize(*other, 20);
+  p->feti->project(*other, *other);
+  const auto fifth = p->feti->profile();
+  std::vector<double> gx2, a2;
+  p->feti->coarseCoordinates(*x, gx2, a2);
+  EXPECT_EQ(p->feti->profile().coarseCoordinatesReused, fifth.coarseCoordinatesReused);
+  EXPECT_EQ(p->feti->profile().coarseSolves - fifth.coarseSolves, 1);
+  EXPECT_EQ(gx2, freshG);
+  EXPECT_EQ(a2, freshA);
+}
+
 TEST(TotalFeti, projectedDualOperatorSkipsTheKernelProjectionsOnKerG) {
   // P F x = P B K^+ B^T x for x in Ker G (applyPF): the kernel projections of K^dagger act
   // on nothing there, up to rounding.

@@ -71,14 +71,17 @@ class CoarseSpaceProjector : public qp::EqualityProjector {
     feti_.project(x, y);
     y.update(1.0, x, -1.0);
   }
-  /// ||Q x||^2 = x^T Q x = (G x)^T (G G^T)^{-1} G x: G and the coarse solve, no G^T pass.
+  /// ||Q x||^2 = x^T Q x = (G x)^T (G G^T)^{-1} G x: G and the coarse solve, no G^T pass
+  /// (neither when x was projected recently: TotalFeti::coarseCoordinates).
   double normQ(const qp::Vector& x, qp::Vector&) const override {
-    feti_.applyG(x, gx_);
-    a_ = gx_;
-    feti_.solveCoarse(a_);
+    feti_.coarseCoordinates(x, gx_, a_);
     double q = 0.0;
     for (size_t i = 0; i < a_.size(); ++i) q += gx_[i] * a_[i];
     return std::sqrt(std::max(q, 0.0));
+  }
+  bool coordinates(const qp::Vector& x, std::vector<double>& u, std::vector<double>& w) const override {
+    feti_.coarseCoordinates(x, u, w);
+    return true;
   }
 
  private:

@@ -38,6 +38,15 @@ namespace {
 /// catches up with two concurrent simplicial ones only at ~4000-6500 rows.
 constexpr LO kSupernodalFromDofs = 4000;
 
+/// Factors with at least this many stored values split their elimination tree for concurrent
+/// solves when asked (setSubtreeSolve): measured in doc/coarse_problem.md. The threshold
+/// depends on the factor alone, so every rank and thread layout takes the same path.
+/// TRIBOS_SUBTREE_SOLVE_FROM=<values> overrides it (for those measurements).
+long long subtreeSolveFromValues() {
+  if (const char* from = std::getenv("TRIBOS_SUBTREE_SOLVE_FROM")) return std::atoll(from);
+  return 1000000;
+}
+
 /// Runs f with OpenMP parallel regions disabled unless already inside an active one.
 template <class F>
 void withoutNestedThreads(F&& f) {
@@ -152,7 +161,10 @@ class CholmodCholesky final : public SparseCholesky {
       }
     });
     const bool failed = !L || common_.status != CHOLMOD_OK || L->minor < L->n || !L->is_ll;
-    if (!failed) packed_ = packFactor(*L);  // the solves use the packed copy only
+    if (!failed) {
+      packed_ = packFactor(*L);  // the solves use the packed copy only
+      if (subtreeSolve_) packed_.planSubtrees(subtreeSolveFromValues());
+    }
     if (L) cholmod_free_factor(&L, &common_);
     if (failed)
       throw std::runtime_error("CHOLMOD: the matrix (n = " + std::to_string(A.n) +
@@ -175,8 +187,11 @@ class CholmodCholesky final : public SparseCholesky {
   long long factorNonzeros() const override { return packed_.storedValues(); }
   long long solveBytes() const override { return packed_.solveBytes(); }
   std::string name() const override { return "CHOLMOD"; }
+  void setSubtreeSolve(bool enabled) override { subtreeSolve_ = enabled; }
+  int subtreeCount() const override { return packed_.numSubtrees(); }
 
  private:
+  bool subtreeSolve_ = false;
   mutable cholmod_common common_{};
   PackedFactor packed_;
   mutable std::vector<double> work_;

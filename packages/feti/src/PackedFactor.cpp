@@ -31,13 +31,15 @@ inline __attribute__((always_inline)) void subtractScaled(double* __restrict y, 
 }
 }  // namespace
 
-TRIBOS_KERNEL void PackedFactor::forward(double* x, double* panelWork) const {
+TRIBOS_KERNEL void PackedFactor::forward(LO first, LO last, double* x, double* panelWork, LO columnEnd,
+                                        double* topUpdates) const {
   // L y = x, supernode by supernode: the diagonal triangle by columns, then the panel as
   // t = panel * x_d (one axpy per column into the contiguous t), scattered: x_rows -= t.
   const double* values = values_.data();
   const LO* rows = rows_.data();
   double* __restrict t = panelWork;
-  for (const Supernode& s : supernodes_) {
+  for (LO k = first; k < last; ++k) {
+    const Supernode& s = supernodes_[k];
     double* __restrict xd = x + s.firstColumn;
     const double* __restrict invDiagonal = inverseDiagonal_.data() + s.firstColumn;
     const double* triangle = values + s.triangleOffset;
@@ -53,18 +55,23 @@ TRIBOS_KERNEL void PackedFactor::forward(double* x, double* panelWork) const {
     for (LO r = 0; r < nr; ++r) t[r] = 0.0;
     for (LO j = 0; j < nc; ++j, panel += nr) subtractScaled(t, panel, -xd[j], nr);
     const LO* __restrict panelRows = rows + s.rowOffset;
-    for (LO r = 0; r < nr; ++r) x[panelRows[r]] -= t[r];
+    // Rows ascend: those of the subtree first, then its top rows (none when columnEnd = n).
+    LO inside = nr;
+    if (panelRows[nr - 1] >= columnEnd)
+      inside = static_cast<LO>(std::lower_bound(panelRows, panelRows + nr, columnEnd) - panelRows);
+    for (LO r = 0; r < inside; ++r) x[panelRows[r]] -= t[r];
+    for (LO r = inside; r < nr; ++r) *topUpdates++ = t[r];
   }
 }
 
-TRIBOS_KERNEL void PackedFactor::backward(double* x, double* panelWork) const {
+TRIBOS_KERNEL void PackedFactor::backward(LO first, LO last, double* x, double* panelWork) const {
   // L^T y = x from the last supernode: gather the (solved) panel rows into t, one dot
   // product per panel column, then the transposed diagonal triangle.
   const double* values = values_.data();
   const LO* rows = rows_.data();
   double* __restrict t = panelWork;
-  for (auto it = supernodes_.rbegin(); it != supernodes_.rend(); ++it) {
-    const Supernode& s = *it;
+  for (LO k = last - 1; k >= first; --k) {
+    const Supernode& s = supernodes_[k];
     double* __restrict xd = x + s.firstColumn;
     const LO nc = s.numColumns, nr = s.numPanelRows;
     if (nr > 0) {
@@ -83,9 +90,27 @@ TRIBOS_KERNEL void PackedFactor::backward(double* x, double* panelWork) const {
   }
 }
 
+void PackedFactor::applyTopUpdates(LO first, LO last, double* x, LO columnEnd, const double* topUpdates) const {
+  // The subtractions that forward() left out, in its order: the same operations on every
+  // entry of x as the serial forward substitution.
+  for (LO k = first; k < last; ++k) {
+    const Supernode& s = supernodes_[k];
+    const LO nr = s.numPanelRows;
+    if (nr == 0) continue;
+    const LO* panelRows = rows_.data() + s.rowOffset;
+    if (panelRows[nr - 1] < columnEnd) continue;
+    const LO inside = static_cast<LO>(std::lower_bound(panelRows, panelRows + nr, columnEnd) - panelRows);
+    for (LO r = inside; r < nr; ++r) x[panelRows[r]] -= *topUpdates++;
+  }
+}
+
 void PackedFactor::solvePermuted(double* v, double* work) const {
-  forward(v, work);
-  backward(v, work);
+  if (subtrees_) {
+    solveSubtrees(v);
+    return;
+  }
+  forward(0, numSupernodes(), v, work, size(), nullptr);
+  backward(0, numSupernodes(), v, work);
 }
 
 void PackedFactor::solve(const double* b, double* x, double* work) const {

@@ -13,7 +13,13 @@
 // The solves are plain loops: no BLAS (so concurrent solves on threads are safe and give
 // the same bits as a solve alone), no allocation (the caller passes the work vector), and a
 // fixed order of every sum (the same bits on every thread, for any number of threads).
+//
+// A factor solved alone (G G^T, replicated on every rank) may also split its elimination tree
+// into independent subtrees (planSubtrees, PackedFactorSubtrees.cpp) whose substitutions run
+// on the threads of core::forEachSubdomain: bandwidth-bound, one thread reads about half of
+// what two can (doc/coarse_problem.md).
 #include <algorithm>
+#include <memory>
 #include <vector>
 
 #include "tribos/core/Types.hpp"
@@ -48,6 +54,24 @@ class PackedFactor {
   long long solveBytes() const;
   LO numSupernodes() const { return static_cast<LO>(supernodes_.size()); }
 
+  /// Splits the elimination tree into independent subtrees for solve() and solvePermuted()
+  /// when the factor has at least `fromValues` stored values (and the supernodes are in
+  /// postorder, as CHOLMOD's are): the subtrees' substitutions then run on the threads of
+  /// core::forEachSubdomain, the rest (the top separators) on the calling thread. Every
+  /// entry of x sees the operations of the serial solve in the same order, so the bits are
+  /// those of the serial solve for any number of threads. Returns whether it split.
+  /// Such a factor must not be solved from inside forEachSubdomain.
+  bool planSubtrees(long long fromValues);
+  /// Number of subtrees of the split (0: solved serially).
+  int numSubtrees() const;
+  /// Share of the stored values in the serial top part of the split (0 without a split).
+  double topShare() const;
+
+  PackedFactor();
+  ~PackedFactor();
+  PackedFactor(PackedFactor&&) noexcept;
+  PackedFactor& operator=(PackedFactor&&) noexcept;
+
  private:
   struct Supernode {
     LO firstColumn, numColumns, numPanelRows;
@@ -55,8 +79,16 @@ class PackedFactor {
     long long triangleOffset;  ///< into values_: packed strict lower triangle, by columns
     long long panelOffset;     ///< into values_: numPanelRows x numColumns, column-major
   };
-  void forward(double* x, double* panelWork) const;
-  void backward(double* x, double* panelWork) const;
+  /// Forward substitution over supernodes [first, last). Panel rows below `columnEnd` are
+  /// updated in x; for those at or above it (the top rows of a subtree) the update t_r is
+  /// stored in topUpdates instead, in order, for applyTopUpdates.
+  void forward(LO first, LO last, double* x, double* panelWork, LO columnEnd, double* topUpdates) const;
+  /// x_row -= the stored updates of forward(first, last, ..., columnEnd, topUpdates).
+  void applyTopUpdates(LO first, LO last, double* x, LO columnEnd, const double* topUpdates) const;
+  /// Backward substitution over supernodes [first, last), from the last.
+  void backward(LO first, LO last, double* x, double* panelWork) const;
+  struct Subtrees;  ///< the split of planSubtrees (PackedFactorSubtrees.cpp)
+  void solveSubtrees(double* v) const;
 
   std::vector<Supernode> supernodes_;
   std::vector<LO> rows_;
@@ -64,6 +96,7 @@ class PackedFactor {
   std::vector<double> inverseDiagonal_;  ///< 1 / L_jj, by column
   std::vector<LO> perm_;
   LO maxPanelRows_ = 0;
+  std::unique_ptr<Subtrees> subtrees_;
 };
 
 template <class Value>

@@ -324,6 +324,7 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
   core::Stopwatch coarseWatch;
   const fem::CsrMatrix GGt = assembleCoarse(nullptr);
   coarse_ = makeSparseCholesky(settings_.factorization);
+  coarse_->setSubtreeSolve(true);  // solved on the main thread, by every rank alike
   try {
     coarse_->factorize(GGt);
   } catch (const std::exception& e) {
@@ -333,6 +334,7 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
   }
   profile_.coarseFactorSeconds = coarseWatch.seconds();
   profile_.coarseFactorNonzeros = coarse_->factorNonzeros();
+  profile_.coarseSubtrees = coarse_->subtreeCount();
 
   measureTraffic();
 
@@ -906,8 +908,8 @@ void TotalFeti::project(const DualVector& x, DualVector& y) const {
     profile_.gSeconds += watch.seconds();
     return;
   }
-  CoarseMemo& memo = projectionMemo_[projectionMemoNext_];
-  projectionMemoNext_ = 1 - projectionMemoNext_;
+  ProjectionMemo& memo = projectionMemo_[projectionMemoNext_];
+  projectionMemoNext_ = (projectionMemoNext_ + 1) % kProjectionMemo;
   memo.valid = false;           // until its answer is stored below
   memo.rhs.assign(xd, xd + n);  // before y (which may be x) is written
   memo.solution.resize(n);
@@ -916,7 +918,9 @@ void TotalFeti::project(const DualVector& x, DualVector& y) const {
   watch.restart();
   reduceCoarse(coarseLocal_, coarseVector_.data());
   profile_.coarseReduceSeconds += watch.seconds();
+  memo.gx.assign(coarseVector_.begin(), coarseVector_.end());
   solveCoarse(coarseVector_);
+  memo.coarse.assign(coarseVector_.begin(), coarseVector_.end());
   watch.restart();
   yd = yView();
   if (&x == &y) xd = yd;
@@ -931,13 +935,31 @@ int TotalFeti::findProjection(const double* x) const {
   // ranks must agree (a hit skips the all-reduce of G x): one all-reduce of an int.
   const size_t bytes = sizeof(double) * static_cast<size_t>(G_->numRows);
   int local = -1;
-  for (int k = 0; k < 2 && local < 0; ++k)
+  // Newest first: the entry a caller most likely means.
+  for (int age = 1; age <= kProjectionMemo && local < 0; ++age) {
+    const int k = (projectionMemoNext_ - age + kProjectionMemo) % kProjectionMemo;
     if (projectionMemo_[k].valid && (bytes == 0 || std::memcmp(x, projectionMemo_[k].rhs.data(), bytes) == 0)) local = k;
+  }
   if (comm_->getSize() == 1) return local;
-  // Agreement: the same entry on every rank (MIN of (k or 2) and MAX agree).
-  int mine[2] = {local < 0 ? 2 : local, -(local < 0 ? 2 : local)}, all[2] = {0, 0};
+  // Agreement: the same entry on every rank (MIN of (k or none) and MAX agree).
+  const int none = kProjectionMemo;
+  int mine[2] = {local < 0 ? none : local, -(local < 0 ? none : local)}, all[2] = {0, 0};
   Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MIN, 2, mine, all);
-  return (all[0] == -all[1] && all[0] < 2) ? all[0] : -1;
+  return (all[0] == -all[1] && all[0] < none) ? all[0] : -1;
+}
+
+void TotalFeti::coarseCoordinates(const DualVector& x, std::vector<double>& gx, std::vector<double>& a) const {
+  ++profile_.coarseCoordinates;
+  const int hit = findProjection(readOnly(x));
+  if (hit >= 0) {
+    gx = projectionMemo_[hit].gx;
+    a = projectionMemo_[hit].coarse;
+    ++profile_.coarseCoordinatesReused;
+    return;
+  }
+  applyG(x, gx);
+  a = gx;
+  solveCoarse(a);
 }
 
 std::vector<double> TotalFeti::rigidBodyCoefficients(const DualVector& lambda) const {

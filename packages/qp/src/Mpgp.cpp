@@ -154,6 +154,7 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
       if (alphaCg <= alphaFeasible) {
         // Conjugate gradient step on the current face.
         x.update(-alphaCg, p, 1.0);
+        if (settings_.cgStep) settings_.cgStep(alphaCg, p);
         g.update(-alphaCg, Ap, 1.0);
         omega.splitGradient(x, g, phi, beta);
         preconditionedFreeGradient();

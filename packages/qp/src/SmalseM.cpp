@@ -6,6 +6,7 @@
 #include <cmath>
 #include <memory>
 
+#include "EqualityNorm.hpp"
 #include "tribos/qp/Reductions.hpp"
 
 namespace tribos::qp {
@@ -116,6 +117,9 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
     preconditioner = std::make_unique<PenalisedPreconditioner>(*s.preconditioner, Q, rho, map);
     mpgpSettings.preconditioner = preconditioner.get();
   }
+  // ||Q mu|| at every inner stop test, followed along CG steps where Q allows it.
+  EqualityNorm innerEquality(Q);
+  mpgpSettings.cgStep = [&](double alpha, const Vector& p) { innerEquality.cgStep(alpha, p); };
   if (s.innerMonitor)
     mpgpSettings.progress = [&](const MpgpCounters& inner) {
       s.innerMonitor({outer, inner.iterations, inner.projectedGradientNorm / normC, counters.normA * innerGmu / normC,
@@ -147,11 +151,12 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
     // (or the final accuracy reached).
     b.update(1.0, c, -1.0, betaT, 0.0);
     outer = k + 1;
+    innerEquality.restart();
     // The inner bound never drops below a tenth of the final accuracy: M_k may shrink
     // without limit when the slip bound moves (the Lagrangian is then not monotone), and
     // an inner target under round-off would never be met.
     const auto inner = mpgp.solve(Arho, b, omega, normArho, mu, g, [&](double gp, const Vector& x) {
-      innerGmu = Q.normQ(x, Qmu);  // every inner iteration: without G^T where Q allows it
+      innerGmu = innerEquality.norm(x, Qmu);  // every inner iteration: EqualityNorm.hpp
       innerBound = std::max(std::min(M * innerGmu, eta), s.innerFloor * eps);
       return gp <= innerBound || smalseConverged(gp, innerGmu, x) || (s.stopRequested && s.stopRequested());
     });

@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
+#include <cstring>
 #include <random>
 #include <string>
 
@@ -183,6 +185,46 @@ TEST_P(SparseCholeskyTest, threadsGiveTheSequentialResults) {
 
 INSTANTIATE_TEST_SUITE_P(Implementations, SparseCholeskyTest, ::testing::ValuesIn(feti::sparseCholeskyNames()),
                          [](const auto& info) { return info.param; });
+
+TEST(SparseCholesky, subtreeSolvesGiveTheSameBitsOnAnyThreadCountAndSolveTheSystem) {
+  // The replicated coarse factor's concurrent solves (setSubtreeSolve): the elimination
+  // tree split into subtrees solved on the threads of forEachSubdomain, with the bits of the
+  // serial solve. From any size here
+  // (the environment override of the threshold), on a supernodal factor (>= 4000 rows) and a
+  // simplicial one (merged into supernodes by tribos), each split into at least three subtrees.
+  setenv("TRIBOS_SUBTREE_SOLVE_FROM", "0", 1);
+  for (int m : {8, 12}) {
+    const fem::CsrMatrix A = randomSpd(m, 0.1, 7u + m);
+    auto serial = feti::makeSparseCholesky("CHOLMOD"), split = feti::makeSparseCholesky("CHOLMOD");
+    split->setSubtreeSolve(true);
+    serial->factorize(A);
+    split->factorize(A);
+    EXPECT_EQ(serial->subtreeCount(), 0);
+    EXPECT_GE(split->subtreeCount(), 3) << "m = " << m;
+    const auto b = randomVector(static_cast<size_t>(A.n), 3u + m);
+    std::vector<double> reference(b.size());
+    serial->solve(b.data(), reference.data());
+    std::vector<double> first;
+    for (int threads : {1, 2, 3, 1}) {
+      core::setNumThreads(threads);
+      std::vector<double> x(b.size());
+      split->solve(b.data(), x.data());
+      if (first.empty()) first = x;
+      EXPECT_EQ(std::memcmp(x.data(), first.data(), sizeof(double) * x.size()), 0) << threads << " threads, m = " << m;
+      EXPECT_LT(relativeResidual(A, x, b, 1), 1e-12);
+      // In place, in the factor's order: the same bits as solve().
+      std::vector<double> v(b.size());
+      const auto& perm = split->permutation();
+      for (size_t k = 0; k < v.size(); ++k) v[k] = b[perm[k]];
+      split->solveInPlace(v.data());
+      for (size_t k = 0; k < v.size(); ++k) EXPECT_EQ(v[k], x[perm[k]]);
+    }
+    core::setNumThreads(0);
+    // The subtractions of the serial solve in its order: its bits.
+    EXPECT_EQ(std::memcmp(first.data(), reference.data(), sizeof(double) * first.size()), 0) << "m = " << m;
+  }
+  unsetenv("TRIBOS_SUBTREE_SOLVE_FROM");
+}
 
 TEST(SparseCholesky, unknownNameIsAnInputErrorListingTheValidNames) {
   try {

@@ -558,3 +558,69 @@ TEST(SmalseM, fusedPenaltyTermAndNormQGiveTheSameSolution) {
     }
   }
 }
+
+namespace {
+/// Q with linear coordinates (EqualityProjector::coordinates: u = G x, w = (G G^T)^{-1} G x);
+/// counts the calls of coordinates and of normQ.
+class CoordinateDenseProjector : public test::DenseProjector {
+ public:
+  explicit CoordinateDenseProjector(const test::EqualityQp& qp) : test::DenseProjector(qp.Q), G_(qp.G) {
+    GGt_.assign(G_.size(), std::vector<double>(G_.size(), 0.0));
+    for (size_t r = 0; r < G_.size(); ++r)
+      for (size_t s = 0; s < G_.size(); ++s)
+        for (size_t i = 0; i < G_[r].size(); ++i) GGt_[r][s] += G_[r][i] * G_[s][i];
+  }
+  bool coordinates(const qp::Vector& x, std::vector<double>& u, std::vector<double>& w) const override {
+    ++calls;
+    u = test::matVec(G_, gather_(x));
+    w = test::solveDense(GGt_, u);
+    return true;
+  }
+  double normQ(const qp::Vector& x, qp::Vector& scratch) const override {
+    ++norms;
+    return test::DenseProjector::normQ(x, scratch);
+  }
+  mutable long long calls = 0, norms = 0;
+
+ private:
+  Dense G_, GGt_;
+  test::Gatherer gather_;
+};
+}  // namespace
+
+// With coordinates, the inner stop tests follow ||Q mu|| along the CG steps (one call of
+// coordinates per CG step, for p, instead of a projection of mu): the same solution.
+TEST(SmalseM, equalityNormFollowedAlongCgStepsGivesTheSameSolution) {
+  int followed = 0;
+  for (unsigned seed = 1; seed <= 8; ++seed) {
+    std::mt19937 gen(seed + 300);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    const int n = 12 + seed % 5;
+    const Dense M = test::randomSpd(n, 100.0, seed + 500);
+    std::vector<double> b(n);
+    for (double& v : b) v = 2.0 * u(gen);
+    const auto blocks = test::randomBlocks(n, gen, {1.5, 2, 1, 1, 0.3, 0.15}, 30.0);
+    std::vector<double> x0(n);
+    for (double& v : x0) v = u(gen);
+    blocks.project(x0);
+    const auto qp = test::makeEqualityQp(M, randomRowsVanishingAt(x0, gen), b);
+    const auto settings = tunedSettings();
+    const auto reference = runSmalse(qp, blocks, settings);
+    auto map = test::makeMap(n, test::selfComm());
+    auto omega = blocks.build(*map);
+    test::DenseOperator op(qp.A);
+    CoordinateDenseProjector projector(qp);
+    qp::Vector cv(map), mu(map);
+    test::scatter(qp.c, cv);
+    const auto counters = qp::SmalseM(settings).solve(op, projector, cv, omega, mu);
+    EXPECT_TRUE(counters.converged) << "seed " << seed;
+    EXPECT_EQ(projector.norms, 0) << "seed " << seed;
+    // One stop test per inner iteration plus one per inner solve; each costs one call of
+    // coordinates (of p after a CG step, of mu otherwise), except the forced refreshes.
+    EXPECT_LE(projector.calls, counters.innerIterations + counters.outerIterations) << "seed " << seed;
+    if (counters.cgSteps > 0) ++followed;
+    const auto x = test::gather(mu);
+    EXPECT_LE(test::maxDifference(x, reference.x), 1e-8 * std::max(1.0, test::normInf(reference.x))) << "seed " << seed;
+  }
+  EXPECT_GT(followed, 0);
+}

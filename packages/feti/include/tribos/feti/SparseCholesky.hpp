@@ -38,6 +38,15 @@ class SparseCholesky {
   /// substitutions): the numerator of the bandwidth bound of doc/performance.md.
   virtual long long solveBytes() const = 0;
   virtual std::string name() const = 0;
+  /// For a factor solved alone on the main thread (G G^T, replicated): set before
+  /// factorize(), lets its solves run the independent subtrees of the elimination tree on
+  /// the threads of core::forEachSubdomain when the factor is large enough to pay
+  /// (doc/coarse_problem.md). The solves then give the same bits for any number of threads,
+  /// though not those of the serial solve. Such a factor must not be solved from inside
+  /// forEachSubdomain. Implementations without it ignore it ("Tacho").
+  virtual void setSubtreeSolve(bool enabled) { (void)enabled; }
+  /// Subtrees the solves run concurrently (0: serial solves).
+  virtual int subtreeCount() const { return 0; }
 };
 
 /// Names accepted by makeSparseCholesky.

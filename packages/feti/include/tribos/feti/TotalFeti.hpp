@@ -51,7 +51,9 @@ struct TotalFetiSettings {
 struct OperatorProfile {
   long long fApplications = 0, projections = 0, coarseSolves = 0, preconditionerApplications = 0;
   long long coarseSolvesReused = 0;    ///< of coarseSolves: answered from the last two (same rhs bits)
-  long long projectionsReused = 0;     ///< of projections: P x copied from the last two (same x bits)
+  long long projectionsReused = 0;     ///< of projections: P x copied from the last four (same x bits)
+  long long coarseCoordinates = 0;     ///< coarseCoordinates calls (SMALSE-M's ||Q x||)
+  long long coarseCoordinatesReused = 0;  ///< of those: copied from a projection of the same x
   double fSeconds = 0.0;               ///< B K^+ B^T (imports, subdomain solves, export-add)
   double gSeconds = 0.0;               ///< G x and G^T a of the projections (owned rows)
   double coarseReduceSeconds = 0.0;    ///< the all-reduce of G x (length l)
@@ -59,6 +61,7 @@ struct OperatorProfile {
   double preconditionerSeconds = 0.0;  ///< B K B^T or B S B^T
   double coarseFactorSeconds = 0.0;    ///< assembly + factorisation of G G^T
   long long coarseFactorNonzeros = 0;  ///< stored entries of the factor of G G^T
+  int coarseSubtrees = 0;  ///< subtrees its solves run concurrently (0: serial solves)
   long long gEntries = 0, gRows = 0;   ///< entries (row, subdomain) of G on this rank's rows, rows
   /// The least bytes one projection (G x and G^T a) and one Dirichlet preconditioner
   /// application (B S B^T; 0 without it) move, summed over the ranks (measureTraffic).
@@ -96,6 +99,10 @@ class TotalFeti {
   void solveCoarse(std::vector<double>& a) const;
   /// y = P x = x - G^T (G G^T)^{-1} G x (y may be x).
   void project(const DualVector& x, DualVector& y) const;
+  /// gx = G x and a = (G G^T)^{-1} G x (replicated; ||Q x||^2 = gx^T a): copied, without G x
+  /// or a coarse solve, when x is one of the last four projected vectors (same bits on every
+  /// rank); else computed. Collective.
+  void coarseCoordinates(const DualVector& x, std::vector<double>& gx, std::vector<double>& a) const;
   /// y = B K B^T x (the lumped preconditioner, before projection).
   void applyLumped(const DualVector& x, DualVector& y) const;
   /// y = B S B^T x with S_s = K_bb - K_bi K_ii^{-1} K_ib the Schur complement of each
@@ -224,7 +231,14 @@ class TotalFeti {
   mutable int coarseMemoNext_ = 0;
   /// The last two projections (x and P x on the owned rows): a hit skips G x, the coarse
   /// solve and G^T a, i.e. two passes over G, which at small H/h weigh more than F.
-  mutable CoarseMemo projectionMemo_[2];
+  /// Four: SMALSE-M asks for the coarse coordinates of its iterate x (coarseCoordinates)
+  /// after the products with A_rho (P x, P F P x) and the preconditioner (P phi, P D P phi);
+  /// each entry keeps G x and (G G^T)^{-1} G x (gx, coarse) too.
+  static constexpr int kProjectionMemo = 4;
+  struct ProjectionMemo : CoarseMemo {
+    std::vector<double> gx, coarse;
+  };
+  mutable ProjectionMemo projectionMemo_[kProjectionMemo];
   mutable int projectionMemoNext_ = 0;
   /// Index of the memo entry whose input has the bits of x on every rank, or -1 (collective).
   int findProjection(const double* x) const;

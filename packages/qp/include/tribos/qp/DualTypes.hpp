@@ -5,6 +5,8 @@
 #include <Tpetra_Map_decl.hpp>
 #include <Tpetra_Vector_decl.hpp>
 
+#include <vector>
+
 namespace tribos::qp {
 
 using Map = Tpetra::Map<int, long long>;
@@ -35,6 +37,12 @@ class EqualityProjector {
   /// ||Q x|| (scratch: a vector of x's map, overwritten). The default projects; an
   /// implementation may do it without G^T: ||Q x||^2 = (G x)^T (G G^T)^{-1} G x.
   virtual double normQ(const Vector& x, Vector& scratch) const;
+  /// Optional: coordinates of Q x that are linear in x, replicated on every rank, with
+  /// ||Q x||^2 = u^T w (u = G x and w = (G G^T)^{-1} G x, so that Q x = G^T w). SMALSE-M then
+  /// follows ||Q x|| along MPGP's CG steps x := x - alpha p by u, w -= alpha (u_p, w_p)
+  /// instead of a projection per inner iteration (EqualityNorm.hpp). Collective. Returns
+  /// false where there are none (the default).
+  virtual bool coordinates(const Vector& x, std::vector<double>& u, std::vector<double>& w) const;
 };
 
 }  // namespace tribos::qp

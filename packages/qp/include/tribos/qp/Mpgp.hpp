@@ -41,6 +41,11 @@ struct MpgpSettings {
   /// communication unless every rank sets it. May be empty.
   std::function<void(const MpgpCounters&)> progress;
   int progressEvery = 10;
+  /// Called right after each CG step x := x - alpha p (before p changes), for quantities of
+  /// x that follow such steps linearly (SMALSE-M's ||Q x||). Other steps are not reported:
+  /// between two stop tests there is one iteration, so no call means x moved otherwise.
+  /// May be empty.
+  std::function<void(double alpha, const Vector& p)> cgStep;
 };
 
 struct MpgpCounters {
