@@ -101,7 +101,7 @@ int main(int argc, char** argv) {
          q = feti.createDualVector();
     fill(*x);
     std::vector<Teuchos::RCP<feti::DualVector>> inputs;
-    for (double scale : {1.0, 2.0, 3.0}) {
+    for (double scale : {1.0, 2.0, 3.0, 4.0, 5.0}) {  // one more than TotalFeti's projection memo (4)
       inputs.push_back(feti.createDualVector());
       inputs.back()->update(scale, *x, 0.0);
     }
@@ -139,7 +139,7 @@ int main(int argc, char** argv) {
            feti.applyPF(*t, *y);
            y->update(10.0, *x, -10.0, *t, 1.0);
          }},
-        // One projection that the memo cannot answer (three inputs in turn; it keeps two):
+        // One projection that the memo cannot answer (five inputs in turn; it keeps four):
         // G x, the coarse solve and G^T a, as most projections of a solve.
         {"P_miss",
          [&] {

@@ -229,7 +229,7 @@ class TotalFeti {
   };
   mutable CoarseMemo coarseMemo_[2];
   mutable int coarseMemoNext_ = 0;
-  /// The last two projections (x and P x on the owned rows): a hit skips G x, the coarse
+  /// The last projections (x and P x on the owned rows): a hit skips G x, the coarse
   /// solve and G^T a, i.e. two passes over G, which at small H/h weigh more than F.
   /// Four: SMALSE-M asks for the coarse coordinates of its iterate x (coarseCoordinates)
   /// after the products with A_rho (P x, P F P x) and the preconditioner (P phi, P D P phi);
