@@ -25,6 +25,18 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 /// feasible step is then ~0 and the expansion's projection lands on the boundary exactly.
 constexpr double kActiveTolerance = 1e-12;
 
+/// The "on the boundary" tolerance of an ellipse block, in units of ||E y||: kActiveTolerance,
+/// or what doubles resolve. MPGP stores x = c + y, so y is known to ~eps |c| only; with a
+/// small slip bound next to a larger centre a block a few ulps of c inside its boundary
+/// cannot be moved onto it (x - alpha p rounds back to x). Measured at 20x10x10 per brick,
+/// H/h 2: a disc of radius 5.9e-5 with ||E y|| = 1 - 2.1e-12 stayed "free", its feasible step
+/// was 5.8e-18 in every iteration, and MPGP crawled on expansion steps for hundreds of
+/// iterations (doc/coarse_problem.md). Such a block counts as on the boundary.
+double ellipseActiveTolerance(const std::array<double, 2>& center, double smallestAxis) {
+  const double resolution = std::numeric_limits<double>::epsilon() * std::max(std::abs(center[0]), std::abs(center[1]));
+  return std::max(kActiveTolerance, 16.0 * resolution / smallestAxis);
+}
+
 /// Entry i of a vector view; 0 for an absent ellipse row (index -1).
 template <class View>
 double at(const View& v, int i) {
@@ -245,13 +257,13 @@ void SeparableSet::splitGradient(const Vector& x, const Vector& g, Vector& phi, 
           continue;
         }
         const double gp = intervalProjectedGradient(y[ax], -a[ax], a[ax], gg[ax]);
-        const bool interior = std::abs(y[ax]) < a[ax] * (1.0 - kActiveTolerance);
+        const bool interior = std::abs(y[ax]) < a[ax] * (1.0 - ellipseActiveTolerance(center_[k], a[ax]));
         fv(idx[ax], 0) = interior ? gg[ax] : 0.0;
         bv(idx[ax], 0) = interior ? 0.0 : gp;
       }
       continue;
     }
-    if (ellipseNorm(y, a) < 1.0 - kActiveTolerance) continue;  // interior: free
+    if (ellipseNorm(y, a) < 1.0 - ellipseActiveTolerance(center_[k], std::min(a[0], a[1]))) continue;  // interior: free
     // Active: outer unit normal n ~ (y_1/a_1^2, y_2/a_2^2); beta = g - min(n^T g, 0) n.
     std::array<double, 2> n{y[0] / (a[0] * a[0]), y[1] / (a[1] * a[1])};
     const double nn = std::hypot(n[0], n[1]);
@@ -274,7 +286,7 @@ double SeparableSet::boundaryCurvature(const Vector& x, const Vector& g, const V
     const auto a = effectiveAxes(k);
     if (!(a[0] > 0.0) || !(a[1] > 0.0)) continue;  // intervals and points: flat
     const std::array<double, 2> y{at(xv, i) - center_[k][0], at(xv, j) - center_[k][1]};
-    if (ellipseNorm(y, a) < 1.0 - kActiveTolerance) continue;
+    if (ellipseNorm(y, a) < 1.0 - ellipseActiveTolerance(center_[k], std::min(a[0], a[1]))) continue;
     // Curvature of (y1/a1)^2 + (y2/a2)^2 = 1 at y: 1 / (a1^2 a2^2 (y1^2/a1^4 + y2^2/a2^4)^(3/2)).
     const double q = y[0] * y[0] / (a[0] * a[0] * a[0] * a[0]) + y[1] * y[1] / (a[1] * a[1] * a[1] * a[1]);
     const double kappa = 1.0 / (a[0] * a[0] * a[1] * a[1] * q * std::sqrt(q));

@@ -256,3 +256,36 @@ TEST(SeparableSet, projectedGradientIsTheProjectionOntoTheTangentCone) {
   }
   EXPECT_GT(active, 500);
 }
+
+// A small disc next to a large centre (x = c + y stored): a block a few ulps of c inside its
+// boundary cannot be stepped onto it, so it must count as on the boundary. Else it stays
+// free with a feasible step of ~1e-18 in every iteration (the MPGP stall at 20x10x10 per
+// brick, H/h 2: radius 5.9e-5, ||E y|| = 1 - 2.1e-12).
+TEST(SeparableSet, aBlockWithinRoundOffOfItsCentreIsOnTheBoundary) {
+  auto map = test::makeMap(2, test::selfComm());
+  const double radius = 5.944e-5;
+  const Pair center{1.0, -0.5};
+  qp::SeparableSet omega;
+  omega.addEllipse({0, 1}, center, {radius, radius});
+  // y = (1 - 2.1e-12) radius e_1: inside by 1.2e-16, about half an ulp of c_1 = 1.
+  const double inside = 1.0 - 2.1e-12;
+  std::vector<double> xs{center[0] + inside * radius, center[1]};
+  ASSERT_LT(std::hypot((xs[0] - center[0]) / radius, (xs[1] - center[1]) / radius), 1.0 - 1e-12);
+  qp::Vector x(map), g(map), phi(map), beta(map), p(map);
+  test::scatter(xs, x);
+  test::scatter(std::vector<double>{-1.0, 0.3}, g);  // -g points out of the disc
+  omega.splitGradient(x, g, phi, beta);
+  const auto f = test::gather(phi), b = test::gather(beta);
+  EXPECT_EQ(f[0], 0.0);
+  EXPECT_EQ(f[1], 0.0);
+  // On the boundary: beta is g with its outward-pressing normal part removed (n = e_1).
+  EXPECT_EQ(b[0], 0.0);
+  EXPECT_DOUBLE_EQ(b[1], 0.3);
+  // The step to the boundary along e_1 cannot be resolved: x + t e_1 rounds back to x for t
+  // below half an ulp of c_1, which is why the block must not be left free.
+  EXPECT_EQ(xs[0] + 1e-16, xs[0]);
+  // The same block clearly inside stays free.
+  test::scatter(std::vector<double>{center[0] + 0.5 * radius, center[1]}, x);
+  omega.splitGradient(x, g, phi, beta);
+  EXPECT_EQ(test::gather(phi)[0], -1.0);
+}
