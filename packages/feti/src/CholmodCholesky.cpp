@@ -88,6 +88,13 @@ PackedFactor packFactor(const cholmod_factor& L) {
     const LO* pi = static_cast<const LO*>(L.pi);
     const LO* px = static_cast<const LO*>(L.px);
     const LO* s = static_cast<const LO*>(L.s);
+    long long values = 0, rowIndices = 0;  // exact sizes first (PackedFactor::reserve)
+    for (size_t k = 0; k < L.nsuper; ++k) {
+      const long long nc = super[k + 1] - super[k], below = pi[k + 1] - pi[k] - nc;
+      values += nc * (nc - 1) / 2 + nc * below;
+      rowIndices += below;
+    }
+    packed.reserve(values, rowIndices, static_cast<LO>(L.nsuper), n);
     for (size_t k = 0; k < L.nsuper; ++k) {
       const LO first = super[k], nc = super[k + 1] - first, nsrow = pi[k + 1] - pi[k];
       rows.assign(s + pi[k] + nc, s + pi[k + 1]);
@@ -104,9 +111,21 @@ PackedFactor packFactor(const cholmod_factor& L) {
     if (Lnz[j] != Lnz[j + 1] + 1 || Lnz[j] < 2 || Li[Lp[j] + 1] != j + 1) return false;
     return std::equal(Li + Lp[j] + 2, Li + Lp[j] + Lnz[j], Li + Lp[j + 1] + 1);
   };
+  // The supernodes (their last columns) and the exact sizes first (PackedFactor::reserve):
+  // every strict lower entry of a column is stored once, in its triangle or its panel.
+  std::vector<LO> lastColumn;
+  long long values = 0, rowIndices = 0;
   for (LO first = 0; first < n;) {
     LO last = first;
     while (last + 1 < n && continues(last)) ++last;
+    lastColumn.push_back(last);
+    for (LO j = first; j <= last; ++j) values += Lnz[j] - 1;
+    rowIndices += Lnz[last] - 1;
+    first = last + 1;
+  }
+  packed.reserve(values, rowIndices, static_cast<LO>(lastColumn.size()), n);
+  LO first = 0;
+  for (LO last : lastColumn) {
     const LO nc = last - first + 1;
     if (!std::is_sorted(Li + Lp[last], Li + Lp[last] + Lnz[last]) || Li[Lp[last]] != last)
       throw std::logic_error("tribos::feti::CholmodCholesky: unsorted simplicial factor column");

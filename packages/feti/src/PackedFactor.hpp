@@ -34,6 +34,12 @@ class PackedFactor {
   /// rows[i - numColumns]) for i >= j.
   template <class Value>
   void appendSupernode(LO firstColumn, LO numColumns, const std::vector<LO>& rows, Value&& value);
+  /// Sizes the storage before the supernodes are appended: `strictLowerValues` entries of L
+  /// below the diagonal, `rowIndices` panel rows and `numSupernodes` supernodes in all. A
+  /// builder that knows them (CHOLMOD's factor does) avoids the vectors' doubling growth,
+  /// which held up to three times the factor's values while one was copied and left up to
+  /// twice in the stored factor (doc/scalability.md, the replicated G G^T).
+  void reserve(long long strictLowerValues, long long rowIndices, LO numSupernodes, LO numColumns);
   /// Sets the fill-reducing permutation: row k of the factor is row perm[k] of A.
   void setPermutation(std::vector<LO> perm) { perm_ = std::move(perm); }
 
@@ -98,6 +104,13 @@ class PackedFactor {
   LO maxPanelRows_ = 0;
   std::unique_ptr<Subtrees> subtrees_;
 };
+
+inline void PackedFactor::reserve(long long strictLowerValues, long long rowIndices, LO numSupernodes, LO numColumns) {
+  values_.reserve(static_cast<size_t>(strictLowerValues));
+  rows_.reserve(static_cast<size_t>(rowIndices));
+  supernodes_.reserve(static_cast<size_t>(numSupernodes));
+  inverseDiagonal_.reserve(static_cast<size_t>(numColumns));
+}
 
 template <class Value>
 void PackedFactor::appendSupernode(LO firstColumn, LO numColumns, const std::vector<LO>& rows, Value&& value) {
