@@ -74,35 +74,66 @@ bool supernodalFactor(const fem::CsrMatrix& A) {
   return A.n >= kSupernodalFromDofs;
 }
 
-/// The numeric factor as a PackedFactor: supernodal panels as they are; simplicial columns
-/// merged into fundamental supernodes (consecutive columns whose row sets nest).
-PackedFactor packFactor(const cholmod_factor& L) {
+/// A supernodal factor packed in place, in CHOLMOD's own array of values, which the packed
+/// factor then owns (no second copy of a factor alive: the replicated G G^T is the largest
+/// item per rank at thousands of subdomains, doc/scalability.md). CHOLMOD stores supernode k
+/// as an nsrow x nc column-major panel at px[k] (the diagonal block whole); the packed
+/// layout puts its panel rows (column-major) first and then the strict lower triangle of
+/// the diagonal block (by columns). Writing from the front never overtakes what is still to
+/// be read: every packed supernode starts at or before px[k] and is smaller than CHOLMOD's,
+/// and a panel entry moves to an index at or below its own. Only the triangle, which the
+/// panel overwrites, goes through a buffer first. The values are those of the copy
+/// (appendSupernode), so the solves give the same bits.
+void packSupernodalInPlace(cholmod_factor& L, PackedFactor& packed) {
+  const LO* super = static_cast<const LO*>(L.super);
+  const LO* pi = static_cast<const LO*>(L.pi);
+  const LO* px = static_cast<const LO*>(L.px);
+  const LO* s = static_cast<const LO*>(L.s);
+  double* x = static_cast<double*>(L.x);
+  long long rowIndices = 0;
+  for (size_t k = 0; k < L.nsuper; ++k) rowIndices += pi[k + 1] - pi[k] - (super[k + 1] - super[k]);
+  packed.reserve(0, rowIndices, static_cast<LO>(L.nsuper), static_cast<LO>(L.n));
+  std::vector<double> triangle, inverseDiagonal;
+  std::vector<LO> rows;
+  long long next = 0;  // the first free entry of the packed values
+  for (size_t k = 0; k < L.nsuper; ++k) {
+    const LO first = super[k], nc = super[k + 1] - first, nsrow = pi[k + 1] - pi[k], nr = nsrow - nc;
+    const double* panel = x + px[k];
+    triangle.clear();
+    inverseDiagonal.resize(nc);
+    for (LO j = 0; j < nc; ++j) {
+      inverseDiagonal[j] = 1.0 / panel[static_cast<size_t>(j) * nsrow + j];
+      for (LO i = j + 1; i < nc; ++i) triangle.push_back(panel[static_cast<size_t>(j) * nsrow + i]);
+    }
+    const long long panelOffset = next;
+    for (LO j = 0; j < nc; ++j)
+      for (LO r = 0; r < nr; ++r) x[next++] = x[px[k] + static_cast<long long>(j) * nsrow + nc + r];
+    const long long triangleOffset = next;
+    for (double v : triangle) x[next++] = v;
+    rows.assign(s + pi[k] + nc, s + pi[k + 1]);
+    packed.appendLaidOutSupernode(first, nc, rows, triangleOffset, panelOffset, inverseDiagonal.data());
+  }
+  // The array, shrunk to the packed values, changes hands: CHOLMOD must not free it.
+  void* shrunk = next > 0 ? SuiteSparse_config.realloc_func(x, static_cast<size_t>(next) * sizeof(double)) : nullptr;
+  packed.adoptValues(static_cast<double*>(shrunk ? shrunk : x), next, SuiteSparse_config.free_func);
+  L.x = nullptr;
+  L.xsize = 0;
+}
+
+/// The numeric factor as a PackedFactor: supernodal panels as they are (packed in place:
+/// packSupernodalInPlace; L loses its values); simplicial columns merged into fundamental
+/// supernodes (consecutive columns whose row sets nest), copied.
+PackedFactor packFactor(cholmod_factor& L) {
   PackedFactor packed;
   const LO n = static_cast<LO>(L.n);
   const LO* perm = static_cast<const LO*>(L.Perm);
   packed.setPermutation(std::vector<LO>(perm, perm + n));
-  const double* x = static_cast<const double*>(L.x);
-  std::vector<LO> rows;
   if (L.is_super) {
-    const LO* super = static_cast<const LO*>(L.super);
-    const LO* pi = static_cast<const LO*>(L.pi);
-    const LO* px = static_cast<const LO*>(L.px);
-    const LO* s = static_cast<const LO*>(L.s);
-    long long values = 0, rowIndices = 0;  // exact sizes first (PackedFactor::reserve)
-    for (size_t k = 0; k < L.nsuper; ++k) {
-      const long long nc = super[k + 1] - super[k], below = pi[k + 1] - pi[k] - nc;
-      values += nc * (nc - 1) / 2 + nc * below;
-      rowIndices += below;
-    }
-    packed.reserve(values, rowIndices, static_cast<LO>(L.nsuper), n);
-    for (size_t k = 0; k < L.nsuper; ++k) {
-      const LO first = super[k], nc = super[k + 1] - first, nsrow = pi[k + 1] - pi[k];
-      rows.assign(s + pi[k] + nc, s + pi[k + 1]);
-      const double* panel = x + px[k];
-      packed.appendSupernode(first, nc, rows, [&](LO i, LO j) { return panel[static_cast<size_t>(j) * nsrow + i]; });
-    }
+    packSupernodalInPlace(L, packed);
     return packed;
   }
+  const double* x = static_cast<const double*>(L.x);
+  std::vector<LO> rows;
   const LO* Lp = static_cast<const LO*>(L.p);
   const LO* Li = static_cast<const LO*>(L.i);
   const LO* Lnz = static_cast<const LO*>(L.nz);
@@ -141,7 +172,12 @@ class CholmodCholesky final : public SparseCholesky {
   CholmodCholesky() { cholmod_start(&common_); }
   ~CholmodCholesky() override { cholmod_finish(&common_); }
 
-  void factorize(const fem::CsrMatrix& A) override {
+  void factorize(const fem::CsrMatrix& A) override { factorize(A, nullptr); }
+  void factorizeConsuming(fem::CsrMatrix&& A) override { factorize(A, &A); }
+
+ private:
+  /// `consumed`: A itself, freed after the numeric factorisation, or null.
+  void factorize(const fem::CsrMatrix& A, fem::CsrMatrix* consumed) {
     n_ = A.n;
     const std::vector<LO> perm = nestedDissection(A);
     // A symmetric CSR matrix is its own CSC; stype = 1: CHOLMOD reads the upper triangle only.
@@ -180,6 +216,7 @@ class CholmodCholesky final : public SparseCholesky {
       }
     });
     const bool failed = !L || common_.status != CHOLMOD_OK || L->minor < L->n || !L->is_ll;
+    if (consumed) *consumed = fem::CsrMatrix{};  // S pointed into it: not read from here on
     if (!failed) {
       packed_ = packFactor(*L);  // the solves use the packed copy only
       if (subtreeSolve_) packed_.planSubtrees(subtreeSolveFromValues());
@@ -192,6 +229,7 @@ class CholmodCholesky final : public SparseCholesky {
     work_.assign(packed_.workSize(), 0.0);
   }
 
+ public:
   void solve(const double* b, double* x, int nrhs) const override {
     // Plain loops over the packed factor: no BLAS, no lock, no allocation (work_ is this
     // object's: one thread at a time per object, SparseCholesky.hpp).

@@ -626,7 +626,7 @@ void TotalFeti::factorizeCoarse() const {
   auto factor = makeSparseCholesky(settings_.factorization);
   factor->setSubtreeSolve(true);  // solved on the main thread, by every rank alike
   try {
-    factor->factorize(assembleCoarse(nullptr));
+    factor->factorizeConsuming(assembleCoarse(nullptr));
   } catch (const std::exception& e) {
     throw core::InputError(std::string("the constraints do not fix every rigid body mode of every subdomain "
                                        "(G G^T is singular: ") +
@@ -661,7 +661,7 @@ std::vector<double> TotalFeti::rigidBodyCoefficients(const DualVector& lambda,
   applyG(residual, alpha);
   auto factor = makeSparseCholesky(settings_.factorization);
   try {
-    factor->factorize(assembleCoarse(&ownedRowMask));
+    factor->factorizeConsuming(assembleCoarse(&ownedRowMask));
   } catch (const std::exception& e) {
     throw RigidMotionsUndetermined(std::string("tribos::feti::TotalFeti::rigidBodyCoefficients: G_I G_I^T is singular "
                                          "(the inactive rows do not fix every rigid body mode): ") + e.what());
