@@ -167,6 +167,29 @@ PackedFactor packFactor(cholmod_factor& L) {
   return packed;
 }
 
+/// Drops the strict lower triangle of a symmetric CSR matrix (in place, storage shrunk):
+/// with stype = 1 CHOLMOD reads the upper triangle of the columns only, and its permuted
+/// copy of A, made inside cholmod_factorize next to the growing factor, is then half as big
+/// as well. Only for a matrix given up (factorizeConsuming), after the ordering, which needs
+/// the whole graph.
+void keepUpperTriangle(fem::CsrMatrix& A) {
+  LO kept = 0, begin = 0;
+  for (LO i = 0; i < A.n; ++i) {
+    const LO end = A.rowPtr[i + 1];
+    for (LO k = begin; k < end; ++k)
+      if (A.colInd[k] <= i) {
+        A.colInd[kept] = A.colInd[k];
+        A.values[kept++] = A.values[k];
+      }
+    begin = end;
+    A.rowPtr[i + 1] = kept;
+  }
+  A.colInd.resize(kept);
+  A.values.resize(kept);
+  A.colInd.shrink_to_fit();
+  A.values.shrink_to_fit();
+}
+
 class CholmodCholesky final : public SparseCholesky {
  public:
   CholmodCholesky() { cholmod_start(&common_); }
@@ -180,6 +203,7 @@ class CholmodCholesky final : public SparseCholesky {
   void factorize(const fem::CsrMatrix& A, fem::CsrMatrix* consumed) {
     n_ = A.n;
     const std::vector<LO> perm = nestedDissection(A);
+    if (consumed) keepUpperTriangle(*consumed);  // A is *consumed
     // A symmetric CSR matrix is its own CSC; stype = 1: CHOLMOD reads the upper triangle only.
     cholmod_sparse S{};
     S.nrow = S.ncol = static_cast<size_t>(A.n);
