@@ -142,6 +142,30 @@ TEST(TotalFeti, repeatedProjectionIsReusedWithTheSameBits) {
   EXPECT_EQ(r1, r2);
 }
 
+TEST(TotalFeti, aReleasedCoarseFactorIsRebuiltWithTheSameBits) {
+  // releaseCoarseFactor() frees G G^T's factor and the memos before the factor of G_I G_I^T
+  // (the contact solver's alpha), so that no rank holds two replicated factors. A coarse
+  // solve or projection after it factorises G G^T again: the same bits as before, no memo hit.
+  auto p = makeProblem("4x2x2", 2, false);
+  std::vector<double> r(p->feti->numCoarse());
+  for (size_t i = 0; i < r.size(); ++i) r[i] = std::sin(0.7 * static_cast<double>(i) + 0.1);
+  std::vector<double> before = r, after = r;
+  auto x = p->feti->createDualVector(), Px = p->feti->createDualVector(), Px2 = p->feti->createDualVector();
+  randomize(*x, 31);
+  p->feti->solveCoarse(before);
+  p->feti->project(*x, *Px);
+  p->feti->releaseCoarseFactor();
+  const auto released = p->feti->profile();
+  p->feti->solveCoarse(after);
+  p->feti->project(*x, *Px2);
+  const auto end = p->feti->profile();
+  EXPECT_EQ(end.coarseSolvesReused, released.coarseSolvesReused);
+  EXPECT_EQ(end.projectionsReused, released.projectionsReused);
+  EXPECT_EQ(before, after);
+  auto a = Px->getLocalViewHost(Tpetra::Access::ReadOnly), b = Px2->getLocalViewHost(Tpetra::Access::ReadOnly);
+  for (size_t i = 0; i < a.extent(0); ++i) EXPECT_EQ(a(i, 0), b(i, 0));
+}
+
 TEST(TotalFeti, coarseCoordinatesOfARecentProjectionAreCopiedAndGiveNormQ) {
   // coarseCoordinates(x) = (G x, (G G^T)^{-1} G x): copied from the projection memo (no coarse
   // solve) while x is one of the last four projected vectors, with the bits of a fresh

@@ -416,6 +416,9 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
   // body free to slide. Reported (exit 3, doc/stability.md); alpha then over all rows, so that
   // the flagged results exist (it was an internal error without output).
   std::vector<double> alpha;
+  // The projections are done: G G^T's factor goes before G_I G_I^T's is made, so that a rank
+  // never holds two replicated coarse factors (doc/scalability.md, 4 000 subdomains).
+  feti.releaseCoarseFactor();
   try {
     alpha = feti.rigidBodyCoefficients(*lambda, inactive);
   } catch (const feti::RigidMotionsUndetermined&) {

@@ -2,6 +2,8 @@
 
 #include <Teuchos_Comm.hpp>
 #include <Teuchos_CommHelpers.hpp>
+#include <Teuchos_DefaultMpiComm.hpp>
+#include <mpi.h>
 
 #include <algorithm>
 #include <cmath>
@@ -45,6 +47,14 @@ double globalMax(const Teuchos::Comm<int>* comm, double local) {
 
 void allReduceSlots(const Teuchos::Comm<int>* comm, std::vector<double>& slots) {
   if (!comm || comm->getSize() == 1 || slots.empty()) return;
+  // In place where the communicator is MPI's: the slots of G G^T's blocks are the size of its
+  // replicated pattern (twice its values), and a second array of them would double that.
+  // The slots hold exact sums, so the order MPI adds them in does not matter.
+  if (const auto* mpi = dynamic_cast<const Teuchos::MpiComm<int>*>(comm)) {
+    MPI_Allreduce(MPI_IN_PLACE, slots.data(), static_cast<int>(slots.size()), MPI_DOUBLE, MPI_SUM,
+                  (*mpi->getRawMpiComm())());
+    return;
+  }
   std::vector<double> global(slots.size(), 0.0);
   Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, static_cast<int>(slots.size()), slots.data(), global.data());
   slots.swap(global);

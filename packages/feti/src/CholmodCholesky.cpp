@@ -74,28 +74,66 @@ bool supernodalFactor(const fem::CsrMatrix& A) {
   return A.n >= kSupernodalFromDofs;
 }
 
-/// The numeric factor as a PackedFactor: supernodal panels as they are; simplicial columns
-/// merged into fundamental supernodes (consecutive columns whose row sets nest).
-PackedFactor packFactor(const cholmod_factor& L) {
+/// A supernodal factor packed in place, in CHOLMOD's own array of values, which the packed
+/// factor then owns (no second copy of a factor alive: the replicated G G^T is the largest
+/// item per rank at thousands of subdomains, doc/scalability.md). CHOLMOD stores supernode k
+/// as an nsrow x nc column-major panel at px[k] (the diagonal block whole); the packed
+/// layout puts its panel rows (column-major) first and then the strict lower triangle of
+/// the diagonal block (by columns). Writing from the front never overtakes what is still to
+/// be read: every packed supernode starts at or before px[k] and is smaller than CHOLMOD's,
+/// and a panel entry moves to an index at or below its own. Only the triangle, which the
+/// panel overwrites, goes through a buffer first. The values are those of the copy
+/// (appendSupernode), so the solves give the same bits.
+void packSupernodalInPlace(cholmod_factor& L, PackedFactor& packed) {
+  const LO* super = static_cast<const LO*>(L.super);
+  const LO* pi = static_cast<const LO*>(L.pi);
+  const LO* px = static_cast<const LO*>(L.px);
+  const LO* s = static_cast<const LO*>(L.s);
+  double* x = static_cast<double*>(L.x);
+  long long rowIndices = 0;
+  for (size_t k = 0; k < L.nsuper; ++k) rowIndices += pi[k + 1] - pi[k] - (super[k + 1] - super[k]);
+  packed.reserve(0, rowIndices, static_cast<LO>(L.nsuper), static_cast<LO>(L.n));
+  std::vector<double> triangle, inverseDiagonal;
+  std::vector<LO> rows;
+  long long next = 0;  // the first free entry of the packed values
+  for (size_t k = 0; k < L.nsuper; ++k) {
+    const LO first = super[k], nc = super[k + 1] - first, nsrow = pi[k + 1] - pi[k], nr = nsrow - nc;
+    const double* panel = x + px[k];
+    triangle.clear();
+    inverseDiagonal.resize(nc);
+    for (LO j = 0; j < nc; ++j) {
+      inverseDiagonal[j] = 1.0 / panel[static_cast<size_t>(j) * nsrow + j];
+      for (LO i = j + 1; i < nc; ++i) triangle.push_back(panel[static_cast<size_t>(j) * nsrow + i]);
+    }
+    const long long panelOffset = next;
+    for (LO j = 0; j < nc; ++j)
+      for (LO r = 0; r < nr; ++r) x[next++] = x[px[k] + static_cast<long long>(j) * nsrow + nc + r];
+    const long long triangleOffset = next;
+    for (double v : triangle) x[next++] = v;
+    rows.assign(s + pi[k] + nc, s + pi[k + 1]);
+    packed.appendLaidOutSupernode(first, nc, rows, triangleOffset, panelOffset, inverseDiagonal.data());
+  }
+  // The array, shrunk to the packed values, changes hands: CHOLMOD must not free it.
+  void* shrunk = next > 0 ? SuiteSparse_config.realloc_func(x, static_cast<size_t>(next) * sizeof(double)) : nullptr;
+  packed.adoptValues(static_cast<double*>(shrunk ? shrunk : x), next, SuiteSparse_config.free_func);
+  L.x = nullptr;
+  L.xsize = 0;
+}
+
+/// The numeric factor as a PackedFactor: supernodal panels as they are (packed in place:
+/// packSupernodalInPlace; L loses its values); simplicial columns merged into fundamental
+/// supernodes (consecutive columns whose row sets nest), copied.
+PackedFactor packFactor(cholmod_factor& L) {
   PackedFactor packed;
   const LO n = static_cast<LO>(L.n);
   const LO* perm = static_cast<const LO*>(L.Perm);
   packed.setPermutation(std::vector<LO>(perm, perm + n));
-  const double* x = static_cast<const double*>(L.x);
-  std::vector<LO> rows;
   if (L.is_super) {
-    const LO* super = static_cast<const LO*>(L.super);
-    const LO* pi = static_cast<const LO*>(L.pi);
-    const LO* px = static_cast<const LO*>(L.px);
-    const LO* s = static_cast<const LO*>(L.s);
-    for (size_t k = 0; k < L.nsuper; ++k) {
-      const LO first = super[k], nc = super[k + 1] - first, nsrow = pi[k + 1] - pi[k];
-      rows.assign(s + pi[k] + nc, s + pi[k + 1]);
-      const double* panel = x + px[k];
-      packed.appendSupernode(first, nc, rows, [&](LO i, LO j) { return panel[static_cast<size_t>(j) * nsrow + i]; });
-    }
+    packSupernodalInPlace(L, packed);
     return packed;
   }
+  const double* x = static_cast<const double*>(L.x);
+  std::vector<LO> rows;
   const LO* Lp = static_cast<const LO*>(L.p);
   const LO* Li = static_cast<const LO*>(L.i);
   const LO* Lnz = static_cast<const LO*>(L.nz);
@@ -104,9 +142,21 @@ PackedFactor packFactor(const cholmod_factor& L) {
     if (Lnz[j] != Lnz[j + 1] + 1 || Lnz[j] < 2 || Li[Lp[j] + 1] != j + 1) return false;
     return std::equal(Li + Lp[j] + 2, Li + Lp[j] + Lnz[j], Li + Lp[j + 1] + 1);
   };
+  // The supernodes (their last columns) and the exact sizes first (PackedFactor::reserve):
+  // every strict lower entry of a column is stored once, in its triangle or its panel.
+  std::vector<LO> lastColumn;
+  long long values = 0, rowIndices = 0;
   for (LO first = 0; first < n;) {
     LO last = first;
     while (last + 1 < n && continues(last)) ++last;
+    lastColumn.push_back(last);
+    for (LO j = first; j <= last; ++j) values += Lnz[j] - 1;
+    rowIndices += Lnz[last] - 1;
+    first = last + 1;
+  }
+  packed.reserve(values, rowIndices, static_cast<LO>(lastColumn.size()), n);
+  LO first = 0;
+  for (LO last : lastColumn) {
     const LO nc = last - first + 1;
     if (!std::is_sorted(Li + Lp[last], Li + Lp[last] + Lnz[last]) || Li[Lp[last]] != last)
       throw std::logic_error("tribos::feti::CholmodCholesky: unsorted simplicial factor column");
@@ -117,14 +167,43 @@ PackedFactor packFactor(const cholmod_factor& L) {
   return packed;
 }
 
+/// Drops the strict lower triangle of a symmetric CSR matrix (in place, storage shrunk):
+/// with stype = 1 CHOLMOD reads the upper triangle of the columns only, and its permuted
+/// copy of A, made inside cholmod_factorize next to the growing factor, is then half as big
+/// as well. Only for a matrix given up (factorizeConsuming), after the ordering, which needs
+/// the whole graph.
+void keepUpperTriangle(fem::CsrMatrix& A) {
+  LO kept = 0, begin = 0;
+  for (LO i = 0; i < A.n; ++i) {
+    const LO end = A.rowPtr[i + 1];
+    for (LO k = begin; k < end; ++k)
+      if (A.colInd[k] <= i) {
+        A.colInd[kept] = A.colInd[k];
+        A.values[kept++] = A.values[k];
+      }
+    begin = end;
+    A.rowPtr[i + 1] = kept;
+  }
+  A.colInd.resize(kept);
+  A.values.resize(kept);
+  A.colInd.shrink_to_fit();
+  A.values.shrink_to_fit();
+}
+
 class CholmodCholesky final : public SparseCholesky {
  public:
   CholmodCholesky() { cholmod_start(&common_); }
   ~CholmodCholesky() override { cholmod_finish(&common_); }
 
-  void factorize(const fem::CsrMatrix& A) override {
+  void factorize(const fem::CsrMatrix& A) override { factorize(A, nullptr); }
+  void factorizeConsuming(fem::CsrMatrix&& A) override { factorize(A, &A); }
+
+ private:
+  /// `consumed`: A itself, freed after the numeric factorisation, or null.
+  void factorize(const fem::CsrMatrix& A, fem::CsrMatrix* consumed) {
     n_ = A.n;
     const std::vector<LO> perm = nestedDissection(A);
+    if (consumed) keepUpperTriangle(*consumed);  // A is *consumed
     // A symmetric CSR matrix is its own CSC; stype = 1: CHOLMOD reads the upper triangle only.
     cholmod_sparse S{};
     S.nrow = S.ncol = static_cast<size_t>(A.n);
@@ -161,6 +240,7 @@ class CholmodCholesky final : public SparseCholesky {
       }
     });
     const bool failed = !L || common_.status != CHOLMOD_OK || L->minor < L->n || !L->is_ll;
+    if (consumed) *consumed = fem::CsrMatrix{};  // S pointed into it: not read from here on
     if (!failed) {
       packed_ = packFactor(*L);  // the solves use the packed copy only
       if (subtreeSolve_) packed_.planSubtrees(subtreeSolveFromValues());
@@ -173,6 +253,7 @@ class CholmodCholesky final : public SparseCholesky {
     work_.assign(packed_.workSize(), 0.0);
   }
 
+ public:
   void solve(const double* b, double* x, int nrhs) const override {
     // Plain loops over the packed factor: no BLAS, no lock, no allocation (work_ is this
     // object's: one thread at a time per object, SparseCholesky.hpp).

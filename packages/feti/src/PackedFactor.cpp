@@ -35,7 +35,7 @@ TRIBOS_KERNEL void PackedFactor::forward(LO first, LO last, double* x, double* p
                                         double* topUpdates) const {
   // L y = x, supernode by supernode: the diagonal triangle by columns, then the panel as
   // t = panel * x_d (one axpy per column into the contiguous t), scattered: x_rows -= t.
-  const double* values = values_.data();
+  const double* values = valueData();
   const LO* rows = rows_.data();
   double* __restrict t = panelWork;
   for (LO k = first; k < last; ++k) {
@@ -67,7 +67,7 @@ TRIBOS_KERNEL void PackedFactor::forward(LO first, LO last, double* x, double* p
 TRIBOS_KERNEL void PackedFactor::backward(LO first, LO last, double* x, double* panelWork) const {
   // L^T y = x from the last supernode: gather the (solved) panel rows into t, one dot
   // product per panel column, then the transposed diagonal triangle.
-  const double* values = values_.data();
+  const double* values = valueData();
   const LO* rows = rows_.data();
   double* __restrict t = panelWork;
   for (LO k = last - 1; k >= first; --k) {
@@ -121,7 +121,7 @@ void PackedFactor::solve(const double* b, double* x, double* work) const {
 }
 
 long long PackedFactor::solveBytes() const {
-  const long long factor = 8 * static_cast<long long>(values_.size() + inverseDiagonal_.size()) +
+  const long long factor = 8 * (valueCount() + static_cast<long long>(inverseDiagonal_.size())) +
                            4 * static_cast<long long>(rows_.size()) +
                            static_cast<long long>(sizeof(Supernode) * supernodes_.size());
   return 2 * factor;

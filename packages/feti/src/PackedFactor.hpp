@@ -34,6 +34,20 @@ class PackedFactor {
   /// rows[i - numColumns]) for i >= j.
   template <class Value>
   void appendSupernode(LO firstColumn, LO numColumns, const std::vector<LO>& rows, Value&& value);
+  /// Sizes the storage before the supernodes are appended: `strictLowerValues` entries of L
+  /// below the diagonal, `rowIndices` panel rows and `numSupernodes` supernodes in all. A
+  /// builder that knows them (CHOLMOD's factor does) avoids the vectors' doubling growth,
+  /// which held up to three times the factor's values while one was copied and left up to
+  /// twice in the stored factor (doc/scalability.md, the replicated G G^T).
+  void reserve(long long strictLowerValues, long long rowIndices, LO numSupernodes, LO numColumns);
+  /// For a builder that packs the values in place, in an array of its own: a supernode whose
+  /// values it has already laid out (triangle and panel as above, at these offsets into that
+  /// array) and the reciprocals of its diagonal; then adoptValues() hands the array over.
+  void appendLaidOutSupernode(LO firstColumn, LO numColumns, const std::vector<LO>& rows, long long triangleOffset,
+                              long long panelOffset, const double* inverseDiagonal);
+  /// Takes `values` (count entries) as the stored values, freed by `release`: no copy of the
+  /// factor (CholmodCholesky: CHOLMOD's own array, compacted in place).
+  void adoptValues(double* values, long long count, void (*release)(void*));
   /// Sets the fill-reducing permutation: row k of the factor is row perm[k] of A.
   void setPermutation(std::vector<LO> perm) { perm_ = std::move(perm); }
 
@@ -48,7 +62,7 @@ class PackedFactor {
   const std::vector<LO>& permutation() const { return perm_; }
 
   /// Stored values of L (diagonal included): what each triangular solve reads once.
-  long long storedValues() const { return static_cast<long long>(values_.size() + inverseDiagonal_.size()); }
+  long long storedValues() const { return valueCount() + static_cast<long long>(inverseDiagonal_.size()); }
   /// Bytes that one solve with one right-hand side reads from the factor: values, row
   /// indices and supernode descriptors, twice (forward and backward substitution).
   long long solveBytes() const;
@@ -90,14 +104,42 @@ class PackedFactor {
   struct Subtrees;  ///< the split of planSubtrees (PackedFactorSubtrees.cpp)
   void solveSubtrees(double* v) const;
 
+  const double* valueData() const { return adopted_ ? adopted_.get() : values_.data(); }
+  long long valueCount() const { return adopted_ ? adoptedCount_ : static_cast<long long>(values_.size()); }
+
   std::vector<Supernode> supernodes_;
   std::vector<LO> rows_;
-  std::vector<double> values_;
+  std::vector<double> values_;  ///< appendSupernode's; empty once values are adopted
+  std::unique_ptr<double, void (*)(void*)> adopted_{nullptr, nullptr};  ///< adoptValues'
+  long long adoptedCount_ = 0;
   std::vector<double> inverseDiagonal_;  ///< 1 / L_jj, by column
   std::vector<LO> perm_;
   LO maxPanelRows_ = 0;
   std::unique_ptr<Subtrees> subtrees_;
 };
+
+inline void PackedFactor::appendLaidOutSupernode(LO firstColumn, LO numColumns, const std::vector<LO>& rows,
+                                                  long long triangleOffset, long long panelOffset,
+                                                  const double* inverseDiagonal) {
+  supernodes_.push_back({firstColumn, numColumns, static_cast<LO>(rows.size()), static_cast<LO>(rows_.size()),
+                         triangleOffset, panelOffset});
+  rows_.insert(rows_.end(), rows.begin(), rows.end());
+  inverseDiagonal_.insert(inverseDiagonal_.end(), inverseDiagonal, inverseDiagonal + numColumns);
+  maxPanelRows_ = std::max(maxPanelRows_, static_cast<LO>(rows.size()));
+}
+
+inline void PackedFactor::adoptValues(double* values, long long count, void (*release)(void*)) {
+  adopted_ = std::unique_ptr<double, void (*)(void*)>(values, release);
+  adoptedCount_ = count;
+  std::vector<double>().swap(values_);
+}
+
+inline void PackedFactor::reserve(long long strictLowerValues, long long rowIndices, LO numSupernodes, LO numColumns) {
+  values_.reserve(static_cast<size_t>(strictLowerValues));
+  rows_.reserve(static_cast<size_t>(rowIndices));
+  supernodes_.reserve(static_cast<size_t>(numSupernodes));
+  inverseDiagonal_.reserve(static_cast<size_t>(numColumns));
+}
 
 template <class Value>
 void PackedFactor::appendSupernode(LO firstColumn, LO numColumns, const std::vector<LO>& rows, Value&& value) {

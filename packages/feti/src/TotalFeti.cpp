@@ -321,20 +321,7 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
   // (4) G on the owned rows; G G^T, replicated, factorised once.
   buildCoarseRows();
   buildCoarsePattern();
-  core::Stopwatch coarseWatch;
-  const fem::CsrMatrix GGt = assembleCoarse(nullptr);
-  coarse_ = makeSparseCholesky(settings_.factorization);
-  coarse_->setSubtreeSolve(true);  // solved on the main thread, by every rank alike
-  try {
-    coarse_->factorize(GGt);
-  } catch (const std::exception& e) {
-    throw core::InputError(std::string("the constraints do not fix every rigid body mode of every subdomain "
-                                       "(G G^T is singular: ") +
-                           e.what() + "); check Boundary/Dirichlet Node Sets and the contact surfaces");
-  }
-  profile_.coarseFactorSeconds = coarseWatch.seconds();
-  profile_.coarseFactorNonzeros = coarse_->factorNonzeros();
-  profile_.coarseSubtrees = coarse_->subtreeCount();
+  factorizeCoarse();
 
   measureTraffic();
 
@@ -612,24 +599,49 @@ fem::CsrMatrix TotalFeti::assembleCoarse(const std::vector<char>* ownedRowMask) 
       }
   }
   core::allReduceSlots(comm_.get(), local);
-  std::vector<double> blocks(local.size() / kSlots);
-  for (size_t i = 0; i < blocks.size(); ++i) blocks[i] = core::SumBins::combine(&local[kSlots * i]);
 
+  // Each value combined from its slots straight into the matrix (no array of the blocks in
+  // between: this replicated transient is the size of G G^T's pattern).
   fem::CsrMatrix GGt;
   GGt.n = numCoarse();
   GGt.rowPtr.assign(GGt.n + 1, 0);
-  GGt.colInd.reserve(blocks.size());
-  GGt.values.reserve(blocks.size());
+  GGt.colInd.reserve(local.size() / kSlots);
+  GGt.values.reserve(local.size() / kSlots);
   for (int s = 0; s < numSubdomains_; ++s)
     for (int a = 0; a < 6; ++a) {
       for (LO k = blockStart[s]; k < blockStart[s + 1]; ++k)
         for (int c = 0; c < 6; ++c) {
           GGt.colInd.push_back(6 * coarseNeighbours_[k] + c);
-          GGt.values.push_back(blocks[36 * static_cast<size_t>(k) + a * 6 + c]);
+          GGt.values.push_back(core::SumBins::combine(&local[kSlots * (36 * static_cast<size_t>(k) + a * 6 + c)]));
         }
       GGt.rowPtr[6 * s + a + 1] = static_cast<LO>(GGt.colInd.size());
     }
   return GGt;
+}
+
+void TotalFeti::factorizeCoarse() const {
+  // G G^T, replicated: its assembled matrix lives only as long as the factorisation (the
+  // largest replicated items at thousands of subdomains, doc/scalability.md).
+  core::Stopwatch watch;
+  auto factor = makeSparseCholesky(settings_.factorization);
+  factor->setSubtreeSolve(true);  // solved on the main thread, by every rank alike
+  try {
+    factor->factorizeConsuming(assembleCoarse(nullptr));
+  } catch (const std::exception& e) {
+    throw core::InputError(std::string("the constraints do not fix every rigid body mode of every subdomain "
+                                       "(G G^T is singular: ") +
+                           e.what() + "); check Boundary/Dirichlet Node Sets and the contact surfaces");
+  }
+  coarse_ = std::move(factor);
+  profile_.coarseFactorSeconds += watch.seconds();
+  profile_.coarseFactorNonzeros = coarse_->factorNonzeros();
+  profile_.coarseSubtrees = coarse_->subtreeCount();
+}
+
+void TotalFeti::releaseCoarseFactor() const {
+  coarse_.reset();
+  for (CoarseMemo& memo : coarseMemo_) memo = CoarseMemo{};
+  for (ProjectionMemo& memo : projectionMemo_) memo = ProjectionMemo{};
 }
 
 std::vector<double> TotalFeti::rigidBodyCoefficients(const DualVector& lambda,
@@ -649,7 +661,7 @@ std::vector<double> TotalFeti::rigidBodyCoefficients(const DualVector& lambda,
   applyG(residual, alpha);
   auto factor = makeSparseCholesky(settings_.factorization);
   try {
-    factor->factorize(assembleCoarse(&ownedRowMask));
+    factor->factorizeConsuming(assembleCoarse(&ownedRowMask));
   } catch (const std::exception& e) {
     throw RigidMotionsUndetermined(std::string("tribos::feti::TotalFeti::rigidBodyCoefficients: G_I G_I^T is singular "
                                          "(the inactive rows do not fix every rigid body mode): ") + e.what());
@@ -885,6 +897,7 @@ void TotalFeti::solveCoarse(std::vector<double>& a) const {
   coarseMemoNext_ = 1 - coarseMemoNext_;
   memo.valid = false;
   memo.rhs.assign(a.begin(), a.end());
+  if (!coarse_) factorizeCoarse();  // released (releaseCoarseFactor): the same factor again
   coarse_->solve(memo.rhs.data(), a.data());
   memo.solution.assign(a.begin(), a.end());
   memo.valid = true;

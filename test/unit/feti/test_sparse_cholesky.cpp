@@ -226,6 +226,29 @@ TEST(SparseCholesky, subtreeSolvesGiveTheSameBitsOnAnyThreadCountAndSolveTheSyst
   unsetenv("TRIBOS_SUBTREE_SOLVE_FROM");
 }
 
+TEST_P(SparseCholeskyTest, factorizeConsumingGivesTheBitsOfFactorizeAndEmptiesTheMatrix) {
+  // The replicated coarse matrices are handed over (factorizeConsuming) so that the matrix,
+  // the factor and its packed copy are not all alive at once (CHOLMOD: the upper triangle
+  // kept after the ordering, supernodal values packed in CHOLMOD's own array). The factor
+  // must be the same: a simplicial (m = 8, 1 536 rows) and a supernodal (m = 12, 5 184 rows)
+  // CHOLMOD factor, the same solution bits and stored entries as factorize().
+  for (int m : {8, 12}) {
+    const fem::CsrMatrix A = randomSpd(m, 0.1, 11u + m);
+    auto kept = feti::makeSparseCholesky(GetParam()), consumed = feti::makeSparseCholesky(GetParam());
+    kept->factorize(A);
+    fem::CsrMatrix copy = A;
+    consumed->factorizeConsuming(std::move(copy));
+    EXPECT_TRUE(copy.values.empty() && copy.colInd.empty()) << "m = " << m;
+    EXPECT_EQ(kept->factorNonzeros(), consumed->factorNonzeros()) << "m = " << m;
+    const auto b = randomVector(static_cast<size_t>(A.n), 5u + m);
+    std::vector<double> x(b.size()), y(b.size());
+    kept->solve(b.data(), x.data());
+    consumed->solve(b.data(), y.data());
+    EXPECT_EQ(std::memcmp(x.data(), y.data(), sizeof(double) * x.size()), 0) << "m = " << m;
+    EXPECT_LT(relativeResidual(A, y, b, 1), 1e-12) << "m = " << m;
+  }
+}
+
 TEST(SparseCholesky, unknownNameIsAnInputErrorListingTheValidNames) {
   try {
     feti::makeSparseCholesky("NoSuchSolver");

@@ -23,6 +23,14 @@ class SparseCholesky {
   /// Symbolic analysis + numeric factorisation of the SPD matrix A (full symmetric CSR:
   /// both triangles stored). Throws std::runtime_error if A is not positive definite.
   virtual void factorize(const fem::CsrMatrix& A) = 0;
+  /// factorize(A) for a matrix the caller gives up: an implementation may free it as soon as
+  /// the numeric factorisation no longer reads it (CHOLMOD: before its packed copy of the
+  /// factor is made), so that A, the factor and the copy are never alive together (the
+  /// replicated G G^T, doc/scalability.md). A is left empty.
+  virtual void factorizeConsuming(fem::CsrMatrix&& A) {
+    factorize(A);
+    A = fem::CsrMatrix{};
+  }
   /// Solves A X = B for `nrhs` right-hand sides stored column-major (leading dimension n);
   /// x and b may not alias.
   virtual void solve(const double* b, double* x, int nrhs = 1) const = 0;

@@ -97,6 +97,11 @@ class TotalFeti {
   void applyGt(const std::vector<double>& a, DualVector& y) const;
   /// a := (G G^T)^{-1} a.
   void solveCoarse(std::vector<double>& a) const;
+  /// Frees the factor of G G^T and the solve-time memos (the largest replicated data at
+  /// thousands of subdomains: doc/scalability.md), for a caller done with projections,
+  /// before the factor of G_I G_I^T of rigidBodyCoefficients(lambda, mask). A later coarse
+  /// solve factorises G G^T again (the same bits; collective, as every coarse solve is).
+  void releaseCoarseFactor() const;
   /// y = P x = x - G^T (G G^T)^{-1} G x (y may be x).
   void project(const DualVector& x, DualVector& y) const;
   /// gx = G x and a = (G G^T)^{-1} G x (replicated; ||Q x||^2 = gx^T a): copied, without G x
@@ -216,7 +221,10 @@ class TotalFeti {
   long long primalDofs_ = 0;     ///< sum of n_s over all subdomains
 
   std::unique_ptr<CoarseRows> G_;           ///< G on the owned rows
-  std::unique_ptr<SparseCholesky> coarse_;  ///< G G^T, replicated
+  /// G G^T, replicated; null after releaseCoarseFactor() until the next coarse solve.
+  mutable std::unique_ptr<SparseCholesky> coarse_;
+  /// Assembles and factorises G G^T into coarse_ (collective).
+  void factorizeCoarse() const;
   /// Coarse work vectors of project() and solveCoarse(), allocated once (length l).
   mutable std::vector<double> coarseLocal_, coarseVector_;
   /// The last two coarse solves (right-hand side, solution): the solvers project the same
