@@ -3,6 +3,7 @@
 #include <Tpetra_Vector.hpp>
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 
 #include "tribos/qp/Reductions.hpp"
@@ -16,6 +17,20 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
   Vector phi(map), beta(map), p(map), Ap(map), reduced(map), gradientProjected(map), trial(map), trialGradient(map);
   Vector z(map), zFull(map), scratch(map);
   const double alphaBar = settings_.stepScale / normA;
+  // Tangent CG is switched on once this inner solve has taken `tangentCgAfter` proportioning
+  // steps (the crawl it is for: CG on a face that holds the friction multipliers, interrupted by
+  // proportioning steps that turn them); before, a CG step costs one product with A, not two.
+  // A slide that fails to decrease f (a step too long for the linearised face, or round-off in
+  // the normals near the solution) switches it off for twice as many proportioning steps as
+  // the previous failure did (tangentCgAfter, at least 1, the first time): near round-off the
+  // slides fail every few steps, and without the back-off MPGP alternated between them and
+  // gradient projection steps without converging (a random QP with tangent CG from the start).
+  int slideFrom = settings_.tangentCgAfter, failedSlides = 0;
+  bool slide = settings_.tangentCg && slideFrom == 0;
+  // phi and beta of a gradient; with tangent CG the active ellipse blocks are free along their tangent.
+  auto split = [&](const Vector& at, const Vector& gradientAt, Vector& free, Vector& chopped) {
+    omega.splitGradient(at, gradientAt, free, chopped, slide);
+  };
 
   // g = A x - b after any change of x that is not a CG-type update.
   auto gradient = [&]() {
@@ -34,7 +49,7 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
     }
     M->apply(phi, zFull);
     ++counters.preconditionerApplications;
-    omega.splitGradient(x, zFull, z, scratch);
+    split(x, zFull, z, scratch);
   };
   // After a step that is not a CG step: a fresh search direction.
   auto restartDirection = [&]() {
@@ -55,13 +70,21 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
     omega.project(x);
     gradient();
   };
+  // Tangent CG on from the proportioning step slideFrom on: phi, beta and p in its split.
+  auto startSliding = [&]() {
+    if (slide || !settings_.tangentCg || counters.proportioningSteps < slideFrom) return;
+    slide = true;
+    split(x, g, phi, beta);
+    restartDirection();
+  };
   // Gradient projection step x = P(x - alpha g) (proportioning, and the fallback when A
   // is not positive along p).
   auto gradientProjectionStep = [&]() {
     projectedStep(g);
-    omega.splitGradient(x, g, phi, beta);
+    split(x, g, phi, beta);
     restartDirection();
     ++counters.proportioningSteps;
+    startSliding();
   };
   // MPRGP's proportioning step: the exact minimiser along the chopped gradient,
   // x := P(x - alpha beta) with alpha = beta^T g / beta^T A beta (= ||beta||^2 / beta^T A beta).
@@ -99,15 +122,56 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
     // boundary (a clear margin: a bare f < f0 would be decided by round-off when the projection
     // eats the step, and the choice would differ between rank layouts).
     if (objective(x, g) <= f0 - 0.25 * alpha * betaNorm2) {
-      omega.splitGradient(x, g, phi, beta);
+      split(x, g, phi, beta);
       restartDirection();
       ++counters.proportioningSteps;
+      startSliding();
       return;
     }
     x.assign(previousX);
     g.assign(previousG);
-    omega.splitGradient(x, g, phi, beta);
+    split(x, g, phi, beta);
     gradientProjectionStep();
+  };
+  // Tangent CG (linearised face): the CG step moves active ellipse blocks along their tangent;
+  // projected back onto the boundary, x is no longer x - alpha p, so g is recomputed (one more
+  // product with A) and conjugacy holds only approximately. Kept if f decreased, else false
+  // (x and g restored) and the caller takes a gradient projection step. True without a projection
+  // correction too (then it is the plain CG step).
+  auto slidingCgStep = [&](double alphaCg, double pAp) {
+    previousX.assign(x);
+    previousG.assign(g);
+    x.update(-alphaCg, p, 1.0);
+    trial.assign(x);
+    omega.project(x);
+    trial.update(1.0, x, -1.0);
+    if (trial.normInf() == 0.0) {
+      if (settings_.cgStep) settings_.cgStep(alphaCg, p);
+      g.update(-alphaCg, Ap, 1.0);
+    } else {
+      gradient();
+      // f(x) - f(x0) = (x - x0)^T (g + g0) / 2 exactly for a quadratic: from the step, free of
+      // the cancellation in 1/2 x^T (g - b), which decided the test by round-off near the
+      // solution (cylinder h0.05: f = -42.6, 8 of 16 slides "failed" with f - f0 between 2e-11
+      // and 4e-10; with the difference 1 of 29 fails, and the run needs 1 548 F, not 14 442).
+      trial.update(1.0, x, -1.0, previousX, 0.0);
+      gradientProjected.update(1.0, g, 1.0, previousG, 0.0);
+      const double change = 0.5 * dot(trial, gradientProjected);
+      if (!(change < 0.0)) {
+        x.assign(previousX);
+        g.assign(previousG);
+        slide = false;
+        const long long wait = static_cast<long long>(std::max(settings_.tangentCgAfter, 1)) << std::min(failedSlides++, 20);
+        slideFrom = static_cast<int>(std::min<long long>(counters.proportioningSteps + wait, INT_MAX));
+        return false;
+      }
+    }
+    split(x, g, phi, beta);
+    preconditionedFreeGradient();
+    const double gammaCg = dot(z, trialGradient) / pAp;  // trialGradient: (A + H_c) p
+    p.update(1.0, z, -gammaCg);
+    ++counters.cgSteps;
+    return true;
   };
   auto projectedGradientNorm = [&]() {
     gradientProjected.update(1.0, phi, 1.0, beta, 0.0);
@@ -116,7 +180,7 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
 
   omega.project(x);
   gradient();
-  omega.splitGradient(x, g, phi, beta);
+  split(x, g, phi, beta);
   restartDirection();
   for (;;) {
     counters.projectedGradientNorm = projectedGradientNorm();
@@ -144,19 +208,28 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
       proportioningRun = 0;
       A.apply(p, Ap);
       ++counters.operatorApplications;
-      const double pAp = dot(p, Ap);
+      // Tangent CG: the Hessian on the curved face adds the boundary's curvature term.
+      if (slide) {
+        trialGradient.assign(Ap);
+        omega.addCurvatureProduct(x, g, p, trialGradient);
+      }
+      const double pAp = dot(p, slide ? trialGradient : Ap);
       if (!(pAp > 0.0)) {  // p = 0 or A not positive on p: fall back to a gradient projection
         gradientProjectionStep();
         continue;
       }
       const double alphaCg = dot(g, p) / pAp;
-      const double alphaFeasible = omega.maxFeasibleStep(x, p);
+      const double alphaFeasible = omega.maxFeasibleStep(x, p, slide);
+      if (slide && alphaCg <= alphaFeasible) {
+        if (!slidingCgStep(alphaCg, pAp)) gradientProjectionStep();
+        continue;
+      }
       if (alphaCg <= alphaFeasible) {
         // Conjugate gradient step on the current face.
         x.update(-alphaCg, p, 1.0);
         if (settings_.cgStep) settings_.cgStep(alphaCg, p);
         g.update(-alphaCg, Ap, 1.0);
-        omega.splitGradient(x, g, phi, beta);
+        split(x, g, phi, beta);
         preconditionedFreeGradient();
         const double gammaCg = dot(z, Ap) / pAp;
         p.update(1.0, z, -gammaCg);
@@ -166,7 +239,7 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
         x.update(-alphaFeasible, p, 1.0);
         g.update(-alphaFeasible, Ap, 1.0);
         omega.project(x);  // absorb round-off of the step onto the boundary
-        omega.splitGradient(x, g, phi, beta);
+        split(x, g, phi, beta);
         if (settings_.optimalExpansion) {
           // Projected step with the exact minimiser along -phi (one more product with A),
           // kept only if it decreases f (monotonicity safeguard); else the fixed alpha_bar.
@@ -186,7 +259,7 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
             if (0.5 * dot(trial, reduced) <= fHalf) {
               x.assign(trial);
               g.assign(trialGradient);
-              omega.splitGradient(x, g, phi, beta);
+              split(x, g, phi, beta);
               restartDirection();
               ++counters.expansionSteps;
               continue;
@@ -194,7 +267,7 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
           }
         }
         projectedStep(phi);
-        omega.splitGradient(x, g, phi, beta);
+        split(x, g, phi, beta);
         restartDirection();
         ++counters.expansionSteps;
       }

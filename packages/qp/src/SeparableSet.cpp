@@ -175,7 +175,7 @@ bool SeparableSet::contains(const Vector& x, double tolerance) const {
   return all == 1;
 }
 
-double SeparableSet::maxFeasibleStep(const Vector& x, const Vector& p) const {
+double SeparableSet::maxFeasibleStep(const Vector& x, const Vector& p, bool slideOnEllipses) const {
   auto xv = x.getLocalViewHost(Tpetra::Access::ReadOnly);
   auto pv = p.getLocalViewHost(Tpetra::Access::ReadOnly);
   double step = kInfinity;
@@ -201,6 +201,8 @@ double SeparableSet::maxFeasibleStep(const Vector& x, const Vector& p) const {
       }
       continue;
     }
+    if (slideOnEllipses && ellipseNorm({y[0], y[1]}, a) >= 1.0 - ellipseActiveTolerance(center_[k], std::min(a[0], a[1])))
+      continue;  // active: slides along its tangent, projected back afterwards
     // ||E (y - alpha d)||^2 = 1 with E = diag(1/a): the positive root.
     const double Ey[2] = {y[0] / a[0], y[1] / a[1]}, Ed[2] = {d[0] / a[0], d[1] / a[1]};
     const double qa = Ed[0] * Ed[0] + Ed[1] * Ed[1];
@@ -217,7 +219,8 @@ double SeparableSet::maxFeasibleStep(const Vector& x, const Vector& p) const {
   return global;
 }
 
-void SeparableSet::splitGradient(const Vector& x, const Vector& g, Vector& phi, Vector& beta) const {
+void SeparableSet::splitGradient(const Vector& x, const Vector& g, Vector& phi, Vector& beta,
+                                 bool slideOnEllipses) const {
   // g^P = -P_T(-g) with T the tangent cone of Omega at x; phi = g on blocks where x is
   // interior (0 on active blocks), beta = g^P - phi (ALGORITHMS.md 5). Per block type:
   //  - bound at x = l: T = {d >= 0}, g^P = min(g, 0) (n = -e_i);
@@ -268,6 +271,15 @@ void SeparableSet::splitGradient(const Vector& x, const Vector& g, Vector& phi, 
     std::array<double, 2> n{y[0] / (a[0] * a[0]), y[1] / (a[1] * a[1])};
     const double nn = std::hypot(n[0], n[1]);
     n = {n[0] / nn, n[1] / nn};
+    if (slideOnEllipses) {
+      // Linearised face: the tangential part is free, only a normal part pointing inwards is chopped.
+      const double ngFull = n[0] * gi + n[1] * gj, released = std::max(ngFull, 0.0);
+      fv(i, 0) = gi - ngFull * n[0];
+      fv(j, 0) = gj - ngFull * n[1];
+      bv(i, 0) = released * n[0];
+      bv(j, 0) = released * n[1];
+      continue;
+    }
     const double ng = std::min(n[0] * gi + n[1] * gj, 0.0);
     fv(i, 0) = 0.0;
     fv(j, 0) = 0.0;
@@ -297,6 +309,30 @@ double SeparableSet::boundaryCurvature(const Vector& x, const Vector& g, const V
   }
   // At most one term per two entries of x.
   return sumOver(x, terms.data(), terms.size(), static_cast<long long>(x.getGlobalLength()));
+}
+
+void SeparableSet::addCurvatureProduct(const Vector& x, const Vector& g, const Vector& d, Vector& out) const {
+  auto xv = x.getLocalViewHost(Tpetra::Access::ReadOnly);
+  auto gv = g.getLocalViewHost(Tpetra::Access::ReadOnly);
+  auto dv = d.getLocalViewHost(Tpetra::Access::ReadOnly);
+  auto ov = out.getLocalViewHost(Tpetra::Access::ReadWrite);
+  for (size_t k = 0; k < ellipseIndex_.size(); ++k) {
+    const auto [i, j] = ellipseIndex_[k];
+    const auto a = effectiveAxes(k);
+    if (!(a[0] > 0.0) || !(a[1] > 0.0)) continue;  // intervals and points: flat
+    const std::array<double, 2> y{at(xv, i) - center_[k][0], at(xv, j) - center_[k][1]};
+    if (ellipseNorm(y, a) < 1.0 - ellipseActiveTolerance(center_[k], std::min(a[0], a[1]))) continue;
+    // As in boundaryCurvature: kappa times the multiplier |n^T g|, on the tangential part of d.
+    const double q = y[0] * y[0] / (a[0] * a[0] * a[0] * a[0]) + y[1] * y[1] / (a[1] * a[1] * a[1] * a[1]);
+    const double kappa = 1.0 / (a[0] * a[0] * a[1] * a[1] * q * std::sqrt(q));
+    std::array<double, 2> n{y[0] / (a[0] * a[0]), y[1] / (a[1] * a[1])};
+    const double nn = std::hypot(n[0], n[1]);
+    n = {n[0] / nn, n[1] / nn};
+    const double pressing = std::max(-(n[0] * at(gv, i) + n[1] * at(gv, j)), 0.0);
+    const double di = at(dv, i), dj = at(dv, j), nd = n[0] * di + n[1] * dj;
+    ov(i, 0) += kappa * pressing * (di - nd * n[0]);
+    ov(j, 0) += kappa * pressing * (dj - nd * n[1]);
+  }
 }
 
 void SeparableSet::reducedFreeGradient(const Vector& x, const Vector& phi, double alpha, Vector& out) const {

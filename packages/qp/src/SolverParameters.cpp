@@ -87,7 +87,15 @@ const core::ParameterTable<MpgpSettings>& mpgpTable() {
           .add("chopped proportioning", &MpgpSettings::choppedProportioning,
                "a proportioning step that follows another goes along the chopped gradient with the exact step "
                "length on the constraint boundary (MPRGP's step, the ellipses' curvature included, projected; kept "
-               "with a sufficient decrease, else the gradient projection step with alpha_bar)");
+               "with a sufficient decrease, else the gradient projection step with alpha_bar)")
+          .add("tangent CG", &MpgpSettings::tangentCg,
+               "CG steps also move the friction multipliers on the boundary of their ellipse, along its tangent "
+               "(projected back; one more product with A when that moves them; kept if f decreases, else the "
+               "gradient projection step)")
+          .add("tangent CG after", &MpgpSettings::tangentCgAfter,
+               "tangent CG: switched on in an inner solve once it has taken this many proportioning steps "
+               "(0: from the start)",
+               core::intRange(0, kMaxCount));
   return table;
 }
 }  // namespace

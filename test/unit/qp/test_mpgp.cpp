@@ -242,3 +242,19 @@ TEST(Mpgp, progressIsCalledEveryKIterationsWithTheCountersSoFar) {
   EXPECT_EQ(c2.iterations, c.iterations);
   EXPECT_EQ(test::maxDifference(test::gather(x2), test::gather(x)), 0.0);
 }
+
+// Tangent CG from the start (active ellipses move along their tangent in CG steps) and
+// switched off reach the same solutions as the defaults, to KKT accuracy.
+TEST(Mpgp, tangentCgReachesTheSameSolution) {
+  for (const int after : {0, 10000000}) {
+    qp::MpgpSettings settings;
+    settings.tangentCgAfter = after;
+    for (unsigned seed = 1; seed <= 24; ++seed) {
+      const double condition = seed % 3 == 0 ? 1000.0 : seed % 3 == 1 ? 10.0 : 100.0;
+      const auto run = solveMixed(seed, condition, 100.0, settings);
+      EXPECT_LE(run.kkt.stationarity, 1e-9) << "seed " << seed << " after " << after;
+      EXPECT_LE(run.kkt.sign, 1e-9) << "seed " << seed << " after " << after;
+      EXPECT_LE(run.admmDifference, 1e-8) << "seed " << seed << " after " << after;
+    }
+  }
+}

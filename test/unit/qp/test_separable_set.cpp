@@ -289,3 +289,46 @@ TEST(SeparableSet, aBlockWithinRoundOffOfItsCentreIsOnTheBoundary) {
   omega.splitGradient(x, g, phi, beta);
   EXPECT_EQ(test::gather(phi)[0], -1.0);
 }
+
+// Tangent CG's linearised face (splitGradient with slideOnEllipses): on an active ellipse the
+// tangential part of g is free and only an inward normal part is chopped, so phi + beta is
+// the same g^P; the curvature product's quadratic form is boundaryCurvature; an active
+// ellipse no longer limits the feasible step.
+TEST(SeparableSet, slidingOnEllipsesKeepsTheProjectedGradient) {
+  auto map = test::makeMap(2, test::selfComm());
+  const Pair a{2.0, 1.0}, center{0.5, -0.25};
+  qp::SeparableSet omega;
+  omega.addEllipse({0, 1}, center, a);
+  const double t = 0.6;
+  const Pair y{a[0] * std::cos(t), a[1] * std::sin(t)};  // on the boundary
+  Pair n{y[0] / (a[0] * a[0]), y[1] / (a[1] * a[1])};
+  const double nn = std::hypot(n[0], n[1]);
+  n = {n[0] / nn, n[1] / nn};
+  qp::Vector x(map), g(map), phi(map), beta(map), phiS(map), betaS(map), d(map), hd(map);
+  test::scatter(std::vector<double>{center[0] + y[0], center[1] + y[1]}, x);
+  for (const double sign : {-1.0, 1.0}) {  // pressed outwards, then released inwards
+    const Pair gs{sign * 1.5 * n[0] + 0.4 * n[1], sign * 1.5 * n[1] - 0.4 * n[0]};
+    test::scatter(std::vector<double>{gs[0], gs[1]}, g);
+    omega.splitGradient(x, g, phi, beta);
+    omega.splitGradient(x, g, phiS, betaS, true);
+    const auto f = test::gather(phi), b = test::gather(beta), fs = test::gather(phiS), bs = test::gather(betaS);
+    for (int i = 0; i < 2; ++i) EXPECT_NEAR(fs[i] + bs[i], f[i] + b[i], 1e-15);
+    EXPECT_NEAR(dot({fs[0], fs[1]}, n), 0.0, 1e-15);  // phi is tangent
+    EXPECT_NEAR(std::hypot(fs[0], fs[1]), 0.4, 1e-15);
+    EXPECT_NEAR(std::hypot(bs[0], bs[1]), sign > 0 ? 1.5 : 0.0, 1e-15);
+  }
+  // Pressed outwards by 1.5: H_c = 1.5 kappa (I - n n^T), its form on d is boundaryCurvature.
+  test::scatter(std::vector<double>{-1.5 * n[0], -1.5 * n[1]}, g);
+  test::scatter(std::vector<double>{0.3, -0.7}, d);
+  hd.putScalar(0.0);
+  omega.addCurvatureProduct(x, g, d, hd);
+  const auto h = test::gather(hd);
+  EXPECT_NEAR(0.3 * h[0] - 0.7 * h[1], omega.boundaryCurvature(x, g, d) * dot({0.3, -0.7}, {-n[1], n[0]}) *
+                                           dot({0.3, -0.7}, {-n[1], n[0]}) / (0.3 * 0.3 + 0.7 * 0.7),
+              1e-12);
+  EXPECT_NEAR(dot({h[0], h[1]}, n), 0.0, 1e-14);
+  // Outwards along the tangent: no step without sliding, unlimited with it.
+  test::scatter(std::vector<double>{n[1], -n[0]}, d);
+  EXPECT_EQ(omega.maxFeasibleStep(x, d), 0.0);
+  EXPECT_EQ(omega.maxFeasibleStep(x, d, true), std::numeric_limits<double>::infinity());
+}

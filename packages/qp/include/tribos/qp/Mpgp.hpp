@@ -30,6 +30,14 @@ struct MpgpSettings {
   /// curvature term), projected on Omega and kept if f decreases, instead of the gradient
   /// projection step with alpha_bar.
   bool choppedProportioning = true;
+  /// Tangent CG: active ellipse blocks are free along their tangent in CG steps (linearised
+  /// face, projected back onto the boundary; one more product with A when that moves x, and
+  /// the step kept only if f decreases), instead of fixed until a proportioning step.
+  bool tangentCg = true;
+  /// Tangent CG from this many proportioning steps of an inner solve on (0: from the start):
+  /// the crawl it is for shows as a run of proportioning steps; on the paper's bricks every
+  /// inner solve takes fewer, and tangent CG from the start doubled their F applications.
+  int tangentCgAfter = 10;
   /// Preconditioning in face: CG steps use z = chi_F M^-1 phi (M^-1 applied to the free
   /// gradient, then restricted to the free set F of the current face) instead of phi. Must be
   /// symmetric positive definite on the free set; null: no preconditioner (z = phi).

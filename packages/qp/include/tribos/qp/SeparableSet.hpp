@@ -33,16 +33,25 @@ class SeparableSet {
   bool contains(const Vector& x, double tolerance = 1e-12) const;
   /// The largest alpha >= 0 with x - alpha p in Omega (x in Omega); a global minimum over
   /// ranks (one all-reduce). +infinity when no block limits the step.
-  double maxFeasibleStep(const Vector& x, const Vector& p) const;
+  /// With `slideOnEllipses`, the ellipse blocks active at x do not limit the step (MPGP's
+  /// tangent CG: such blocks move along the tangent and are projected back).
+  double maxFeasibleStep(const Vector& x, const Vector& p, bool slideOnEllipses = false) const;
   /// Free gradient phi (g on free blocks and on blocks not active at x, 0 on active blocks)
   /// and chopped gradient beta (on active blocks: g - min(n^T g, 0) n with n the outer unit
   /// normal; 0 elsewhere). g^P = phi + beta is the projected gradient.
-  void splitGradient(const Vector& x, const Vector& g, Vector& phi, Vector& beta) const;
+  /// With `slideOnEllipses`, a smooth active ellipse block is free along its tangent line:
+  /// phi = g - (n^T g) n (the tangential part), beta = max(n^T g, 0) n (g^P is the same), so
+  /// that CG moves the friction multipliers along their boundary (linearised face).
+  void splitGradient(const Vector& x, const Vector& g, Vector& phi, Vector& beta, bool slideOnEllipses = false) const;
   /// sum over the active smooth ellipse blocks of kappa_k |n_k^T g_k| ||d_k||^2, with kappa_k
   /// the boundary's curvature at x along the tangent and n_k the outer normal: the second
   /// derivative that the constraint adds to f along an arc of the boundary tangent to d (the
   /// Lagrange multiplier |n^T g| times the curvature). 0 on bounds and free blocks.
   double boundaryCurvature(const Vector& x, const Vector& g, const Vector& d) const;
+  /// out += H_c d, with H_c = sum over the active smooth ellipse blocks pressed outwards of
+  /// kappa_k |n_k^T g_k| (I - n_k n_k^T): the Hessian that the curved boundary adds to f on the
+  /// linearised face (its quadratic form on tangent d is boundaryCurvature).
+  void addCurvatureProduct(const Vector& x, const Vector& g, const Vector& d, Vector& out) const;
   /// Reduced free gradient phi~ = (x - P_Omega(x - alpha phi)) / alpha.
   void reducedFreeGradient(const Vector& x, const Vector& phi, double alpha, Vector& out) const;
 
