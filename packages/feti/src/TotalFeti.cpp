@@ -526,7 +526,8 @@ void TotalFeti::linkGTerms(CoarseRows& G, const double* source, size_t stride) {
   // source: column j of the owned subdomains' g_{s,r} at source + j * stride.
   auto isOwned = [&](GO row) { return row >= G.firstRow && row < G.firstRow + G.numRows; };
   size_t foreign = 0;
-  for (const auto& L : local_) foreign += std::count_if(L->block->rows.begin(), L->block->rows.end(), [&](GO row) { return !isOwned(row); });
+  for (const auto& L : local_)
+    for (GO row : L->block->rows) foreign += !isOwned(row);
   G.g.reserve(G.g.size() + 6 * foreign);
   LO firstSource = 0;
   for (const auto& L : local_) {

@@ -147,12 +147,12 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
       proportioningRun = 0;
       A.apply(p, Ap);
       ++counters.operatorApplications;
-      const auto [pAp, gp] = dots(p, Ap, g, p);  // one reduction for both
+      const auto [pAp, gTp] = dots(p, Ap, g, p);  // one reduction for both
       if (!(pAp > 0.0)) {  // p = 0 or A not positive on p: fall back to a gradient projection
         gradientProjectionStep();
         continue;
       }
-      const double alphaCg = gp / pAp;
+      const double alphaCg = gTp / pAp;
       const double alphaFeasible = omega.maxFeasibleStep(x, p);
       if (alphaCg <= alphaFeasible) {
         // Conjugate gradient step on the current face.
