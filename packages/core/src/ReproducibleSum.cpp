@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace tribos::core {
 
@@ -138,21 +139,34 @@ double reproducibleDot(const Teuchos::Comm<int>* comm, const double* a, const do
 
 void reproducibleDots(const Teuchos::Comm<int>* comm, const double* a, const double* b, const double* c,
                       const double* d, std::size_t n, long long count, double out[2]) {
-  auto ab = [a, b](std::size_t i) { return a[i] * b[i]; };
-  auto ab2 = [a, b](std::size_t i) { return load(a + i) * load(b + i); };
-  auto cd = [c, d](std::size_t i) { return c[i] * d[i]; };
-  auto cd2 = [c, d](std::size_t i) { return load(c + i) * load(d + i); };
-  // Each sum keeps its own bound (its own quanta); both travel in one all-reduce of length 2.
-  double local[2] = {localBound(n, ab, ab2), localBound(n, cd, cd2)};
-  double bound[2] = {local[0], local[1]};
-  if (comm && comm->getSize() > 1) Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 2, local, bound);
-  const SumBins first(bound[0], count), second(bound[1], count);
-  std::vector<double> slots(2 * SumBins::kSlices, 0.0);
-  depositAll(first, n, ab, ab2, slots.data());
-  depositAll(second, n, cd, cd2, slots.data() + SumBins::kSlices);
+  const double* left[2] = {a, c};
+  const double* right[2] = {b, d};
+  reproducibleDots(comm, left, right, 2, n, count, out);
+}
+
+void reproducibleDots(const Teuchos::Comm<int>* comm, const double* const* a, const double* const* b, int k,
+                      std::size_t n, long long count, double* out) {
+  auto terms = [&](int i) {
+    const double *ai = a[i], *bi = b[i];
+    return std::make_pair([ai, bi](std::size_t j) { return ai[j] * bi[j]; },
+                          [ai, bi](std::size_t j) { return load(ai + j) * load(bi + j); });
+  };
+  // Each sum keeps its own bound (its own quanta), as reproducibleDot; all bounds travel in
+  // one all-reduce of length k, all slots in one of length kSlices k.
+  std::vector<double> local(k), bound(k);
+  for (int i = 0; i < k; ++i) {
+    const auto [term, term2] = terms(i);
+    local[i] = localBound(n, term, term2);
+  }
+  bound = local;
+  if (comm && comm->getSize() > 1) Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, k, local.data(), bound.data());
+  std::vector<double> slots(static_cast<std::size_t>(SumBins::kSlices) * k, 0.0);
+  for (int i = 0; i < k; ++i) {
+    const auto [term, term2] = terms(i);
+    depositAll(SumBins(bound[i], count), n, term, term2, slots.data() + SumBins::kSlices * i);
+  }
   allReduceSlots(comm, slots);
-  out[0] = SumBins::combine(slots.data());
-  out[1] = SumBins::combine(slots.data() + SumBins::kSlices);
+  for (int i = 0; i < k; ++i) out[i] = SumBins::combine(slots.data() + SumBins::kSlices * i);
 }
 
 }  // namespace tribos::core

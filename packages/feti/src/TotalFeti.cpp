@@ -148,7 +148,12 @@ struct TotalFeti::Local {
   std::vector<LO> overlapIndex;  ///< local index in the overlap map of each block row
   std::vector<LO> factorDof;     ///< per entry of the block: its dof in the factor's order
   std::vector<LO> rowOrder;      ///< the block's rows by ascending global id (B.rowId)
-  std::vector<double> g;         ///< g_{s,r} = R_s^T b_{s,r}^T, 6 per block row (G x)
+  /// G x's terms in rowOrder: x's index on the overlap and g_{s,r}'s entry in G's copy
+  /// (CoarseRows::g, shared with G^T a; rows owned elsewhere after the owned-row entries).
+  struct GTerm {
+    LO overlap, entry;
+  };
+  std::vector<GTerm> gTerms;
   fem::SubdomainSystem system;
   SubdomainSolver solver;
   std::vector<double> denseF;    ///< explicit F_s (m x m, column-major) when requested
@@ -358,8 +363,9 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
 /// adds each entry's g_{s,r} . a_s into its row's sum in a chunk-sized buffer, runs in
 /// ascending subdomain order: every row sums its entries in ascending subdomain order (the
 /// rows of one run are distinct, so there is no chain of dependent updates). G x is summed
-/// by subdomain instead (Local::g, applyGOwnedSubdomains): a subdomain's rows are owned by
-/// different ranks on different layouts, its owner has them all.
+/// by subdomain instead (Local::gTerms, applyGOwnedSubdomains): a subdomain's rows are owned
+/// by different ranks on different layouts, its owner has them all; it reads the same g,
+/// where the entries of the rows that other ranks own follow the owned-row entries.
 /// The by-row view (rowStart, rowSubdomain, rowEntry) serves the set-up (G G^T).
 struct TotalFeti::CoarseRows {
   GO firstRow = 0;
@@ -369,7 +375,7 @@ struct TotalFeti::CoarseRows {
   std::vector<LO> rowEntry;       ///< per entry in row order: its index in the stored order
   // Stored order: chunk, subdomain, row.
   std::vector<LO> entryRow;       ///< per entry
-  std::vector<double> g;          ///< 6 per entry
+  std::vector<double> g;          ///< 6 per entry; then those of rows owned elsewhere that G x reads
   std::vector<LO> runStart;       ///< per run + 1: its entries
   std::vector<int> runSubdomain;  ///< per run
   std::vector<int> chunkRunStart;  ///< per chunk + 1: its runs
@@ -404,16 +410,14 @@ void TotalFeti::buildCoarseRows() {
     for (int i = 0; i < numOwnedSubdomains(); ++i) first[i + 1] = first[i] + local_[i]->m();
     auto g = gSource.getLocalViewHost(Tpetra::Access::OverwriteAll);
     core::forEachSubdomain(numOwnedSubdomains(), [&](int i) {
-      Local& L = *local_[i];
+      const Local& L = *local_[i];
       const SubdomainBlock& b = *L.block;
       const LO n = L.n();
-      L.g.assign(6 * static_cast<size_t>(L.m()), 0.0);
       for (LO r = 0; r < L.m(); ++r)
         for (int j = 0; j < 6; ++j) {
           double sum = 0.0;
           for (LO k = b.rowPtr[r]; k < b.rowPtr[r + 1]; ++k) sum += b.value[k] * L.system.R[static_cast<size_t>(j) * n + b.dof[k]];
           g(first[i] + r, j) = sum;
-          L.g[6 * static_cast<size_t>(r) + j] = sum;
         }
     });
   }
@@ -490,11 +494,48 @@ void TotalFeti::buildCoarseRows() {
   double gMax = 0.0;
   for (double v : G->g) gMax = std::max(gMax, std::abs(v));
   gMax_ = core::globalMax(comm_.get(), gMax);
+  {
+    auto source = gSource.getLocalViewHost(Tpetra::Access::ReadOnly);
+    linkGTerms(*G, source.data(), source.stride(1));
+  }
   profile_.gEntries = static_cast<long long>(G->rowSubdomain.size());
   profile_.gRows = G->numRows;
   G_ = std::move(G);
   coarseLocal_.assign(numCoarse(), 0.0);
   coarseVector_.assign(numCoarse(), 0.0);
+}
+
+void TotalFeti::linkGTerms(CoarseRows& G, const double* source, size_t stride) {
+  // G x of an owned subdomain reads g_{s,r} where G^T a does: the entry of the owned row r in
+  // G's stored order. A row owned by another rank (several ranks) has no entry here: its
+  // g_{s,r}, computed by this rank (gSource), is appended after the owned-row entries, so that
+  // each entry is stored once per rank that needs it. One rank: one copy of G.
+  // source: column j of the owned subdomains' g_{s,r} at source + j * stride.
+  auto isOwned = [&](GO row) { return row >= G.firstRow && row < G.firstRow + G.numRows; };
+  size_t foreign = 0;
+  for (const auto& L : local_)
+    for (GO row : L->block->rows) foreign += !isOwned(row);
+  G.g.reserve(G.g.size() + 6 * foreign);
+  LO firstSource = 0;
+  for (const auto& L : local_) {
+    L->gTerms.clear();
+    L->gTerms.reserve(L->m());
+    for (LO r : L->rowOrder) {
+      const GO row = L->block->rows[r];
+      LO entry = 0;
+      if (isOwned(row)) {
+        const LO local = static_cast<LO>(row - G.firstRow);
+        LO e = G.rowStart[local];
+        while (G.rowSubdomain[e] != L->subdomain) ++e;  // a row has a few entries
+        entry = G.rowEntry[e];
+      } else {
+        entry = static_cast<LO>(G.g.size() / 6);
+        for (int j = 0; j < 6; ++j) G.g.push_back(source[firstSource + r + j * stride]);
+      }
+      L->gTerms.push_back({L->overlapIndex[r], entry});
+    }
+    firstSource += L->m();
+  }
 }
 
 void TotalFeti::measureTraffic() {
@@ -825,9 +866,10 @@ void TotalFeti::applyGOwnedSubdomains(const double* xOverlap, double* gx) const 
   core::forEachSubdomain(numOwnedSubdomains(), [&](int i) {
     const Local& L = *local_[i];
     double sum[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
-    for (LO r : L.rowOrder) {
-      const double xr = xOverlap[L.overlapIndex[r]];
-      const double* g = &L.g[6 * static_cast<size_t>(r)];
+    const double* gAll = G_->g.data();
+    for (const Local::GTerm& t : L.gTerms) {
+      const double xr = xOverlap[t.overlap];
+      const double* g = gAll + 6 * static_cast<size_t>(t.entry);
       for (int j = 0; j < 6; ++j) sum[j] += g[j] * xr;
     }
     std::copy(sum, sum + 6, gx + 6 * L.subdomain);

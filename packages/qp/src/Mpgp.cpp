@@ -98,7 +98,8 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
     A.apply(beta, Ap);
     ++counters.operatorApplications;
     // The second derivative along the arc: beta^T A beta plus what the curved boundary adds.
-    const double betaAbeta = dot(beta, Ap) + omega.boundaryCurvature(x, g, beta), betaNorm2 = dot(beta, beta);
+    const auto [betaAp, betaNorm2] = dots(beta, Ap, beta, beta);
+    const double betaAbeta = betaAp + omega.boundaryCurvature(x, g, beta);
     // Only where alpha_bar is too short for it: a shorter exact step (e.g. at the sharp end of
     // a flat ellipse) does less than the gradient projection step, which moves the free part too.
     const double alpha = betaAbeta > 0.0 ? betaNorm2 / betaAbeta : 0.0;
@@ -173,9 +174,12 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
     ++counters.cgSteps;
     return true;
   };
-  auto projectedGradientNorm = [&]() {
+  // ||g^P||^2 and the proportioning test's ||beta||^2 and phi~^T phi in one reduction
+  // (Reductions.hpp: the bits of three separate ones).
+  auto iterationSums = [&]() {
     gradientProjected.update(1.0, phi, 1.0, beta, 0.0);
-    return norm2(gradientProjected);
+    omega.reducedFreeGradient(x, phi, alphaBar, reduced);
+    return dots(gradientProjected, gradientProjected, beta, beta, reduced, phi);
   };
 
   omega.project(x);
@@ -183,7 +187,8 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
   split(x, g, phi, beta);
   restartDirection();
   for (;;) {
-    counters.projectedGradientNorm = projectedGradientNorm();
+    const auto [gradientProjectedNorm2, betaNorm2, reducedPhi] = iterationSums();
+    counters.projectedGradientNorm = std::sqrt(gradientProjectedNorm2);
     // A NaN would fail every comparison and loop to the iteration cap: stop at once (the
     // norm is a global reduction, so every rank stops at the same iteration).
     if (!std::isfinite(counters.projectedGradientNorm)) {
@@ -201,9 +206,7 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
     ++counters.iterations;
 
     // Proportional iterate: the chopped gradient is small against the reduced free one.
-    omega.reducedFreeGradient(x, phi, alphaBar, reduced);
-    const double betaNorm2 = dot(beta, beta);
-    const double proportion = settings_.gamma * settings_.gamma * dot(reduced, phi);
+    const double proportion = settings_.gamma * settings_.gamma * reducedPhi;
     if (betaNorm2 <= proportion) {
       proportioningRun = 0;
       A.apply(p, Ap);
@@ -213,12 +216,12 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
         trialGradient.assign(Ap);
         omega.addCurvatureProduct(x, g, p, trialGradient);
       }
-      const double pAp = dot(p, slide ? trialGradient : Ap);
+      const auto [pAp, gTp] = dots(p, slide ? trialGradient : Ap, g, p);  // one reduction for both
       if (!(pAp > 0.0)) {  // p = 0 or A not positive on p: fall back to a gradient projection
         gradientProjectionStep();
         continue;
       }
-      const double alphaCg = dot(g, p) / pAp;
+      const double alphaCg = gTp / pAp;
       const double alphaFeasible = omega.maxFeasibleStep(x, p, slide);
       if (slide && alphaCg <= alphaFeasible) {
         if (!slidingCgStep(alphaCg, pAp)) gradientProjectionStep();
@@ -245,8 +248,8 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
           // kept only if it decreases f (monotonicity safeguard); else the fixed alpha_bar.
           A.apply(phi, Ap);
           ++counters.operatorApplications;
-          const double phiAphi = dot(phi, Ap);
-          const double alphaOpt = phiAphi > 0.0 ? dot(phi, phi) / phiAphi : 0.0;
+          const auto [phiAphi, phiPhi] = dots(phi, Ap, phi, phi);
+          const double alphaOpt = phiAphi > 0.0 ? phiPhi / phiAphi : 0.0;
           if (alphaOpt > alphaBar) {
             reduced.update(1.0, g, -1.0, b, 0.0);
             const double fHalf = 0.5 * dot(x, reduced);

@@ -31,6 +31,15 @@ std::array<double, 2> dots(const Vector& a, const Vector& b, const Vector& c, co
   return out;
 }
 
+std::array<double, 3> dots(const Vector& a, const Vector& b, const Vector& c, const Vector& d, const Vector& e,
+                           const Vector& f) {
+  const double* left[3] = {values(a), values(c), values(e)};
+  const double* right[3] = {values(b), values(d), values(f)};
+  std::array<double, 3> out{};
+  core::reproducibleDots(commOf(a), left, right, 3, a.getLocalLength(), countOf(a), out.data());
+  return out;
+}
+
 double sumOver(const Vector& x, const double* terms, std::size_t n, long long count) {
   return core::reproducibleSum(commOf(x), terms, n, count);
 }

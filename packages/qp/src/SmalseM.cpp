@@ -174,13 +174,16 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
     counters.operatorApplications += inner.operatorApplications;
     counters.preconditionerApplications += inner.preconditionerApplications;
     const double gp = inner.projectedGradientNorm;
-    const double gmu = equalityNorm(mu);
-    counters.projectedGradient = gp / normC;
-    counters.equalityResidual = normA * gmu / normC;
     // L_rho(mu, beta) = 1/2 mu^T A_rho mu - b^T mu = 1/2 mu^T (g - b) with g = A_rho mu - b.
     Vector gMinusB(map);
     gMinusB.update(1.0, g, -1.0, b, 0.0);
-    const double L = 0.5 * dot(mu, gMinusB);
+    // ||Q mu|| (Qmu = Q mu from the test above) and mu^T (g - b) in one reduction (the bits of
+    // norm2 and dot alone).
+    const auto [gmu2, muGminusB] = dots(Qmu, Qmu, mu, gMinusB);
+    const double gmu = std::sqrt(gmu2);
+    counters.projectedGradient = gp / normC;
+    counters.equalityResidual = normA * gmu / normC;
+    const double L = 0.5 * muGminusB;
     const bool done = smalseConverged(gp, gmu, mu);
 
     // Step 3: beta^{k+1} = beta^k + rho G mu^k, kept as G^T beta (+= rho Q mu).

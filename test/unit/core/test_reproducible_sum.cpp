@@ -115,6 +115,18 @@ TEST(ReproducibleSum, everyRankSplitGivesTheBitsOfOneProcess) {
                                  end - first, n, both);
   EXPECT_TRUE(sameBits(both[0], dotWhole));
   EXPECT_TRUE(sameBits(both[1], tribos::core::reproducibleDot(nullptr, x.data(), x.data(), x.size(), n)));
+  // k sums in one pair of all-reduces: each has the bits of its own reproducibleDot, also when
+  // their sizes differ by orders of magnitude (each keeps its own quanta; shared quanta would
+  // round the small one on the large one's grid).
+  std::vector<double> small(x.size());
+  for (size_t i = 0; i < x.size(); ++i) small[i] = 1e-9 * y[i];
+  const double* left[3] = {x.data() + first, small.data() + first, y.data() + first};
+  const double* right[3] = {y.data() + first, x.data() + first, y.data() + first};
+  double three[3];
+  tribos::core::reproducibleDots(comm.get(), left, right, 3, end - first, n, three);
+  EXPECT_TRUE(sameBits(three[0], dotWhole));
+  EXPECT_TRUE(sameBits(three[1], tribos::core::reproducibleDot(nullptr, small.data(), x.data(), x.size(), n)));
+  EXPECT_TRUE(sameBits(three[2], tribos::core::reproducibleDot(nullptr, y.data(), y.data(), y.size(), n)));
 }
 
 TEST(ReproducibleSum, zerosAndNonFiniteValues) {

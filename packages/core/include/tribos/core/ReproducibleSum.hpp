@@ -81,5 +81,10 @@ double reproducibleDot(const Teuchos::Comm<int>* comm, const double* a, const do
 /// Two dot products with one MAX and one SUM all-reduce: {a.b, c.d} (the same n for both).
 void reproducibleDots(const Teuchos::Comm<int>* comm, const double* a, const double* b, const double* c,
                       const double* d, std::size_t n, long long count, double out[2]);
+/// k dot products out[i] = a[i] . b[i] (the same n for all) with one MAX and one SUM
+/// all-reduce. Each keeps its own bound, hence its own quanta: out[i] has the bits of
+/// reproducibleDot(comm, a[i], b[i], n, count) alone.
+void reproducibleDots(const Teuchos::Comm<int>* comm, const double* const* a, const double* const* b, int k,
+                      std::size_t n, long long count, double* out);
 
 }  // namespace tribos::core

@@ -210,6 +210,9 @@ class TotalFeti {
   std::vector<int> coarseNeighbours_;
   /// g_{s,r} for the owned rows, from the owners of the subdomains (one import at set-up).
   void buildCoarseRows();
+  /// Local::gTerms of the owned subdomains into G's copy of g (entries of rows owned by other
+  /// ranks appended from source: the owned subdomains' g_{s,r}, column j at j * stride).
+  void linkGTerms(CoarseRows& G, const double* source, size_t stride);
   /// Sets factorNonzeros_ and bytesPerFApplication_ (collective).
   void measureTraffic();
   /// The entries of G x of this rank's subdomains (the others zero; length l, not reduced),
