@@ -26,9 +26,19 @@ struct SolvedContactScene {
   stack::ContactSolveResult result;
 };
 
-inline SolvedContactScene solveContactScene(const std::vector<std::string>& overrides, MPI_Comm comm = MPI_COMM_WORLD) {
+/// Builds and solves the scene of the validated list `s.params`; `source` names the scene file
+/// (relative mesh paths start from its directory) or "test".
+inline void solveValidatedScene(SolvedContactScene& s, const std::string& source, MPI_Comm comm) {
   int size = 1;
   MPI_Comm_size(comm, &size);
+  s.scene = stack::buildScene(s.params, source);
+  std::vector<fem::SubdomainSystem> systems;
+  stack::assembleOwnedSubdomains(s.scene, comm, systems);
+  s.B = feti::buildConstraintMatrix(s.scene.mesh, s.scene.decomposition, stack::constraintSpec(s.scene), size);
+  s.result = stack::solveContactScene(s.scene, std::move(systems), s.B, s.params, comm);
+}
+
+inline SolvedContactScene solveContactScene(const std::vector<std::string>& overrides, MPI_Comm comm = MPI_COMM_WORLD) {
   SolvedContactScene s;
   const auto valid = stack::sceneValidParameters();
   // The paper's contact pair unless the overrides say otherwise (the scene default is no contact).
@@ -36,11 +46,21 @@ inline SolvedContactScene solveContactScene(const std::vector<std::string>& over
     core::applyOverride(s.params, *valid, pair);
   for (const auto& o : overrides) core::applyOverride(s.params, *valid, o);
   core::validateAndSetDefaults(s.params, *valid, "test");
-  s.scene = stack::buildScene(s.params, "test");
-  std::vector<fem::SubdomainSystem> systems;
-  stack::assembleOwnedSubdomains(s.scene, comm, systems);
-  s.B = feti::buildConstraintMatrix(s.scene.mesh, s.scene.decomposition, stack::constraintSpec(s.scene), size);
-  s.result = stack::solveContactScene(s.scene, std::move(systems), s.B, s.params, comm);
+  solveValidatedScene(s, "test", comm);
+  return s;
+}
+
+/// The scene `sceneList` read from the file `source`, with `overrides` ("Path=value") on top.
+inline SolvedContactScene solveContactScene(const Teuchos::ParameterList& sceneList, const std::string& source,
+                                            const std::vector<std::string>& overrides, MPI_Comm comm = MPI_COMM_WORLD) {
+  SolvedContactScene s;
+  s.params = sceneList;
+  s.params.setName("Tribos");
+  const auto valid = stack::sceneValidParameters();
+  core::validateAndSetDefaults(s.params, *valid, source);  // as the driver: the file, then each override
+  for (const auto& o : overrides) core::applyOverride(s.params, *valid, o);
+  core::validateAndSetDefaults(s.params, *valid, source);
+  solveValidatedScene(s, source, comm);
   return s;
 }
 
