@@ -61,6 +61,19 @@ double intervalProjectedGradient(double y, double lo, double hi, double g) {
   if (atUpper) return std::max(g, 0.0);
   return g;
 }
+/// The boundary arc of an ellipse block at y = x - c (on its boundary): its curvature and its
+/// outward normal n, unnormalised, with |n|. Curvature of (y1/a1)^2 + (y2/a2)^2 = 1 at y:
+/// 1 / (a1^2 a2^2 (y1^2/a1^4 + y2^2/a2^4)^(3/2)).
+struct Arc {
+  double kappa;
+  std::array<double, 2> n;
+  double nn;
+};
+Arc arcAt(const std::array<double, 2>& y, const std::array<double, 2>& a) {
+  const double q = y[0] * y[0] / (a[0] * a[0] * a[0] * a[0]) + y[1] * y[1] / (a[1] * a[1] * a[1] * a[1]);
+  const std::array<double, 2> n{y[0] / (a[0] * a[0]), y[1] / (a[1] * a[1])};
+  return {1.0 / (a[0] * a[0] * a[1] * a[1] * q * std::sqrt(q)), n, std::hypot(n[0], n[1])};
+}
 }  // namespace
 
 std::array<double, 2> projectOntoEllipse(std::array<double, 2> w, std::array<double, 2> a) {
@@ -288,6 +301,14 @@ void SeparableSet::splitGradient(const Vector& x, const Vector& g, Vector& phi, 
   }
 }
 
+bool SeparableSet::onSmoothBoundary(size_t k, double xi, double xj, std::array<double, 2>& y,
+                                    std::array<double, 2>& a) const {
+  a = effectiveAxes(k);
+  if (!(a[0] > 0.0) || !(a[1] > 0.0)) return false;  // intervals and points: flat
+  y = {xi - center_[k][0], xj - center_[k][1]};
+  return !(ellipseNorm(y, a) < 1.0 - ellipseActiveTolerance(center_[k], std::min(a[0], a[1])));
+}
+
 double SeparableSet::boundaryCurvature(const Vector& x, const Vector& g, const Vector& d) const {
   auto xv = x.getLocalViewHost(Tpetra::Access::ReadOnly);
   auto gv = g.getLocalViewHost(Tpetra::Access::ReadOnly);
@@ -295,15 +316,9 @@ double SeparableSet::boundaryCurvature(const Vector& x, const Vector& g, const V
   std::vector<double> terms;  // one per active ellipse, summed independently of the layout
   for (size_t k = 0; k < ellipseIndex_.size(); ++k) {
     const auto [i, j] = ellipseIndex_[k];
-    const auto a = effectiveAxes(k);
-    if (!(a[0] > 0.0) || !(a[1] > 0.0)) continue;  // intervals and points: flat
-    const std::array<double, 2> y{at(xv, i) - center_[k][0], at(xv, j) - center_[k][1]};
-    if (ellipseNorm(y, a) < 1.0 - ellipseActiveTolerance(center_[k], std::min(a[0], a[1]))) continue;
-    // Curvature of (y1/a1)^2 + (y2/a2)^2 = 1 at y: 1 / (a1^2 a2^2 (y1^2/a1^4 + y2^2/a2^4)^(3/2)).
-    const double q = y[0] * y[0] / (a[0] * a[0] * a[0] * a[0]) + y[1] * y[1] / (a[1] * a[1] * a[1] * a[1]);
-    const double kappa = 1.0 / (a[0] * a[0] * a[1] * a[1] * q * std::sqrt(q));
-    const std::array<double, 2> n{y[0] / (a[0] * a[0]), y[1] / (a[1] * a[1])};
-    const double nn = std::hypot(n[0], n[1]);
+    std::array<double, 2> y, a;
+    if (!onSmoothBoundary(k, at(xv, i), at(xv, j), y, a)) continue;
+    const auto [kappa, n, nn] = arcAt(y, a);
     const double pressing = std::max(-(n[0] * at(gv, i) + n[1] * at(gv, j)) / nn, 0.0);
     terms.push_back(kappa * pressing * (at(dv, i) * at(dv, i) + at(dv, j) * at(dv, j)));
   }
@@ -318,16 +333,11 @@ void SeparableSet::addCurvatureProduct(const Vector& x, const Vector& g, const V
   auto ov = out.getLocalViewHost(Tpetra::Access::ReadWrite);
   for (size_t k = 0; k < ellipseIndex_.size(); ++k) {
     const auto [i, j] = ellipseIndex_[k];
-    const auto a = effectiveAxes(k);
-    if (!(a[0] > 0.0) || !(a[1] > 0.0)) continue;  // intervals and points: flat
-    const std::array<double, 2> y{at(xv, i) - center_[k][0], at(xv, j) - center_[k][1]};
-    if (ellipseNorm(y, a) < 1.0 - ellipseActiveTolerance(center_[k], std::min(a[0], a[1]))) continue;
+    std::array<double, 2> y, a;
+    if (!onSmoothBoundary(k, at(xv, i), at(xv, j), y, a)) continue;
     // As in boundaryCurvature: kappa times the multiplier |n^T g|, on the tangential part of d.
-    const double q = y[0] * y[0] / (a[0] * a[0] * a[0] * a[0]) + y[1] * y[1] / (a[1] * a[1] * a[1] * a[1]);
-    const double kappa = 1.0 / (a[0] * a[0] * a[1] * a[1] * q * std::sqrt(q));
-    std::array<double, 2> n{y[0] / (a[0] * a[0]), y[1] / (a[1] * a[1])};
-    const double nn = std::hypot(n[0], n[1]);
-    n = {n[0] / nn, n[1] / nn};
+    const auto [kappa, outward, nn] = arcAt(y, a);
+    const std::array<double, 2> n{outward[0] / nn, outward[1] / nn};
     const double pressing = std::max(-(n[0] * at(gv, i) + n[1] * at(gv, j)), 0.0);
     const double di = at(dv, i), dj = at(dv, j), nd = n[0] * di + n[1] * dj;
     ov(i, 0) += kappa * pressing * (di - nd * n[0]);

@@ -57,6 +57,9 @@ class SeparableSet {
 
  private:
   std::array<double, 2> effectiveAxes(size_t k) const;
+  /// Ellipse block k at (x_i, x_j) when it is smooth (both axes > 0) and on its boundary: sets
+  /// y = x - c_k and a = its effective axes and returns true (the curvature terms' blocks).
+  bool onSmoothBoundary(size_t k, double xi, double xj, std::array<double, 2>& y, std::array<double, 2>& a) const;
 
   std::vector<int> boundIndex_;
   std::vector<double> lower_;
