@@ -80,3 +80,13 @@ TEST(tribosDriver, curvedCoulombContactSameResultOnOneTwoThreeRanks) {
                                 "--set Mesh/File=meshes/hertz_cylinder_h0.2.exo --set 'Contact/Friction Model=Coulomb'",
                                 {Layout{2, 1}, Layout{3, 1}});
 }
+
+// MPGP's tangent CG (CG steps that slide friction multipliers along their ellipses, projected
+// back, gradient recomputed) from the first step, so that it runs many times on this small
+// mesh (546 F applications): its sums are reproducible ones too, so the bits do not move.
+TEST(tribosDriver, tangentCgSameResultOnOneTwoThreeRanks) {
+  expectSameResultOnEveryLayout("hertz_cylinder.xml",
+                                "--set Mesh/File=meshes/hertz_cylinder_h0.2.exo --set 'Contact/Friction Model=Coulomb'"
+                                " --set 'Solver/MPGP/tangent CG after=0'",
+                                {Layout{2, 1}, Layout{3, 1}, Layout{1, 2}});
+}
