@@ -379,10 +379,10 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
 /// same G in exact arithmetic, hence the same projector, e, alpha and G G^T; only the
 /// rounding changes (doc/coarse_problem.md).
 /// Threads work on fixed chunks of kRowChunk rows; inside a chunk the entries are stored by
-/// subdomain ("runs"), then by kind (one loop without branches per kind), then by row, so that G^T a adds each entry's g_{s,r} . a_s into its
-/// row's sum in a chunk-sized buffer, runs in ascending subdomain order: every row sums its
-/// entries in ascending subdomain order (the rows of one run are distinct, so there is no
-/// chain of dependent updates). G x is summed by subdomain instead (Local::gTerms,
+/// subdomain ("runs"), then by kind (one loop without branches per kind), then by row, so
+/// that G^T a adds each entry's g_{s,r} . a_s into its row's sum in a chunk-sized buffer,
+/// runs in ascending subdomain order: every row sums its entries in ascending subdomain
+/// order (the rows of one run are distinct, so there is no chain of dependent updates). G x is summed by subdomain instead (Local::gTerms,
 /// applyGOwnedSubdomains): a subdomain's rows are owned by different ranks on different
 /// layouts, its owner has them all (its own block) and reads the same coordinate slots.
 /// The by-row view (rowStart, rowSubdomain, rowEntry) serves the set-up (G G^T).
