@@ -1,7 +1,9 @@
 // Properties of the T-FETI dual operators (paper Section 4.2) on the bonded two bricks,
 // distributed over however many ranks this runs on: F symmetric positive semidefinite,
 // P^2 = P, G P = 0, G lambda_Im = e, implicit F = explicit F to 1e-12, and a bounded
-// condition number of P F P on Ker G as the number of subdomains grows (Lanczos estimate).
+// condition number of P F P on Ker G as the number of subdomains grows (Lanczos estimate);
+// and, on one rank, G x and P x of TotalFeti's compact G against G = R^T B^T formed densely
+// from the definition (the bricks, and the Hertz cylinder's curved mortar rows).
 #include <gtest/gtest.h>
 #include <mpi.h>
 
@@ -9,9 +11,13 @@
 #include <Teuchos_ParameterList.hpp>
 #include <Tpetra_Vector.hpp>
 
+#include <Teuchos_XMLParameterListHelpers.hpp>
+
 #include <cmath>
+#include <cstdio>
 
 #include "tribos/core/Parameters.hpp"
+#include "tribos/fem/SubdomainSystem.hpp"
 #include "tribos/feti/ConstraintMatrix.hpp"
 #include "tribos/feti/ProjectedCg.hpp"
 #include "tribos/feti/TotalFeti.hpp"
@@ -29,19 +35,12 @@ struct Problem {
   std::unique_ptr<feti::TotalFeti> feti;
 };
 
-std::unique_ptr<Problem> makeProblem(const std::string& grid, int hOverH, bool explicitF) {
+std::unique_ptr<Problem> makeProblem(Teuchos::ParameterList params, const std::string& source, bool explicitF) {
   int size = 1;
   MPI_Comm_size(MPI_COMM_WORLD, &size);
-  Teuchos::ParameterList params("Tribos");
-  const auto valid = stack::sceneValidParameters();
-  core::applyOverride(params, *valid, "Mesh/Subdomains Per Brick=" + grid);
-  core::applyOverride(params, *valid, "Mesh/H Over h=" + std::to_string(hOverH));
-  core::applyOverride(params, *valid, "Contact/Friction Model=Bonded");
-  core::applyOverride(params, *valid, "Contact/Slave Side Set=contact_aluminium");
-  core::applyOverride(params, *valid, "Contact/Master Side Set=contact_steel");
-  core::validateAndSetDefaults(params, *valid, "test");
+  core::validateAndSetDefaults(params, *stack::sceneValidParameters(), source);
   auto p = std::make_unique<Problem>();
-  p->scene = stack::buildScene(params, "test");
+  p->scene = stack::buildScene(params, source);
   std::vector<fem::SubdomainSystem> systems;
   stack::assembleOwnedSubdomains(p->scene, MPI_COMM_WORLD, systems);
   p->B = feti::buildConstraintMatrix(p->scene.mesh, p->scene.decomposition, stack::constraintSpec(p->scene), size);
@@ -50,6 +49,17 @@ std::unique_ptr<Problem> makeProblem(const std::string& grid, int hOverH, bool e
   p->feti = std::make_unique<feti::TotalFeti>(p->scene.mesh, p->scene.decomposition, std::move(systems), p->B,
                                               Teuchos::rcp(new Teuchos::MpiComm<int>(MPI_COMM_WORLD)), settings);
   return p;
+}
+
+std::unique_ptr<Problem> makeProblem(const std::string& grid, int hOverH, bool explicitF) {
+  Teuchos::ParameterList params("Tribos");
+  const auto valid = stack::sceneValidParameters();
+  core::applyOverride(params, *valid, "Mesh/Subdomains Per Brick=" + grid);
+  core::applyOverride(params, *valid, "Mesh/H Over h=" + std::to_string(hOverH));
+  core::applyOverride(params, *valid, "Contact/Friction Model=Bonded");
+  core::applyOverride(params, *valid, "Contact/Slave Side Set=contact_aluminium");
+  core::applyOverride(params, *valid, "Contact/Master Side Set=contact_steel");
+  return makeProblem(params, "test", explicitF);
 }
 
 void randomize(feti::DualVector& v, int seed) {
@@ -255,4 +265,112 @@ TEST(TotalFeti, conditionNumberStaysBoundedAsSubdomainsGrow) {
   }
   for (double k : kappa) EXPECT_GT(k, 1.0);
   EXPECT_LT(kappa[2], 1.5 * kappa[1]) << "kappa(108 subdomains) vs kappa(32): " << kappa[2] << " vs " << kappa[1];
+}
+
+namespace {
+// G = R^T B^T (l x n_d, dense, row-major) straight from the definition: R_s =
+// fem::rigidBodyModes of each subdomain's nodes, B's blocks as built (one rank: row = dual index).
+std::vector<double> denseG(const Problem& p) {
+  const auto& subdomains = p.scene.decomposition.subdomains;
+  const size_t l = 6 * subdomains.size(), nd = static_cast<size_t>(p.B.numRows);
+  std::vector<double> G(l * nd, 0.0);
+  for (size_t s = 0; s < subdomains.size(); ++s) {
+    std::vector<std::array<double, 3>> coords;
+    for (LO node : subdomains[s].nodes) coords.push_back(p.scene.mesh.coords[node]);
+    const std::vector<double> R = fem::rigidBodyModes(coords);
+    const size_t n = 3 * coords.size();
+    const auto& b = p.B.blocks[s];
+    for (size_t i = 0; i < b.rows.size(); ++i)
+      for (LO k = b.rowPtr[i]; k < b.rowPtr[i + 1]; ++k)
+        for (size_t j = 0; j < 6; ++j) G[(6 * s + j) * nd + b.rows[i]] += b.value[k] * R[j * n + b.dof[k]];
+  }
+  return G;
+}
+
+// The compact G of TotalFeti (geometric modes and a 6 x 6 change of basis per subdomain) is the
+// G of the definition to round-off: G x and P x = x - G^T (G G^T)^{-1} G x agree with the dense
+// ones. A wrong sign or index in a rotation row, a wrong kind of row or a wrong change of
+// basis moves G x by O(|G| |x|), far beyond the tolerance.
+void expectCompactGMatchesDefinition(const Problem& p) {
+  const auto G = denseG(p);
+  const size_t nd = static_cast<size_t>(p.B.numRows), l = G.size() / nd;
+  auto x = p.feti->createDualVector(), Px = p.feti->createDualVector();
+  randomize(*x, 7);
+  std::vector<double> xs(nd);
+  {
+    auto v = x->getLocalViewHost(Tpetra::Access::ReadOnly);
+    for (size_t i = 0; i < nd; ++i) xs[i] = v(i, 0);
+  }
+  std::vector<double> Gx(l, 0.0);
+  for (size_t i = 0; i < l; ++i)
+    for (size_t r = 0; r < nd; ++r) Gx[i] += G[i * nd + r] * xs[r];
+  std::vector<double> compact;
+  p.feti->applyG(*x, compact);
+  ASSERT_EQ(compact.size(), l);
+  double diff = 0.0, norm = 0.0;
+  for (size_t i = 0; i < l; ++i) {
+    diff = std::max(diff, std::abs(compact[i] - Gx[i]));
+    norm = std::max(norm, std::abs(Gx[i]));
+  }
+  EXPECT_LT(diff, 1e-12 * norm) << "G x: compact vs definition";
+
+  // (G G^T) a = G x by a dense Cholesky, then P x.
+  std::vector<double> A(l * l, 0.0);
+  for (size_t i = 0; i < l; ++i)
+    for (size_t j = 0; j <= i; ++j) {
+      double sum = 0.0;
+      for (size_t r = 0; r < nd; ++r) sum += G[i * nd + r] * G[j * nd + r];
+      A[i * l + j] = sum;
+    }
+  for (size_t j = 0; j < l; ++j) {
+    for (size_t k = 0; k < j; ++k) A[j * l + j] -= A[j * l + k] * A[j * l + k];
+    ASSERT_GT(A[j * l + j], 0.0);
+    A[j * l + j] = std::sqrt(A[j * l + j]);
+    for (size_t i = j + 1; i < l; ++i) {
+      for (size_t k = 0; k < j; ++k) A[i * l + j] -= A[i * l + k] * A[j * l + k];
+      A[i * l + j] /= A[j * l + j];
+    }
+  }
+  std::vector<double> a = Gx;
+  for (size_t i = 0; i < l; ++i) {
+    for (size_t k = 0; k < i; ++k) a[i] -= A[i * l + k] * a[k];
+    a[i] /= A[i * l + i];
+  }
+  for (size_t i = l; i-- > 0;) {
+    for (size_t k = i + 1; k < l; ++k) a[i] -= A[k * l + i] * a[k];
+    a[i] /= A[i * l + i];
+  }
+  std::vector<double> reference = xs;
+  for (size_t i = 0; i < l; ++i)
+    for (size_t r = 0; r < nd; ++r) reference[r] -= G[i * nd + r] * a[i];
+  p.feti->project(*x, *Px);
+  auto v = Px->getLocalViewHost(Tpetra::Access::ReadOnly);
+  double pDiff = 0.0, xNorm = 0.0;
+  for (size_t r = 0; r < nd; ++r) {
+    pDiff = std::max(pDiff, std::abs(v(r, 0) - reference[r]));
+    xNorm = std::max(xNorm, std::abs(xs[r]));
+  }
+  EXPECT_LT(pDiff, 1e-12 * xNorm) << "P x: compact vs definition";
+  char text[64];
+  std::snprintf(text, sizeof text, "%.3e", diff / norm);
+  ::testing::Test::RecordProperty("gx_max_relative_difference", text);
+  std::snprintf(text, sizeof text, "%.3e", pDiff / xNorm);
+  ::testing::Test::RecordProperty("px_max_relative_difference", text);
+}
+}  // namespace
+
+TEST(TotalFeti, compactCoarseRowsMatchTheDefinitionOnTheBricks) {
+  int size = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  if (size > 1) GTEST_SKIP() << "the dense reference is built on one rank";
+  expectCompactGMatchesDefinition(*makeProblem("4x2x2", 2, false));
+}
+
+TEST(TotalFeti, compactCoarseRowsMatchTheDefinitionOnCurvedContact) {
+  // The Hertz cylinder's mortar rows have several terms per subdomain (the full entries).
+  int size = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  if (size > 1) GTEST_SKIP() << "the dense reference is built on one rank";
+  const std::string input = std::string(TRIBOS_SOURCE_DIR) + "/input/hertz_cylinder.xml";
+  expectCompactGMatchesDefinition(*makeProblem(*Teuchos::getParametersFromXmlFile(input), input, false));
 }

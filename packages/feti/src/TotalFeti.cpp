@@ -140,6 +140,18 @@ struct DirichletBlocks {
   std::vector<double> xb, yb, t;
 };
 
+/// One entry (row r, subdomain s) of G in the geometric basis of s (CoarseRows): g'_{s,r} =
+/// c [e_d; e_k x p~] when row r of B_s has the single term c at component d of a node with
+/// scaled coordinates p~ = coords[slot] (code = 4 slot + d), else the 6 numbers full[slot]
+/// (code = 4 slot + 3; contact rows with several terms). `index`: the row (G^T a) or x's
+/// index on the overlap (G x). 16 bytes instead of 6 doubles and an index.
+struct CoarseTerm {
+  double c;
+  std::uint32_t code;
+  LO index;
+};
+static_assert(sizeof(CoarseTerm) == 16, "one entry of G in 16 bytes");
+
 /// One owned subdomain: its system, generalised inverse, rows of B and scratch buffers
 /// (allocated before any threaded loop: TOOLCHAIN.md rule 1).
 struct TotalFeti::Local {
@@ -148,12 +160,11 @@ struct TotalFeti::Local {
   std::vector<LO> overlapIndex;  ///< local index in the overlap map of each block row
   std::vector<LO> factorDof;     ///< per entry of the block: its dof in the factor's order
   std::vector<LO> rowOrder;      ///< the block's rows by ascending global id (B.rowId)
-  /// G x's terms in rowOrder: x's index on the overlap and g_{s,r}'s entry in G's copy
-  /// (CoarseRows::g, shared with G^T a; rows owned elsewhere after the owned-row entries).
-  struct GTerm {
-    LO overlap, entry;
-  };
-  std::vector<GTerm> gTerms;
+  /// G x's terms (index: x's index on the overlap), from this subdomain's own block: every
+  /// row of it, whichever rank owns the row; by kind (component d = 0, 1, 2 of one-term rows,
+  /// then the full entries: gGroupStart), in rowOrder within a kind.
+  std::vector<CoarseTerm> gTerms;
+  std::array<LO, 5> gGroupStart{};
   fem::SubdomainSystem system;
   SubdomainSolver solver;
   std::vector<double> denseF;    ///< explicit F_s (m x m, column-major) when requested
@@ -324,7 +335,7 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
   Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &seconds, &factorizationSeconds_);
 
   // (4) G on the owned rows; G G^T, replicated, factorised once.
-  buildCoarseRows();
+  buildCoarseRows(mesh, decomposition);
   buildCoarsePattern();
   factorizeCoarse();
 
@@ -356,16 +367,24 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
   applyGt(a, *lambdaIm_);
 }
 
-/// G on this rank's owned rows of B: one entry = one row r and one subdomain s it touches,
-/// with g_{s,r} = R_s^T b_{s,r}^T (6 numbers); 52 bytes per entry (~2.5 entries per row)
-/// instead of R_s and B_s^T per application. Threads work on fixed chunks of kRowChunk rows;
-/// inside a chunk the entries are stored by subdomain ("runs"), then by row, so that G^T a
-/// adds each entry's g_{s,r} . a_s into its row's sum in a chunk-sized buffer, runs in
-/// ascending subdomain order: every row sums its entries in ascending subdomain order (the
-/// rows of one run are distinct, so there is no chain of dependent updates). G x is summed
-/// by subdomain instead (Local::gTerms, applyGOwnedSubdomains): a subdomain's rows are owned
-/// by different ranks on different layouts, its owner has them all; it reads the same g,
-/// where the entries of the rows that other ranks own follow the owned-row entries.
+/// G on this rank's owned rows of B: one entry = one row r and one subdomain s it touches.
+/// Stored compactly (issue 9): R_s = R~_s M_s, with R~_s the geometric rigid modes of s
+/// (translations e_d and rotations e_k x p~ at the scaled node coordinates p~ = (x - centre_s)
+/// / scale_s, fem::rigidBodyModes before its Gram-Schmidt) and M_s (6 x 6) the change of
+/// basis, so g_{s,r} = R_s^T b_{s,r}^T = M_s^T g'_{s,r} with g'_{s,r} = R~_s^T b_{s,r}^T. A
+/// row of B_s with one term c at (node, d) has g'_{s,r} = c [e_d; (e_k x p~)_d]: a
+/// CoarseTerm of 16 bytes (c, slot of p~ and d, row) instead of 6 doubles and an index; the
+/// others (contact rows with several terms) keep their 6 numbers g' in `full`. G x applies
+/// M_s^T once per subdomain to the sum of g' x_r, G^T a multiplies each g' by M_s a_s: the
+/// same G in exact arithmetic, hence the same projector, e, alpha and G G^T; only the
+/// rounding changes (doc/coarse_problem.md).
+/// Threads work on fixed chunks of kRowChunk rows; inside a chunk the entries are stored by
+/// subdomain ("runs"), then by kind (one loop without branches per kind), then by row, so
+/// that G^T a adds each entry's g_{s,r} . a_s into its row's sum in a chunk-sized buffer,
+/// runs in ascending subdomain order: every row sums its entries in ascending subdomain
+/// order (the rows of one run are distinct, so there is no chain of dependent updates). G x is summed by subdomain instead (Local::gTerms,
+/// applyGOwnedSubdomains): a subdomain's rows are owned by different ranks on different
+/// layouts, its owner has them all (its own block) and reads the same coordinate slots.
 /// The by-row view (rowStart, rowSubdomain, rowEntry) serves the set-up (G G^T).
 struct TotalFeti::CoarseRows {
   GO firstRow = 0;
@@ -373,15 +392,22 @@ struct TotalFeti::CoarseRows {
   std::vector<LO> rowStart;       ///< numRows + 1; a row's entries in ascending subdomain order
   std::vector<int> rowSubdomain;  ///< per entry in row order
   std::vector<LO> rowEntry;       ///< per entry in row order: its index in the stored order
-  // Stored order: chunk, subdomain, row.
-  std::vector<LO> entryRow;       ///< per entry
-  std::vector<double> g;          ///< 6 per entry; then those of rows owned elsewhere that G x reads
+  // Stored order: chunk, subdomain, kind (d = 0, 1, 2, full), row.
+  std::vector<CoarseTerm> term;   ///< per entry (index: the owned row)
+  std::vector<double> coords;     ///< 3 per slot: p~ of a (subdomain, node) that a term reads
+  std::vector<double> full;       ///< 6 per slot: g' of an entry with several terms
+  std::vector<double> basis;      ///< M_s, 36 per subdomain (row-major: R_s = R~_s M_s)
   std::vector<LO> runStart;       ///< per run + 1: its entries
+  std::vector<LO> runGroupStart;  ///< 4 per run + 1: the entries of kind g of run j from 4 j + g
   std::vector<int> runSubdomain;  ///< per run
   std::vector<int> chunkRunStart;  ///< per chunk + 1: its runs
   mutable std::vector<double> rowSum;  ///< numRows: G^T a's sums, each chunk its own rows
   int numChunks() const { return static_cast<int>(chunkRunStart.size()) - 1; }
-  const double* rowG(LO rowOrderEntry) const { return &g[6 * static_cast<size_t>(rowEntry[rowOrderEntry])]; }
+  const double* M(int s) const { return &basis[36 * static_cast<size_t>(s)]; }
+  /// g'_{s,r} of a term (the geometric basis).
+  void geometric(const CoarseTerm& t, double* g) const;
+  /// g_{s,r} = M_s^T g'_{s,r} of the entry `rowOrderEntry` (row view), for G G^T.
+  void rowG(LO rowOrderEntry, double* g) const;
 };
 
 namespace {
@@ -390,13 +416,147 @@ namespace {
 constexpr LO kRowChunk = 8192;
 /// Slots per entry of the reproducible sums of G G^T.
 constexpr int kSlots = core::SumBins::kSlices;
+/// A subdomain's frame as it travels: centre (3), scale, M_s (36).
+constexpr int kFrame = 40;
+
+/// Row d of the geometric modes at the scaled point p: [e_d; (e_0 x p)_d, (e_1 x p)_d,
+/// (e_2 x p)_d] (fem::rigidBodyModes' order, before orthonormalisation).
+void geometricRow(int d, const double* p, double* v) {
+  for (int j = 0; j < 3; ++j) v[j] = j == d ? 1.0 : 0.0;
+  const double rotation[3][3] = {{0.0, p[2], -p[1]}, {-p[2], 0.0, p[0]}, {p[1], -p[0], 0.0}};
+  for (int k = 0; k < 3; ++k) v[3 + k] = rotation[d][k];
+}
+
+/// p~ = (x - centre) / scale: one function, so that every rank computes the same bits.
+void scaledPoint(const double* frame, const std::array<double, 3>& x, double* p) {
+  for (int j = 0; j < 3; ++j) p[j] = (x[j] - frame[j]) / frame[3];
+}
+
+/// The frame of a subdomain from its nodes and R (6 columns of n = 3 nodes): centroid, rms
+/// radius (the scaled coordinates are O(1), so that R~ is well conditioned), and M with
+/// R = R~ M, by the normal equations (R~^T R~) M = R~^T R (R lies in the span of R~ to
+/// round-off; R~^T R~ is 6 x 6 and well conditioned after the scaling).
+void subdomainFrame(const mesh::Mesh& mesh, const std::vector<LO>& nodes, const std::vector<double>& R, double* frame) {
+  const size_t count = nodes.size(), n = 3 * count;
+  for (int j = 0; j < 4; ++j) frame[j] = 0.0;
+  for (LO node : nodes)
+    for (int j = 0; j < 3; ++j) frame[j] += mesh.coords[node][j] / static_cast<double>(count);
+  double sum = 0.0;
+  for (LO node : nodes)
+    for (int j = 0; j < 3; ++j) sum += std::pow(mesh.coords[node][j] - frame[j], 2);
+  frame[3] = sum > 0.0 ? std::sqrt(sum / static_cast<double>(count)) : 1.0;
+  double A[36] = {}, C[36] = {}, v[6], p[3];
+  for (size_t k = 0; k < count; ++k) {
+    scaledPoint(frame, mesh.coords[nodes[k]], p);
+    for (int d = 0; d < 3; ++d) {
+      geometricRow(d, p, v);
+      for (int i = 0; i < 6; ++i)
+        for (int j = 0; j < 6; ++j) {
+          A[6 * i + j] += v[i] * v[j];
+          C[6 * i + j] += v[i] * R[j * n + 3 * k + d];
+        }
+    }
+  }
+  // Cholesky A = L L^T (lower, in place), then M = L^-T L^-1 C column by column.
+  for (int j = 0; j < 6; ++j) {
+    for (int k = 0; k < j; ++k) A[6 * j + j] -= A[6 * j + k] * A[6 * j + k];
+    A[6 * j + j] = std::sqrt(A[6 * j + j]);
+    for (int i = j + 1; i < 6; ++i) {
+      for (int k = 0; k < j; ++k) A[6 * i + j] -= A[6 * i + k] * A[6 * j + k];
+      A[6 * i + j] /= A[6 * j + j];
+    }
+  }
+  double* M = frame + 4;
+  for (int c = 0; c < 6; ++c) {
+    double y[6];
+    for (int i = 0; i < 6; ++i) {
+      y[i] = C[6 * i + c];
+      for (int k = 0; k < i; ++k) y[i] -= A[6 * i + k] * y[k];
+      y[i] /= A[6 * i + i];
+    }
+    for (int i = 5; i >= 0; --i) {
+      for (int k = i + 1; k < 6; ++k) y[i] -= A[6 * k + i] * y[k];
+      y[i] /= A[6 * i + i];
+    }
+    for (int i = 0; i < 6; ++i) M[6 * i + c] = y[i];
+  }
+}
+
+/// The kind of row i of block b: its component d when it has one term, else 3.
+int termKind(const SubdomainBlock& b, LO i) { return b.rowPtr[i + 1] - b.rowPtr[i] == 1 ? b.dof[b.rowPtr[i]] % 3 : 3; }
+
+/// y = M^T x (6 x 6, row-major M).
+void transposedProduct(const double* M, const double* x, double* y) {
+  for (int j = 0; j < 6; ++j) {
+    double s = 0.0;
+    for (int i = 0; i < 6; ++i) s += M[6 * i + j] * x[i];
+    y[j] = s;
+  }
+}
 }  // namespace
 
-void TotalFeti::buildCoarseRows() {
+void TotalFeti::CoarseRows::geometric(const CoarseTerm& t, double* g) const {
+  const size_t slot = t.code >> 2;
+  const int d = static_cast<int>(t.code & 3u);
+  if (d == 3) {
+    std::copy(&full[6 * slot], &full[6 * slot] + 6, g);
+    return;
+  }
+  geometricRow(d, &coords[3 * slot], g);
+  for (int j = 0; j < 6; ++j) g[j] *= t.c;
+}
+
+void TotalFeti::CoarseRows::rowG(LO rowOrderEntry, double* g) const {
+  double geo[6];
+  geometric(term[rowEntry[rowOrderEntry]], geo);
+  transposedProduct(M(rowSubdomain[rowOrderEntry]), geo, g);
+}
+
+/// Builds the CoarseTerm of rows of blocks from their `data` (6 numbers, entrySource):
+/// p~ of the node of a one-term row, g' of the others. One coordinate slot per (subdomain,
+/// local node) and one full slot per (subdomain, row) of the rank (G x and G^T a share them).
+class TotalFeti::CoarseTermBuilder {
+ public:
+  explicit CoarseTermBuilder(CoarseRows& G) : G_(G) {}
+  /// The term of row i of block b (subdomain s); index left to the caller.
+  CoarseTerm operator()(int s, const SubdomainBlock& b, LO i, const double* data) {
+    const LO first = b.rowPtr[i];
+    if (b.rowPtr[i + 1] - first == 1) {
+      const LO dof = b.dof[first];
+      const auto key = std::make_pair(s, dof / 3);
+      auto it = coordSlot_.find(key);
+      if (it == coordSlot_.end()) {
+        it = coordSlot_.emplace(key, static_cast<std::uint32_t>(G_.coords.size() / 3)).first;
+        G_.coords.insert(G_.coords.end(), data, data + 3);
+      }
+      return {b.value[first], code(it->second, dof % 3), 0};
+    }
+    const auto key = std::make_pair(s, b.rows[i]);
+    auto it = fullSlot_.find(key);
+    if (it == fullSlot_.end()) {
+      it = fullSlot_.emplace(key, static_cast<std::uint32_t>(G_.full.size() / 6)).first;
+      G_.full.insert(G_.full.end(), data, data + 6);
+    }
+    return {0.0, code(it->second, 3), 0};
+  }
+
+ private:
+  static std::uint32_t code(std::uint32_t slot, int d) {
+    TEUCHOS_TEST_FOR_EXCEPTION(slot >= (1u << 30), std::length_error, "tribos::feti: too many coarse slots on a rank");
+    return 4 * slot + static_cast<std::uint32_t>(d);
+  }
+  CoarseRows& G_;
+  std::map<std::pair<int, LO>, std::uint32_t> coordSlot_;
+  std::map<std::pair<int, GO>, std::uint32_t> fullSlot_;
+};
+
+void TotalFeti::buildCoarseRows(const mesh::Mesh& mesh, const mesh::Decomposition& decomposition) {
   // Entry (s, r) = row r of B in block s, global id r * numSubdomains + s: the same id on every
   // rank without any rank knowing the sizes of the blocks it does not own. Source: the entries
-  // of the owned subdomains (their owner has R_s); target: the entries of the owned rows (the
-  // rank has those rows of every block, feti::keepRankRows). One import of the 6 columns g.
+  // of the owned subdomains; target: the entries of the owned rows (the rank has those rows of
+  // every block, feti::keepRankRows). One import of 6 numbers per entry (the data of its
+  // CoarseTerm, below), also applyBlockwise's entry-wise sums (several ranks); M_s travels
+  // by one all-reduce of 40 numbers per subdomain.
   const int rank = comm_->getRank();
   const GO S = numSubdomains_;
   std::vector<GO> ids;
@@ -404,22 +564,47 @@ void TotalFeti::buildCoarseRows() {
     for (GO row : L->block->rows) ids.push_back(row * S + L->subdomain);
   const auto invalid = Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid();
   auto source = Teuchos::rcp(new DualMap(invalid, Teuchos::ArrayView<const GO>(ids.data(), ids.size()), 0, comm_));
-  Tpetra::MultiVector<Scalar, LO, GO> gSource(source, 6);
+  std::vector<LO> firstSource(numOwnedSubdomains() + 1, 0);  // first source entry of each owned subdomain
+  for (int i = 0; i < numOwnedSubdomains(); ++i) firstSource[i + 1] = firstSource[i] + local_[i]->m();
+
+  // The frames (centre, scale, M_s) of the owned subdomains, by their owner (which has R_s);
+  // -0.0 made +0.0 so that the sum with the other ranks' zeros keeps every bit.
+  std::vector<double> frames(kFrame * static_cast<size_t>(S), 0.0);
+  core::forEachSubdomain(numOwnedSubdomains(), [&](int i) {
+    const Local& L = *local_[i];
+    double* frame = &frames[kFrame * static_cast<size_t>(L.subdomain)];
+    subdomainFrame(mesh, decomposition.subdomains[L.subdomain].nodes, L.system.R, frame);
+    for (int j = 0; j < kFrame; ++j) frame[j] += 0.0;
+  });
+  // The data of each entry of the owned subdomains, by their owner (the only rank that has
+  // their nodes, stack::keepRankData): p~ of the node of a one-term row (3 numbers), g' of
+  // the others (6), travelling to the owners of the rows as g did before.
+  Tpetra::MultiVector<Scalar, LO, GO> dataSource(source, 6);
   {
-    std::vector<LO> first(numOwnedSubdomains() + 1, 0);  // first source entry of each owned subdomain
-    for (int i = 0; i < numOwnedSubdomains(); ++i) first[i + 1] = first[i] + local_[i]->m();
-    auto g = gSource.getLocalViewHost(Tpetra::Access::OverwriteAll);
+    auto data = dataSource.getLocalViewHost(Tpetra::Access::OverwriteAll);
     core::forEachSubdomain(numOwnedSubdomains(), [&](int i) {
       const Local& L = *local_[i];
       const SubdomainBlock& b = *L.block;
-      const LO n = L.n();
-      for (LO r = 0; r < L.m(); ++r)
-        for (int j = 0; j < 6; ++j) {
-          double sum = 0.0;
-          for (LO k = b.rowPtr[r]; k < b.rowPtr[r + 1]; ++k) sum += b.value[k] * L.system.R[static_cast<size_t>(j) * n + b.dof[k]];
-          g(first[i] + r, j) = sum;
+      const double* frame = &frames[kFrame * static_cast<size_t>(L.subdomain)];
+      const auto& nodes = decomposition.subdomains[L.subdomain].nodes;
+      for (LO r = 0; r < L.m(); ++r) {
+        double g[6] = {}, v[6], p[3];
+        if (b.rowPtr[r + 1] - b.rowPtr[r] == 1) {
+          scaledPoint(frame, mesh.coords[nodes[b.dof[b.rowPtr[r]] / 3]], g);
+        } else {
+          for (LO k = b.rowPtr[r]; k < b.rowPtr[r + 1]; ++k) {  // the terms in B's order
+            scaledPoint(frame, mesh.coords[nodes[b.dof[k] / 3]], p);
+            geometricRow(b.dof[k] % 3, p, v);
+            for (int j = 0; j < 6; ++j) g[j] += b.value[k] * v[j];
+          }
         }
+        for (int j = 0; j < 6; ++j) data(firstSource[i] + r, j) = g[j];
+      }
     });
+  }
+  if (comm_->getSize() > 1) {
+    std::vector<double> mine = frames;
+    Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, static_cast<int>(frames.size()), mine.data(), frames.data());
   }
 
   // Target: the entries of the owned rows, ordered by row, then subdomain (ascending: the
@@ -430,28 +615,29 @@ void TotalFeti::buildCoarseRows() {
   struct Entry {
     LO row;
     int subdomain;
+    LO blockRow;  ///< its row in B_s
+    int kind;     ///< component d of a one-term row, 3 for several terms
   };
   std::vector<Entry> entries;
   for (int s = 0; s < numSubdomains_; ++s) {
     const auto& rows = B_.blocks[s].rows;
     const auto lo = std::lower_bound(rows.begin(), rows.end(), G->firstRow);
     for (auto it = lo; it != rows.end() && *it < G->firstRow + G->numRows; ++it)
-      entries.push_back({static_cast<LO>(*it - G->firstRow), s});
+      entries.push_back({static_cast<LO>(*it - G->firstRow), s, static_cast<LO>(it - rows.begin()),
+                         termKind(B_.blocks[s], static_cast<LO>(it - rows.begin()))});
   }
   std::stable_sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) { return a.row < b.row; });
   ids.resize(entries.size());
   for (size_t e = 0; e < entries.size(); ++e) ids[e] = (G->firstRow + entries[e].row) * S + entries[e].subdomain;
   auto target = Teuchos::rcp(new DualMap(invalid, Teuchos::ArrayView<const GO>(ids.data(), ids.size()), 0, comm_));
-  Tpetra::MultiVector<Scalar, LO, GO> gTarget(target, 6);
   auto entryImport = Teuchos::rcp(new Tpetra::Import<LO, GO>(source, target));
-  gTarget.doImport(gSource, *entryImport, Tpetra::INSERT);
-  auto g = gTarget.getLocalViewHost(Tpetra::Access::ReadOnly);
+  Tpetra::MultiVector<Scalar, LO, GO> dataTarget(target, 6);
+  dataTarget.doImport(dataSource, *entryImport, Tpetra::INSERT);
   if (!overlapIsOwned_) {  // applyBlockwise's entry-wise sums (several ranks)
     entryImport_ = entryImport;
     entrySource_ = Teuchos::rcp(new DualVector(source));
     entryTarget_ = Teuchos::rcp(new DualVector(target));
-    entrySourceFirst_.assign(numOwnedSubdomains() + 1, 0);
-    for (int i = 0; i < numOwnedSubdomains(); ++i) entrySourceFirst_[i + 1] = entrySourceFirst_[i] + local_[i]->m();
+    entrySourceFirst_ = firstSource;
   }
 
   G->rowStart.assign(G->numRows + 1, 0);
@@ -461,24 +647,33 @@ void TotalFeti::buildCoarseRows() {
     G->rowSubdomain[e] = entries[e].subdomain;
   }
   for (LO r = 0; r < G->numRows; ++r) G->rowStart[r + 1] += G->rowStart[r];
-  // The stored order: by chunk, then subdomain, then row (entries are in row order: a stable
-  // sort by (chunk, subdomain) keeps the rows ascending within a run).
+  // The stored order: by chunk, then subdomain, then kind, then row (entries are in row order:
+  // a stable sort by (chunk, subdomain, kind) keeps the rows ascending within a kind).
   std::vector<LO> order(entries.size());
   for (size_t e = 0; e < order.size(); ++e) order[e] = static_cast<LO>(e);
   std::stable_sort(order.begin(), order.end(), [&](LO a, LO b) {
     const LO ca = entries[a].row / kRowChunk, cb = entries[b].row / kRowChunk;
-    return ca != cb ? ca < cb : entries[a].subdomain < entries[b].subdomain;
+    if (ca != cb) return ca < cb;
+    if (entries[a].subdomain != entries[b].subdomain) return entries[a].subdomain < entries[b].subdomain;
+    return entries[a].kind < entries[b].kind;
   });
   G->rowEntry.resize(entries.size());
-  G->entryRow.resize(entries.size());
-  G->g.resize(6 * entries.size());
+  G->term.resize(entries.size());
+  CoarseTermBuilder termOf(*G);
+  auto targetData = dataTarget.getLocalViewHost(Tpetra::Access::ReadOnly);
+  auto sourceData = dataSource.getLocalViewHost(Tpetra::Access::ReadOnly);
+  auto dataOf = [](const auto& view, LO e, double* out) {
+    for (int j = 0; j < 6; ++j) out[j] = view(e, j);
+  };
+  double data[6];
   const LO numChunks = (G->numRows + kRowChunk - 1) / kRowChunk;
   G->chunkRunStart.assign(numChunks + 1, 0);  // runs per chunk, then their prefix sums
   for (size_t k = 0; k < order.size(); ++k) {
     const Entry& entry = entries[order[k]];
     G->rowEntry[order[k]] = static_cast<LO>(k);
-    G->entryRow[k] = entry.row;
-    for (int j = 0; j < 6; ++j) G->g[6 * k + j] = g(order[k], j);
+    dataOf(targetData, order[k], data);
+    G->term[k] = termOf(entry.subdomain, B_.blocks[entry.subdomain], entry.blockRow, data);
+    G->term[k].index = entry.row;
     const LO chunk = entry.row / kRowChunk;
     if (k == 0 || chunk != entries[order[k - 1]].row / kRowChunk || entry.subdomain != entries[order[k - 1]].subdomain) {
       G->runStart.push_back(static_cast<LO>(k));
@@ -488,54 +683,49 @@ void TotalFeti::buildCoarseRows() {
   }
   G->runStart.push_back(static_cast<LO>(order.size()));
   for (LO c = 0; c < numChunks; ++c) G->chunkRunStart[c + 1] += G->chunkRunStart[c];
+  const size_t numRuns = G->runSubdomain.size();
+  G->runGroupStart.assign(4 * numRuns + 1, static_cast<LO>(order.size()));
+  for (size_t j = 0; j < numRuns; ++j)
+    for (int kind = 0; kind < 4; ++kind) {
+      LO e = G->runStart[j];
+      while (e < G->runStart[j + 1] && entries[order[e]].kind < kind) ++e;
+      G->runGroupStart[4 * j + kind] = e;
+    }
   G->rowSum.assign(G->numRows, 0.0);
+  // G x of the owned subdomains: their own blocks, every row (the same slots where shared).
+  for (int i = 0; i < numOwnedSubdomains(); ++i) {
+    Local* L = local_[i].get();
+    L->gTerms.clear();
+    L->gTerms.reserve(L->m());
+    for (int kind = 0; kind < 4; ++kind) {
+      L->gGroupStart[kind] = static_cast<LO>(L->gTerms.size());
+      for (LO r : L->rowOrder) {
+        if (termKind(*L->block, r) != kind) continue;
+        dataOf(sourceData, firstSource[i] + r, data);
+        L->gTerms.push_back(termOf(L->subdomain, *L->block, r, data));
+        L->gTerms.back().index = L->overlapIndex[r];
+      }
+    }
+    L->gGroupStart[4] = static_cast<LO>(L->gTerms.size());
+  }
+  G->basis.resize(36 * static_cast<size_t>(S));
+  for (GO s = 0; s < S; ++s)
+    std::copy(frames.data() + kFrame * s + 4, frames.data() + kFrame * (s + 1), G->basis.data() + 36 * s);
+  G->coords.shrink_to_fit();
+  G->full.shrink_to_fit();
 
   // The bound of every term of G G^T (core::SumBins): the same on every layout.
-  double gMax = 0.0;
-  for (double v : G->g) gMax = std::max(gMax, std::abs(v));
-  gMax_ = core::globalMax(comm_.get(), gMax);
-  {
-    auto source = gSource.getLocalViewHost(Tpetra::Access::ReadOnly);
-    linkGTerms(*G, source.data(), source.stride(1));
+  double gMax = 0.0, g[6];
+  for (size_t e = 0; e < entries.size(); ++e) {
+    G->rowG(static_cast<LO>(e), g);
+    for (double v : g) gMax = std::max(gMax, std::abs(v));
   }
+  gMax_ = core::globalMax(comm_.get(), gMax);
   profile_.gEntries = static_cast<long long>(G->rowSubdomain.size());
   profile_.gRows = G->numRows;
   G_ = std::move(G);
   coarseLocal_.assign(numCoarse(), 0.0);
   coarseVector_.assign(numCoarse(), 0.0);
-}
-
-void TotalFeti::linkGTerms(CoarseRows& G, const double* source, size_t stride) {
-  // G x of an owned subdomain reads g_{s,r} where G^T a does: the entry of the owned row r in
-  // G's stored order. A row owned by another rank (several ranks) has no entry here: its
-  // g_{s,r}, computed by this rank (gSource), is appended after the owned-row entries, so that
-  // each entry is stored once per rank that needs it. One rank: one copy of G.
-  // source: column j of the owned subdomains' g_{s,r} at source + j * stride.
-  auto isOwned = [&](GO row) { return row >= G.firstRow && row < G.firstRow + G.numRows; };
-  size_t foreign = 0;
-  for (const auto& L : local_)
-    for (GO row : L->block->rows) foreign += !isOwned(row);
-  G.g.reserve(G.g.size() + 6 * foreign);
-  LO firstSource = 0;
-  for (const auto& L : local_) {
-    L->gTerms.clear();
-    L->gTerms.reserve(L->m());
-    for (LO r : L->rowOrder) {
-      const GO row = L->block->rows[r];
-      LO entry = 0;
-      if (isOwned(row)) {
-        const LO local = static_cast<LO>(row - G.firstRow);
-        LO e = G.rowStart[local];
-        while (G.rowSubdomain[e] != L->subdomain) ++e;  // a row has a few entries
-        entry = G.rowEntry[e];
-      } else {
-        entry = static_cast<LO>(G.g.size() / 6);
-        for (int j = 0; j < 6; ++j) G.g.push_back(source[firstSource + r + j * stride]);
-      }
-      L->gTerms.push_back({L->overlapIndex[r], entry});
-    }
-    firstSource += L->m();
-  }
 }
 
 void TotalFeti::measureTraffic() {
@@ -569,10 +759,14 @@ void TotalFeti::measureTraffic() {
   }
   const double owned = static_cast<double>(G_->numRows), gEntries = static_cast<double>(G_->rowSubdomain.size());
   f += owned * kDouble;  // y cleared before the sum
-  // One projection: G x and G^T a, each one pass over the entries (g and one index each;
-  // the run table is small); x read twice, y written. The memo's copies of x and P x are
-  // not counted.
-  const double projection = gEntries * 2 * (6 * kDouble + kIndex) + owned * (kIndex + 3 * kDouble);
+  // One projection: G x and G^T a, each one pass over its terms (16 bytes each: G x's of
+  // the owned subdomains, G^T a's of the owned rows) and the coordinate and full slots (the
+  // run table and M_s are small); x read twice, y written. The memo's copies of x and P x
+  // are not counted.
+  double gxTerms = 0.0;
+  for (const auto& L : local_) gxTerms += static_cast<double>(L->gTerms.size());
+  const double slots = static_cast<double>(G_->coords.size() + G_->full.size());
+  const double projection = (gxTerms + gEntries) * sizeof(CoarseTerm) + 2 * slots * kDouble + owned * (kIndex + 3 * kDouble);
   if (settings_.dirichletPreconditioner) dirichlet += owned * kDouble;
   double local[4] = {f + 2 * projection, factorEntries, projection, dirichlet}, global[4] = {0.0, 0.0, 0.0, 0.0};
   Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, 4, local, global);
@@ -634,7 +828,9 @@ fem::CsrMatrix TotalFeti::assembleCoarse(const std::vector<char>* ownedRowMask) 
     for (LO e = G.rowStart[r]; e < G.rowStart[r + 1]; ++e)
       for (LO f = G.rowStart[r]; f < G.rowStart[r + 1]; ++f) {
         double* block = &local[kSlots * 36 * static_cast<size_t>(blockOf(G.rowSubdomain[e], G.rowSubdomain[f]))];
-        const double *gs = G.rowG(e), *gt = G.rowG(f);
+        double gs[6], gt[6];
+        G.rowG(e, gs);
+        G.rowG(f, gt);
         for (int a = 0; a < 6; ++a)
           for (int c = 0; c < 6; ++c) bins.deposit(gs[a] * gt[c], block + kSlots * (a * 6 + c));
       }
@@ -858,21 +1054,77 @@ void TotalFeti::applyDirichlet(const DualVector& x, DualVector& y) const {
   profile_.preconditionerSeconds += watch.seconds();
 }
 
+namespace {
+/// The two coordinates of p~ that component D's rotation rows read: (e_k x p~)_D involves
+/// p~_k' for k' != D only.
+template <int D>
+constexpr int kFirstOther = D == 0 ? 1 : 0;
+template <int D>
+constexpr int kSecondOther = D == 2 ? 1 : 2;
+
+/// sum[0..2] = sums of w, w p~_a, w p~_b (a, b: kFirstOther, kSecondOther) over one-term
+/// rows of component D, w = c x_r; two interleaved partial sums (shorter dependency chains),
+/// added at the end: a fixed order for a fixed list of terms.
+template <int D>
+void sumComponent(const CoarseTerm* __restrict t, const CoarseTerm* end, const double* __restrict x,
+                  const double* __restrict coords, double* sum) {
+  constexpr int a = kFirstOther<D>, b = kSecondOther<D>;
+  double s0 = 0.0, s1 = 0.0, s2 = 0.0, u0 = 0.0, u1 = 0.0, u2 = 0.0;
+  for (; t + 1 < end; t += 2) {
+    const double w = t[0].c * x[t[0].index], v = t[1].c * x[t[1].index];
+    const double* p = coords + 3 * static_cast<size_t>(t[0].code >> 2);
+    const double* q = coords + 3 * static_cast<size_t>(t[1].code >> 2);
+    s0 += w;
+    s1 += w * p[a];
+    s2 += w * p[b];
+    u0 += v;
+    u1 += v * q[a];
+    u2 += v * q[b];
+  }
+  if (t < end) {
+    const double w = t->c * x[t->index];
+    const double* p = coords + 3 * static_cast<size_t>(t->code >> 2);
+    s0 += w;
+    s1 += w * p[a];
+    s2 += w * p[b];
+  }
+  sum[0] = s0 + u0;
+  sum[1] = s1 + u1;
+  sum[2] = s2 + u2;
+}
+}  // namespace
+
 void TotalFeti::applyGOwnedSubdomains(const double* xOverlap, double* gx) const {
-  // (G x)_s = sum over the rows r of B_s of g_{s,r} x_r, in the rows' global-id order, by the
-  // owner of s (threads over the owned subdomains): the same sum in the same order on every
-  // layout. The other entries stay zero, so the all-reduce adds one term and zeros (exact).
+  // (G x)_s = M_s^T sum over the rows r of B_s of g'_{s,r} x_r, by the owner of s (threads
+  // over the owned subdomains), in a fixed order of its terms (Local::gTerms): the same sum in
+  // the same order on every layout. The other entries stay zero, so the all-reduce adds one
+  // term and zeros (exact). A one-term row of component d adds w = c x_r times
+  // [e_d; (e_k x p~)_d]: the sums of w and w p~ per component, combined at the end.
   std::fill(gx, gx + numCoarse(), 0.0);
+  const CoarseRows& G = *G_;
   core::forEachSubdomain(numOwnedSubdomains(), [&](int i) {
     const Local& L = *local_[i];
-    double sum[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
-    const double* gAll = G_->g.data();
-    for (const Local::GTerm& t : L.gTerms) {
-      const double xr = xOverlap[t.overlap];
-      const double* g = gAll + 6 * static_cast<size_t>(t.entry);
-      for (int j = 0; j < 6; ++j) sum[j] += g[j] * xr;
+    const CoarseTerm* t = L.gTerms.data();
+    const auto& start = L.gGroupStart;
+    double s0[3], s1[3], s2[3], full[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+    sumComponent<0>(t + start[0], t + start[1], xOverlap, G.coords.data(), s0);
+    sumComponent<1>(t + start[1], t + start[2], xOverlap, G.coords.data(), s1);
+    sumComponent<2>(t + start[2], t + start[3], xOverlap, G.coords.data(), s2);
+    for (LO k = start[3]; k < start[4]; ++k) {
+      const double xr = xOverlap[t[k].index];
+      const double* g = &G.full[6 * static_cast<size_t>(t[k].code >> 2)];
+      for (int j = 0; j < 6; ++j) full[j] += g[j] * xr;
     }
-    std::copy(sum, sum + 6, gx + 6 * L.subdomain);
+    // sum of w [e_d; (e_0 x p~)_d, (e_1 x p~)_d, (e_2 x p~)_d] (geometricRow): rotation 0
+    // reads z~ of d = 1 and y~ of d = 2, rotation 1 z~ of d = 0 and x~ of d = 2, rotation 2
+    // y~ of d = 0 and x~ of d = 1.
+    const double geo[6] = {s0[0] + full[0],
+                           s1[0] + full[1],
+                           s2[0] + full[2],
+                           (s2[2] - s1[2]) + full[3],
+                           (s0[2] - s2[1]) + full[4],
+                           (s1[1] - s0[1]) + full[5]};
+    transposedProduct(G.M(L.subdomain), geo, gx + 6 * L.subdomain);
   });
 }
 
@@ -890,6 +1142,20 @@ void TotalFeti::applyG(const DualVector& x, std::vector<double>& gx) const {
 }
 
 namespace {
+// rowSum[r] += c (b0 + ba p~_a + bb p~_b) over the one-term entries [first, end) of component
+// D of one run (distinct rows: no chain between consecutive updates).
+template <int D>
+void addComponent(const TotalFeti::CoarseRows& G, LO first, LO end, double b0, double ba, double bb,
+                  double* __restrict rowSum) {
+  constexpr int a = kFirstOther<D>, b = kSecondOther<D>;
+  const CoarseTerm* __restrict t = G.term.data();
+  const double* __restrict coords = G.coords.data();
+  for (LO e = first; e < end; ++e) {
+    const double* p = coords + 3 * static_cast<size_t>(t[e].code >> 2);
+    rowSum[t[e].index] += t[e].c * (b0 + (ba * p[a] + bb * p[b]));
+  }
+}
+
 // y_r = x_r - sum over the entries of row r of g_{s,r} . a_s, for the owned rows (y may be
 // x: each row reads its x_r before writing y_r); copyOfY (optional) gets y as well.
 void subtractGt(const TotalFeti::CoarseRows& G, const double* a, const double* x, double* y, double* copyOfY) {
@@ -899,14 +1165,29 @@ void subtractGt(const TotalFeti::CoarseRows& G, const double* a, const double* x
     std::fill(rowSum + first, rowSum + end, 0.0);
     // Runs in ascending subdomain order: each row adds its terms in ascending subdomain
     // order (the rows of one run are distinct: no chain between consecutive updates).
-    const LO* __restrict entryRow = G.entryRow.data();
     for (int run = G.chunkRunStart[c]; run < G.chunkRunStart[c + 1]; ++run) {
-      const double* as = a + 6 * G.runSubdomain[run];
-      const double a0 = as[0], a1 = as[1], a2 = as[2], a3 = as[3], a4 = as[4], a5 = as[5];
-      const double* __restrict g = &G.g[6 * static_cast<size_t>(G.runStart[run])];
-      for (LO e = G.runStart[run], last = G.runStart[run + 1]; e < last; ++e, g += 6)
-        // Pairwise, not one running sum: three short dependency chains instead of six.
-        rowSum[entryRow[e]] += (g[0] * a0 + g[1] * a1) + (g[2] * a2 + g[3] * a3) + (g[4] * a4 + g[5] * a5);
+      // g_{s,r} . a_s = g'_{s,r} . b with b = M_s a_s: c (b[d] + (b_rot x p~)_d) for a
+      // one-term row of component d.
+      const int s = G.runSubdomain[run];
+      const double* M = G.M(s);
+      const double* as = a + 6 * s;
+      double b[6];
+      for (int i = 0; i < 6; ++i) {
+        double sum = 0.0;
+        for (int j = 0; j < 6; ++j) sum += M[6 * i + j] * as[j];
+        b[i] = sum;
+      }
+      // (b_rot x p~)_d = sum_k b[3 + k] (e_k x p~)_d (geometricRow): per component the
+      // coefficients of its two coordinates.
+      const LO* group = &G.runGroupStart[4 * static_cast<size_t>(run)];
+      addComponent<0>(G, group[0], group[1], b[0], -b[5], b[4], rowSum);
+      addComponent<1>(G, group[1], group[2], b[1], b[5], -b[3], rowSum);
+      addComponent<2>(G, group[2], group[3], b[2], -b[4], b[3], rowSum);
+      for (LO e = group[3]; e < group[4]; ++e) {
+        const CoarseTerm& t = G.term[e];
+        const double* g = &G.full[6 * static_cast<size_t>(t.code >> 2)];
+        rowSum[t.index] += (g[0] * b[0] + g[1] * b[1]) + (g[2] * b[2] + g[3] * b[3]) + (g[4] * b[4] + g[5] * b[5]);
+      }
     }
     for (LO r = first; r < end; ++r) y[r] = x[r] - rowSum[r];
     if (copyOfY) std::copy(y + first, y + end, copyOfY + first);

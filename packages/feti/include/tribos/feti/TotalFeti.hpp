@@ -13,8 +13,9 @@
 /// vectors (length l = 6 x subdomains) are replicated on every rank; G G^T is assembled and
 /// factorised on every rank (it is small and sparse), so the coarse solve needs no
 /// communication beyond one all-reduce of G lambda. G itself is stored once, on the rows each
-/// rank owns (the 6 numbers g_{s,r} = R_s^T b_{s,r}^T per row r and subdomain s it touches),
-/// so the projector reads no R_s, no n_s-sized vector and moves no dual vector between ranks.
+/// rank owns (g_{s,r} = R_s^T b_{s,r}^T per row r and subdomain s it touches, in the compact
+/// geometric form of CoarseRows: 16 bytes per entry), so the projector reads no R_s, no
+/// n_s-sized vector and moves no dual vector between ranks.
 #include <Teuchos_Comm.hpp>
 #include <Tpetra_Import_decl.hpp>
 #include <Tpetra_Map_decl.hpp>
@@ -208,11 +209,10 @@ class TotalFeti {
   /// coarseBlockStart_[s + 1]), block column coarseNeighbours_[k] (ascending within a row).
   std::vector<LO> coarseBlockStart_;
   std::vector<int> coarseNeighbours_;
-  /// g_{s,r} for the owned rows, from the owners of the subdomains (one import at set-up).
-  void buildCoarseRows();
-  /// Local::gTerms of the owned subdomains into G's copy of g (entries of rows owned by other
-  /// ranks appended from source: the owned subdomains' g_{s,r}, column j at j * stride).
-  void linkGTerms(CoarseRows& G, const double* source, size_t stride);
+  /// G on the owned rows and Local::gTerms in the compact geometric form (CoarseRows), from
+  /// the frames of the subdomains (one all-reduce at set-up) and the mesh's coordinates.
+  void buildCoarseRows(const mesh::Mesh& mesh, const mesh::Decomposition& decomposition);
+  class CoarseTermBuilder;  ///< set-up helper of buildCoarseRows (TotalFeti.cpp)
   /// Sets factorNonzeros_ and bytesPerFApplication_ (collective).
   void measureTraffic();
   /// The entries of G x of this rank's subdomains (the others zero; length l, not reduced),
