@@ -129,13 +129,14 @@ struct KBlock {
   }
 };
 
-/// The Dirichlet preconditioner S = K_bb - K_bi K_ii^{-1} K_ib of one subdomain, b = the dofs
-/// that B touches, i = the others: the three blocks it multiplies with (K_ii is only
-/// factorised, so an application reads neither K_ii nor K's other entries twice), interior
-/// unknowns in the order of K_ii's factor, and its work vectors.
+/// The dual preconditioners' blocks of one subdomain's K, b = the dofs that B touches, i = the
+/// others. Lumped, B K B^T = B K_bb B^T (B^T x vanishes off b and B reads b only): K_bb.
+/// Dirichlet, S = K_bb - K_bi K_ii^{-1} K_ib: the same K_bb (one copy serves both) and the
+/// blocks it multiplies with (K_ii is only factorised, so an application reads neither K_ii
+/// nor K's other entries twice), interior unknowns in the order of K_ii's factor; work vectors.
 struct DirichletBlocks {
   std::vector<LO> boundaryDof;  ///< per entry of B_s: the position of its dof among b
-  KBlock Kbb, Kib, Kbi;         ///< rows/columns of i in the factor's order
+  KBlock Kbb, Kib, Kbi;         ///< rows/columns of i in the factor's order (Kib, Kbi: Dirichlet only)
   std::unique_ptr<SparseCholesky> interiorFactor;  ///< K_ii (none when i is empty)
   std::vector<double> xb, yb, t;
 };
@@ -194,7 +195,8 @@ KBlock extractBlock(const fem::CsrMatrix& K, const std::vector<LO>& rows, const 
   return A;
 }
 
-void buildDirichletBlocks(TotalFeti::Local& L, const std::string& factorization) {
+// K_bb (both preconditioners) and, for the Dirichlet one (`interiorToo`), K_ii's factor, K_ib, K_bi.
+void buildPreconditionerBlocks(TotalFeti::Local& L, bool interiorToo, const std::string& factorization) {
   DirichletBlocks& D = L.dirichlet;
   std::vector<char> touched(L.n(), 0);
   for (LO d : L.block->dof) touched[d] = 1;
@@ -206,7 +208,7 @@ void buildDirichletBlocks(TotalFeti::Local& L, const std::string& factorization)
   D.Kbb = extractBlock(L.system.K, boundary, boundaryPosition);
   D.xb.assign(boundary.size(), 0.0);
   D.yb.assign(boundary.size(), 0.0);
-  if (interior.empty()) return;
+  if (!interiorToo || interior.empty()) return;
   D.interiorFactor = makeSparseCholesky(factorization);
   D.interiorFactor->factorize(principalSubmatrix(L.system.K, interior));
   // Interior unknowns in the factor's order: K_ib's rows and K_bi's columns follow it, so the
@@ -307,7 +309,8 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
     for (LO k = 0; k < L.n(); ++k) position[perm[k]] = k;
     L.factorDof.resize(L.block->dof.size());
     for (size_t k = 0; k < L.factorDof.size(); ++k) L.factorDof[k] = position[L.block->dof[k]];
-    if (settings_.dirichletPreconditioner) buildDirichletBlocks(L, settings_.factorization);
+    if (settings_.dirichletPreconditioner || settings_.lumpedPreconditioner)
+      buildPreconditionerBlocks(L, settings_.dirichletPreconditioner, settings_.factorization);
     if (settings_.explicitF) {
       // F_s = B_s K^dagger B_s^T, column by column of B_s^T (ALGORITHMS.md 3, explicit F).
       const LO m = L.m(), n = L.n();
@@ -556,15 +559,18 @@ void TotalFeti::measureTraffic() {
     f += rows * (2 * kIndex + 3 * kDouble);  // overlap indices in and out; x gathered, y added
     factorEntries += static_cast<double>(L->solver.factor().factorNonzeros());
   }
-  // The Dirichlet preconditioner: its three blocks of K, the K_ii factor (both
-  // substitutions), B_s^T and B_s (values, dofs, row pointers), the dual entries.
+  // The preconditioner: K_bb (lumped), with the Dirichlet one K_ib, K_bi and the K_ii factor
+  // (both substitutions); B_s^T and B_s (values, dofs, row pointers), the dual entries.
+  const bool preconditioner = settings_.dirichletPreconditioner || settings_.lumpedPreconditioner;
   double dirichlet = 0.0;
   for (const auto& L : local_) {
-    if (!settings_.dirichletPreconditioner) break;
+    if (!preconditioner) break;
     const DirichletBlocks& D = L->dirichlet;
     const double entries = static_cast<double>(L->block->value.size()), rows = L->m();
-    dirichlet += D.Kbb.bytes() + D.Kib.bytes() + D.Kbi.bytes() + 2 * (entries * (kDouble + 2 * kIndex) + rows * kIndex) +
+    dirichlet += D.Kbb.bytes() + 2 * (entries * (kDouble + 2 * kIndex) + rows * kIndex) +
                  rows * (2 * kIndex + 3 * kDouble);
+    if (!settings_.dirichletPreconditioner) continue;
+    dirichlet += D.Kib.bytes() + D.Kbi.bytes();
     if (D.interiorFactor) dirichlet += static_cast<double>(D.interiorFactor->solveBytes());
   }
   const double owned = static_cast<double>(G_->numRows), gEntries = static_cast<double>(G_->rowSubdomain.size());
@@ -573,7 +579,7 @@ void TotalFeti::measureTraffic() {
   // the run table is small); x read twice, y written. The memo's copies of x and P x are
   // not counted.
   const double projection = gEntries * 2 * (6 * kDouble + kIndex) + owned * (kIndex + 3 * kDouble);
-  if (settings_.dirichletPreconditioner) dirichlet += owned * kDouble;
+  if (preconditioner) dirichlet += owned * kDouble;
   double local[4] = {f + 2 * projection, factorEntries, projection, dirichlet}, global[4] = {0.0, 0.0, 0.0, 0.0};
   Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, 4, local, global);
   bytesPerFApplication_ = global[0];
@@ -827,11 +833,18 @@ void TotalFeti::applyF(const DualVector& x, DualVector& y, bool removeKernel) co
 }
 
 void TotalFeti::applyLumped(const DualVector& x, DualVector& y) const {
+  TEUCHOS_TEST_FOR_EXCEPTION(!settings_.lumpedPreconditioner && !settings_.dirichletPreconditioner, std::logic_error,
+                             "tribos::feti::TotalFeti::applyLumped: construct with "
+                             "settings.lumpedPreconditioner = true");
   core::Stopwatch watch;
   applyBlockwise(x, y, [](Local& L, bool) {
-    applyBlockTranspose(*L.block, L.rowOrder, L.in.data(), L.x.data(), L.n());
-    L.system.K.apply(L.x.data(), L.y.data());
-    applyBlock(*L.block, L.y.data(), L.out.data());
+    // out = B_s K_bb B_s^T in: B_s^T in is zero off b, and B_s reads b only. K_bb keeps K's
+    // column order within a row, so each sum adds K's terms in K's order less the ones that
+    // multiply those zeros: the bits of B_s K B_s^T (a zero's sign aside).
+    DirichletBlocks& D = L.dirichlet;
+    applyBlockTranspose(*L.block, L.rowOrder, D.boundaryDof, L.in.data(), D.xb.data(), static_cast<LO>(D.xb.size()));
+    D.Kbb.apply(D.xb.data(), D.yb.data());
+    applyBlock(*L.block, D.boundaryDof, D.yb.data(), L.out.data());
   });
   ++profile_.preconditionerApplications;
   profile_.preconditionerSeconds += watch.seconds();
