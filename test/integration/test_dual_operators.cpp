@@ -1,7 +1,9 @@
 // Properties of the T-FETI dual operators (paper Section 4.2) on the bonded two bricks,
 // distributed over however many ranks this runs on: F symmetric positive semidefinite,
 // P^2 = P, G P = 0, G lambda_Im = e, implicit F = explicit F to 1e-12, and a bounded
-// condition number of P F P on Ker G as the number of subdomains grows (Lanczos estimate).
+// condition number of P F P on Ker G as the number of subdomains grows (Lanczos estimate);
+// the lumped and Dirichlet preconditioners equal B K B^T and B S B^T formed from freshly
+// assembled K_s (dense Schur complements) to round-off.
 #include <gtest/gtest.h>
 #include <mpi.h>
 
