@@ -1,8 +1,8 @@
 // Cost of the dual operators on one Table 1 cell, inside one process (so that start-up, set-up
 // and the noise of whole runs stay out): median seconds of F, P, P F P (as MPGP applies it:
 // project, F, project), A_rho = P F P + rho Q with three and with two projections (Arho_3P,
-// Arho_2P), the Dirichlet preconditioner D (before projection), G, and the coarse solve over
-// `repeats` applications, on the paper's two bricks with their contact rows
+// Arho_2P), the Dirichlet and lumped preconditioners D and L (before projection), G, and the
+// coarse solve over `repeats` applications, on the paper's two bricks with their contact rows
 // (Coulomb, the default scene).
 //
 // Usage: build/bin/tribos_bench_dual_operator [grid (10x5x5)] [H/h (5)] [repeats (40)] [only this operation]
@@ -148,6 +148,7 @@ int main(int argc, char** argv) {
            feti.project(in, *y);
          }},
         {"D", [&] { feti.applyDirichlet(*x, *y); }},
+        {"L", [&] { feti.applyLumped(*x, *y); }},
         {"G", [&] { feti.applyG(*x, coarse); }},
         {"coarse_solve", [&] { feti.solveCoarse(coarse); }},
         {"Gt", [&] { feti.applyGt(coarse, *y); }},

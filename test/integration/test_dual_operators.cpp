@@ -3,7 +3,9 @@
 // P^2 = P, G P = 0, G lambda_Im = e, implicit F = explicit F to 1e-12, and a bounded
 // condition number of P F P on Ker G as the number of subdomains grows (Lanczos estimate);
 // and, on one rank, G x and P x of TotalFeti's compact G against G = R^T B^T formed densely
-// from the definition (the bricks, and the Hertz cylinder's curved mortar rows).
+// from the definition (the bricks, and the Hertz cylinder's curved mortar rows); and
+// the lumped and Dirichlet preconditioners equal B K B^T and B S B^T formed from freshly
+// assembled K_s (dense Schur complements) to round-off.
 #include <gtest/gtest.h>
 #include <mpi.h>
 
@@ -13,6 +15,7 @@
 
 #include <Teuchos_XMLParameterListHelpers.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -21,6 +24,7 @@
 #include "tribos/feti/ConstraintMatrix.hpp"
 #include "tribos/feti/ProjectedCg.hpp"
 #include "tribos/feti/TotalFeti.hpp"
+#include "tribos/mesh/Decomposition.hpp"
 #include "tribos/stack/LinearFetiSolve.hpp"
 #include "tribos/stack/Scene.hpp"
 #include "tribos/stack/SceneParameters.hpp"
@@ -35,7 +39,8 @@ struct Problem {
   std::unique_ptr<feti::TotalFeti> feti;
 };
 
-std::unique_ptr<Problem> makeProblem(Teuchos::ParameterList params, const std::string& source, bool explicitF) {
+std::unique_ptr<Problem> makeProblem(Teuchos::ParameterList params, const std::string& source, bool explicitF,
+                                     feti::TotalFetiSettings settings = {}) {
   int size = 1;
   MPI_Comm_size(MPI_COMM_WORLD, &size);
   core::validateAndSetDefaults(params, *stack::sceneValidParameters(), source);
@@ -44,14 +49,14 @@ std::unique_ptr<Problem> makeProblem(Teuchos::ParameterList params, const std::s
   std::vector<fem::SubdomainSystem> systems;
   stack::assembleOwnedSubdomains(p->scene, MPI_COMM_WORLD, systems);
   p->B = feti::buildConstraintMatrix(p->scene.mesh, p->scene.decomposition, stack::constraintSpec(p->scene), size);
-  feti::TotalFetiSettings settings;
   settings.explicitF = explicitF;
   p->feti = std::make_unique<feti::TotalFeti>(p->scene.mesh, p->scene.decomposition, std::move(systems), p->B,
                                               Teuchos::rcp(new Teuchos::MpiComm<int>(MPI_COMM_WORLD)), settings);
   return p;
 }
 
-std::unique_ptr<Problem> makeProblem(const std::string& grid, int hOverH, bool explicitF) {
+std::unique_ptr<Problem> makeProblem(const std::string& grid, int hOverH, bool explicitF,
+                                     feti::TotalFetiSettings settings = {}) {
   Teuchos::ParameterList params("Tribos");
   const auto valid = stack::sceneValidParameters();
   core::applyOverride(params, *valid, "Mesh/Subdomains Per Brick=" + grid);
@@ -59,17 +64,18 @@ std::unique_ptr<Problem> makeProblem(const std::string& grid, int hOverH, bool e
   core::applyOverride(params, *valid, "Contact/Friction Model=Bonded");
   core::applyOverride(params, *valid, "Contact/Slave Side Set=contact_aluminium");
   core::applyOverride(params, *valid, "Contact/Master Side Set=contact_steel");
-  return makeProblem(params, "test", explicitF);
+  return makeProblem(params, "test", explicitF, settings);
+}
+
+// Deterministic in the global row id, so every rank count sees the same vector.
+double sample(GO g, int seed) {
+  return std::sin(1.0 + 0.37 * static_cast<double>(g) * (seed + 1)) + 0.1 * std::cos(3.1 * g + seed);
 }
 
 void randomize(feti::DualVector& v, int seed) {
-  // Deterministic in the global row id, so every rank count sees the same vector.
   auto data = v.getLocalViewHost(Tpetra::Access::OverwriteAll);
   const auto& map = *v.getMap();
-  for (size_t i = 0; i < data.extent(0); ++i) {
-    const GO g = map.getGlobalElement(static_cast<LO>(i));
-    data(i, 0) = std::sin(1.0 + 0.37 * static_cast<double>(g) * (seed + 1)) + 0.1 * std::cos(3.1 * g + seed);
-  }
+  for (size_t i = 0; i < data.extent(0); ++i) data(i, 0) = sample(map.getGlobalElement(static_cast<LO>(i)), seed);
 }
 }  // namespace
 
@@ -373,4 +379,126 @@ TEST(TotalFeti, compactCoarseRowsMatchTheDefinitionOnCurvedContact) {
   if (size > 1) GTEST_SKIP() << "the dense reference is built on one rank";
   const std::string input = std::string(TRIBOS_SOURCE_DIR) + "/input/hertz_cylinder.xml";
   expectCompactGMatchesDefinition(*makeProblem(*Teuchos::getParametersFromXmlFile(input), input, false));
+}
+
+namespace {
+// y_b = S x_b with S = K_bb - K_bi K_ii^{-1} K_ib from dense blocks of K (b = `touched`): K_ii
+// by a dense Cholesky factorisation, independent of TotalFeti's sparse blocks and factors.
+std::vector<double> denseSchurProduct(const fem::CsrMatrix& K, const std::vector<char>& touched,
+                                      const std::vector<double>& x) {
+  const LO n = K.n;
+  std::vector<LO> interior;
+  for (LO d = 0; d < n; ++d)
+    if (!touched[d]) interior.push_back(d);
+  const size_t m = interior.size();
+  std::vector<double> y(n, 0.0), L(m * m, 0.0), t(m, 0.0);
+  K.apply(x.data(), y.data());  // K x (x zero on i): K_bb x_b on b, K_ib x_b on i
+  for (size_t a = 0; a < m; ++a) {
+    t[a] = y[interior[a]];
+    for (size_t c = 0; c < m; ++c) L[a * m + c] = K.at(interior[a], interior[c]);
+  }
+  for (size_t j = 0; j < m; ++j) {  // K_ii = L L^T, lower triangle in place
+    for (size_t k = 0; k < j; ++k) L[j * m + j] -= L[j * m + k] * L[j * m + k];
+    L[j * m + j] = std::sqrt(L[j * m + j]);
+    for (size_t a = j + 1; a < m; ++a) {
+      for (size_t k = 0; k < j; ++k) L[a * m + j] -= L[a * m + k] * L[j * m + k];
+      L[a * m + j] /= L[j * m + j];
+    }
+  }
+  for (size_t a = 0; a < m; ++a) {  // t := K_ii^{-1} t
+    for (size_t k = 0; k < a; ++k) t[a] -= L[a * m + k] * t[k];
+    t[a] /= L[a * m + a];
+  }
+  for (size_t a = m; a-- > 0;) {
+    for (size_t k = a + 1; k < m; ++k) t[a] -= L[k * m + a] * t[k];
+    t[a] /= L[a * m + a];
+  }
+  std::vector<double> z(n, 0.0), Kz(n, 0.0);
+  for (size_t a = 0; a < m; ++a) z[interior[a]] = t[a];
+  K.apply(z.data(), Kz.data());
+  for (LO d = 0; d < n; ++d) y[d] = touched[d] ? y[d] - Kz[d] : 0.0;
+  return y;
+}
+
+// sum_s B_s A_s B_s^T x for x = sample(., seed), A_s = K_s (lumped) or its Schur complement on
+// the dofs B_s touches (Dirichlet), in plain loops over freshly assembled K_s, by global row
+// id, summed over the ranks.
+std::vector<double> referencePreconditioner(const Problem& p, int seed, bool dirichlet) {
+  int rank = 0, size = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  std::vector<fem::SubdomainSystem> systems;
+  stack::assembleOwnedSubdomains(p.scene, MPI_COMM_WORLD, systems);
+  const int numSubdomains = p.scene.decomposition.numSubdomains();
+  const int first = mesh::firstSubdomain(rank, numSubdomains, size);
+  auto id = [&](GO r) { return p.B.rowId.empty() ? r : p.B.rowId[r]; };
+  std::vector<double> mine(p.B.numRows, 0.0), all(p.B.numRows, 0.0);
+  for (size_t i = 0; i < systems.size(); ++i) {
+    const fem::CsrMatrix& K = systems[i].K;
+    const feti::SubdomainBlock& b = p.B.blocks[first + i];
+    std::vector<double> x(K.n, 0.0), y(K.n, 0.0);
+    std::vector<char> touched(K.n, 0);
+    for (size_t r = 0; r < b.rows.size(); ++r)
+      for (LO k = b.rowPtr[r]; k < b.rowPtr[r + 1]; ++k) {
+        x[b.dof[k]] += b.value[k] * sample(id(b.rows[r]), seed);
+        touched[b.dof[k]] = 1;
+      }
+    if (dirichlet)
+      y = denseSchurProduct(K, touched, x);
+    else
+      K.apply(x.data(), y.data());
+    for (size_t r = 0; r < b.rows.size(); ++r)
+      for (LO k = b.rowPtr[r]; k < b.rowPtr[r + 1]; ++k) mine[id(b.rows[r])] += b.value[k] * y[b.dof[k]];
+  }
+  MPI_Allreduce(mine.data(), all.data(), static_cast<int>(all.size()), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  return all;
+}
+
+// max |y - reference| / max |reference| over the dual vector (all ranks).
+double relativeDifference(const feti::DualVector& y, const std::vector<double>& reference) {
+  auto data = y.getLocalViewHost(Tpetra::Access::ReadOnly);
+  const auto& map = *y.getMap();
+  double local[2] = {0.0, 0.0}, global[2] = {0.0, 0.0};
+  for (size_t i = 0; i < data.extent(0); ++i) {
+    const double r = reference[map.getGlobalElement(static_cast<LO>(i))];
+    local[0] = std::max(local[0], std::abs(data(i, 0) - r));
+    local[1] = std::max(local[1], std::abs(r));
+  }
+  MPI_Allreduce(local, global, 2, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  return global[0] / global[1];
+}
+}  // namespace
+
+TEST(TotalFeti, lumpedFromKbbEqualsBKBtWithTheWholeK) {
+  // applyLumped multiplies by K_bb alone (b = the dofs that B touches): B^T x vanishes off b
+  // and B reads b only, so it is B K B^T with the whole K, up to rounding. H/h = 3 gives the
+  // subdomains interior dofs (the ones K_bb leaves out).
+  feti::TotalFetiSettings settings;
+  settings.lumpedPreconditioner = true;
+  auto p = makeProblem("4x2x2", 3, false, settings);
+  auto x = p->feti->createDualVector(), y = p->feti->createDualVector();
+  for (int seed = 0; seed < 2; ++seed) {
+    randomize(*x, seed);
+    p->feti->applyLumped(*x, *y);
+    EXPECT_LT(relativeDifference(*y, referencePreconditioner(*p, seed, false)), 1e-13);
+  }
+  auto plain = makeProblem("4x2x2", 2, false);
+  EXPECT_THROW(plain->feti->applyLumped(*plain->feti->createDualVector(), *plain->feti->createDualVector()),
+               std::logic_error);
+}
+
+TEST(TotalFeti, dirichletEqualsBSBtFromDenseSchurComplements) {
+  // applyDirichlet (K_bb, K_ib, K_bi as sparse blocks, K_ii's sparse factor) against dense
+  // S_s = K_bb - K_bi K_ii^{-1} K_ib per subdomain; lumped from the same object shares K_bb.
+  feti::TotalFetiSettings settings;
+  settings.dirichletPreconditioner = true;
+  auto p = makeProblem("4x2x2", 3, false, settings);
+  auto x = p->feti->createDualVector(), y = p->feti->createDualVector();
+  for (int seed = 0; seed < 2; ++seed) {
+    randomize(*x, seed);
+    p->feti->applyDirichlet(*x, *y);
+    EXPECT_LT(relativeDifference(*y, referencePreconditioner(*p, seed, true)), 1e-12);
+    p->feti->applyLumped(*x, *y);
+    EXPECT_LT(relativeDifference(*y, referencePreconditioner(*p, seed, false)), 1e-13);
+  }
 }

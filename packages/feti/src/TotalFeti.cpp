@@ -94,48 +94,91 @@ const double* readOnly(const DualVector& v) { return v.getLocalViewHost(Tpetra::
 double* readWrite(DualVector& v) { return v.getLocalViewHost(Tpetra::Access::ReadWrite).data(); }
 }  // namespace
 
-/// A rectangular block of K in CSR (rows and columns renumbered), kept with K's column
-/// order inside each row, so that its products add the same terms in the same order as
-/// K's own (the terms it leaves out multiply zeros). Column indices take 2 bytes when the
-/// block has at most 65 536 columns (a subdomain's boundary or interior unknowns: always
-/// at the H/h of Table 1): 10 bytes per entry instead of 12, and the preconditioner reads
-/// these blocks once per application (doc/performance.md).
+/// A block of K in CSR (rows and columns renumbered), kept with K's column order inside each
+/// row. Column indices take 2 bytes when the block has at most 65 536 columns (a subdomain's
+/// boundary or interior unknowns: always at the H/h of Table 1): 10 bytes per entry instead
+/// of 12; the preconditioner reads these blocks once per application (doc/performance.md).
+/// Three products: with the block (rows), with its transpose (K_bi = K_ib^T read from K_ib),
+/// and, for a symmetric block stored as its upper triangle (K_bb), with the whole of it.
 struct KBlock {
   std::vector<LO> rowPtr, colInd;      ///< colInd: only when the columns need 4 bytes
   std::vector<std::uint16_t> colShort;  ///< otherwise
   std::vector<double> values;
-  // y = A x (subtract: y -= A x)
-  void apply(const double* x, double* y, bool subtract = false) const {
-    if (colInd.empty())
-      applyWith(colShort.data(), x, y, subtract);
-    else
-      applyWith(colInd.data(), x, y, subtract);
+  /// y = A x
+  void apply(const double* x, double* y) const {
+    withColumns([&](const auto* col) { applyWith(col, x, y); });
+  }
+  /// y -= A^T x, rows in order: y_j gets its terms in the order of A's rows.
+  void subtractTransposed(const double* x, double* y) const {
+    withColumns([&](const auto* col) { subtractTransposedWith(col, x, y); });
+  }
+  /// y = (U + U^T - diag U) x for A = U, the upper triangle of a symmetric matrix with the
+  /// diagonal first in each row. Row i's sum gets its terms in ascending column order, as the
+  /// row of the whole matrix would: j < i from the rows before (U_ji = A_ij), then its own.
+  void applySymmetric(const double* x, double* y) const {
+    withColumns([&](const auto* col) { applySymmetricWith(col, x, y); });
   }
   double bytes() const {
     return 8.0 * values.size() + 4.0 * (colInd.size() + rowPtr.size()) + 2.0 * colShort.size();
   }
+  LO rows() const { return static_cast<LO>(rowPtr.size()) - 1; }
 
  private:
+  template <class Op>
+  void withColumns(Op op) const {
+    if (colInd.empty())
+      op(colShort.data());
+    else
+      op(colInd.data());
+  }
   template <class Index>
-  void applyWith(const Index* __restrict col, const double* __restrict x, double* __restrict y, bool subtract) const {
+  void applyWith(const Index* __restrict col, const double* __restrict x, double* __restrict y) const {
     const double* __restrict v = values.data();
     const LO* __restrict start = rowPtr.data();
-    const LO rows = static_cast<LO>(rowPtr.size()) - 1;
-    for (LO i = 0; i < rows; ++i) {
+    for (LO i = 0; i < rows(); ++i) {
       double s = 0.0;
       for (LO k = start[i]; k < start[i + 1]; ++k) s += v[k] * x[col[k]];
-      y[i] = subtract ? y[i] - s : s;
+      y[i] = s;
+    }
+  }
+  template <class Index>
+  void subtractTransposedWith(const Index* __restrict col, const double* __restrict x, double* __restrict y) const {
+    const double* __restrict v = values.data();
+    const LO* __restrict start = rowPtr.data();
+    for (LO i = 0; i < rows(); ++i) {
+      const double xi = x[i];
+      for (LO k = start[i]; k < start[i + 1]; ++k) y[col[k]] -= v[k] * xi;
+    }
+  }
+  template <class Index>
+  void applySymmetricWith(const Index* __restrict col, const double* __restrict x, double* __restrict y) const {
+    const double* __restrict v = values.data();
+    const LO* __restrict start = rowPtr.data();
+    const LO n = rows();
+    std::fill(y, y + n, 0.0);
+    for (LO i = 0; i < n; ++i) {
+      const double xi = x[i];
+      double s = y[i] + v[start[i]] * xi;  // the lower part's terms so far, then the diagonal
+      for (LO k = start[i] + 1; k < start[i + 1]; ++k) {
+        s += v[k] * x[col[k]];
+        y[col[k]] += v[k] * xi;
+      }
+      y[i] = s;
     }
   }
 };
 
-/// The Dirichlet preconditioner S = K_bb - K_bi K_ii^{-1} K_ib of one subdomain, b = the dofs
-/// that B touches, i = the others: the three blocks it multiplies with (K_ii is only
-/// factorised, so an application reads neither K_ii nor K's other entries twice), interior
-/// unknowns in the order of K_ii's factor, and its work vectors.
+/// The dual preconditioners' blocks of one subdomain's K, b = the dofs that B touches, i = the
+/// others. Lumped, B K B^T = B K_bb B^T (B^T x vanishes off b and B reads b only): K_bb.
+/// Dirichlet, S = K_bb - K_bi K_ii^{-1} K_ib: the same K_bb (one copy serves both) and K_ib,
+/// read a second time for K_bi = K_ib^T (K_ii is only factorised, so an application reads
+/// neither K_ii nor K's other entries), interior unknowns in the order of K_ii's factor. K_bb
+/// is kept as its upper triangle: half the bytes, the product exactly symmetric (K's own
+/// entries K_ij and K_ji can differ in the last bit, as the element matrices do). Work vectors.
 struct DirichletBlocks {
   std::vector<LO> boundaryDof;  ///< per entry of B_s: the position of its dof among b
-  KBlock Kbb, Kib, Kbi;         ///< rows/columns of i in the factor's order
+  KBlock Kbb;                   ///< upper triangle, diagonal first in each row
+  KBlock Kib;                   ///< rows of i in the factor's order (Dirichlet only)
   std::unique_ptr<SparseCholesky> interiorFactor;  ///< K_ii (none when i is empty)
   std::vector<double> xb, yb, t;
 };
@@ -177,25 +220,33 @@ struct TotalFeti::Local {
 TotalFeti::~TotalFeti() = default;
 
 namespace {
-// The rows `rows` and columns with position[col] >= 0 of K, columns renumbered by `position`.
-KBlock extractBlock(const fem::CsrMatrix& K, const std::vector<LO>& rows, const std::vector<LO>& position) {
+// The rows `rows` and columns with position[col] >= 0 of K, columns renumbered by `position`;
+// `upper`: only the columns at or after the row's own position (rows = the columns, ascending).
+KBlock extractBlock(const fem::CsrMatrix& K, const std::vector<LO>& rows, const std::vector<LO>& position,
+                    bool upper = false) {
+  auto keep = [&](size_t row, LO col) { return position[col] >= (upper ? static_cast<LO>(row) : 0); };
   // Counted first, so that the blocks, kept for the whole solve, hold no spare capacity (with
   // push_back growth alone they held up to twice their entries: doc/scalability.md).
   size_t entries = 0;
-  for (LO i : rows)
-    for (LO k = K.rowPtr[i]; k < K.rowPtr[i + 1]; ++k) entries += position[K.colInd[k]] >= 0;
+  for (size_t r = 0; r < rows.size(); ++r)
+    for (LO k = K.rowPtr[rows[r]]; k < K.rowPtr[rows[r] + 1]; ++k) entries += keep(r, K.colInd[k]);
   KBlock A;
   A.rowPtr.reserve(rows.size() + 1);
   A.colInd.reserve(entries);
   A.values.reserve(entries);
   A.rowPtr.push_back(0);
-  for (LO i : rows) {
+  for (size_t r = 0; r < rows.size(); ++r) {
+    const LO i = rows[r];
     for (LO k = K.rowPtr[i]; k < K.rowPtr[i + 1]; ++k)
-      if (position[K.colInd[k]] >= 0) {
+      if (keep(r, K.colInd[k])) {
         A.colInd.push_back(position[K.colInd[k]]);
         A.values.push_back(K.values[k]);
       }
     A.rowPtr.push_back(static_cast<LO>(A.colInd.size()));
+    // applySymmetric takes each row's first entry for its diagonal (K stores every node's
+    // diagonal block, so it is there).
+    TEUCHOS_TEST_FOR_EXCEPTION(upper && (A.rowPtr[r + 1] == A.rowPtr[r] || A.colInd[A.rowPtr[r]] != static_cast<LO>(r)),
+                               std::logic_error, "tribos::feti: K has no diagonal entry in row " << i);
   }
   const LO columns = static_cast<LO>(std::count_if(position.begin(), position.end(), [](LO p) { return p >= 0; }));
   if (columns <= 65536) {
@@ -205,31 +256,27 @@ KBlock extractBlock(const fem::CsrMatrix& K, const std::vector<LO>& rows, const 
   return A;
 }
 
-void buildDirichletBlocks(TotalFeti::Local& L, const std::string& factorization) {
+// K_bb (both preconditioners) and, for the Dirichlet one (`interiorToo`), K_ii's factor and K_ib.
+void buildPreconditionerBlocks(TotalFeti::Local& L, bool interiorToo, const std::string& factorization) {
   DirichletBlocks& D = L.dirichlet;
   std::vector<char> touched(L.n(), 0);
   for (LO d : L.block->dof) touched[d] = 1;
   std::vector<LO> boundary, interior;
   for (LO d = 0; d < L.n(); ++d) (touched[d] ? boundary : interior).push_back(d);
-  std::vector<LO> boundaryPosition(L.n(), -1), interiorPosition(L.n(), -1);
+  std::vector<LO> boundaryPosition(L.n(), -1);
   for (size_t k = 0; k < boundary.size(); ++k) boundaryPosition[boundary[k]] = static_cast<LO>(k);
   for (LO d : L.block->dof) D.boundaryDof.push_back(boundaryPosition[d]);
-  D.Kbb = extractBlock(L.system.K, boundary, boundaryPosition);
+  D.Kbb = extractBlock(L.system.K, boundary, boundaryPosition, /*upper=*/true);
   D.xb.assign(boundary.size(), 0.0);
   D.yb.assign(boundary.size(), 0.0);
-  if (interior.empty()) return;
+  if (!interiorToo || interior.empty()) return;
   D.interiorFactor = makeSparseCholesky(factorization);
   D.interiorFactor->factorize(principalSubmatrix(L.system.K, interior));
-  // Interior unknowns in the factor's order: K_ib's rows and K_bi's columns follow it, so the
-  // solve runs in place.
+  // Interior unknowns in the factor's order: K_ib's rows follow it, so the solve runs in place.
   const std::vector<LO>& perm = D.interiorFactor->permutation();
   std::vector<LO> interiorOrdered(interior.size());
-  for (size_t k = 0; k < interior.size(); ++k) {
-    interiorOrdered[k] = interior[perm[k]];
-    interiorPosition[interiorOrdered[k]] = static_cast<LO>(k);
-  }
+  for (size_t k = 0; k < interior.size(); ++k) interiorOrdered[k] = interior[perm[k]];
   D.Kib = extractBlock(L.system.K, interiorOrdered, boundaryPosition);
-  D.Kbi = extractBlock(L.system.K, boundary, interiorPosition);
   D.t.assign(interior.size(), 0.0);
 }
 }  // namespace
@@ -318,7 +365,8 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
     for (LO k = 0; k < L.n(); ++k) position[perm[k]] = k;
     L.factorDof.resize(L.block->dof.size());
     for (size_t k = 0; k < L.factorDof.size(); ++k) L.factorDof[k] = position[L.block->dof[k]];
-    if (settings_.dirichletPreconditioner) buildDirichletBlocks(L, settings_.factorization);
+    if (settings_.dirichletPreconditioner || settings_.lumpedPreconditioner)
+      buildPreconditionerBlocks(L, settings_.dirichletPreconditioner, settings_.factorization);
     if (settings_.explicitF) {
       // F_s = B_s K^dagger B_s^T, column by column of B_s^T (ALGORITHMS.md 3, explicit F).
       const LO m = L.m(), n = L.n();
@@ -746,15 +794,19 @@ void TotalFeti::measureTraffic() {
     f += rows * (2 * kIndex + 3 * kDouble);  // overlap indices in and out; x gathered, y added
     factorEntries += static_cast<double>(L->solver.factor().factorNonzeros());
   }
-  // The Dirichlet preconditioner: its three blocks of K, the K_ii factor (both
-  // substitutions), B_s^T and B_s (values, dofs, row pointers), the dual entries.
+  // The preconditioner: K_bb's upper triangle (lumped), with the Dirichlet one K_ib twice (K_ib
+  // and K_bi = K_ib^T) and the K_ii factor (both substitutions); B_s^T and B_s (values, dofs,
+  // row pointers), the dual entries.
+  const bool preconditioner = settings_.dirichletPreconditioner || settings_.lumpedPreconditioner;
   double dirichlet = 0.0;
   for (const auto& L : local_) {
-    if (!settings_.dirichletPreconditioner) break;
+    if (!preconditioner) break;
     const DirichletBlocks& D = L->dirichlet;
     const double entries = static_cast<double>(L->block->value.size()), rows = L->m();
-    dirichlet += D.Kbb.bytes() + D.Kib.bytes() + D.Kbi.bytes() + 2 * (entries * (kDouble + 2 * kIndex) + rows * kIndex) +
+    dirichlet += D.Kbb.bytes() + 2 * (entries * (kDouble + 2 * kIndex) + rows * kIndex) +
                  rows * (2 * kIndex + 3 * kDouble);
+    if (!settings_.dirichletPreconditioner) continue;
+    dirichlet += 2 * D.Kib.bytes();
     if (D.interiorFactor) dirichlet += static_cast<double>(D.interiorFactor->solveBytes());
   }
   const double owned = static_cast<double>(G_->numRows), gEntries = static_cast<double>(G_->rowSubdomain.size());
@@ -767,7 +819,7 @@ void TotalFeti::measureTraffic() {
   for (const auto& L : local_) gxTerms += static_cast<double>(L->gTerms.size());
   const double slots = static_cast<double>(G_->coords.size() + G_->full.size());
   const double projection = (gxTerms + gEntries) * sizeof(CoarseTerm) + 2 * slots * kDouble + owned * (kIndex + 3 * kDouble);
-  if (settings_.dirichletPreconditioner) dirichlet += owned * kDouble;
+  if (preconditioner) dirichlet += owned * kDouble;
   double local[4] = {f + 2 * projection, factorEntries, projection, dirichlet}, global[4] = {0.0, 0.0, 0.0, 0.0};
   Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, 4, local, global);
   bytesPerFApplication_ = global[0];
@@ -1023,11 +1075,18 @@ void TotalFeti::applyF(const DualVector& x, DualVector& y, bool removeKernel) co
 }
 
 void TotalFeti::applyLumped(const DualVector& x, DualVector& y) const {
+  TEUCHOS_TEST_FOR_EXCEPTION(!settings_.lumpedPreconditioner && !settings_.dirichletPreconditioner, std::logic_error,
+                             "tribos::feti::TotalFeti::applyLumped: construct with "
+                             "settings.lumpedPreconditioner = true");
   core::Stopwatch watch;
   applyBlockwise(x, y, [](Local& L, bool) {
-    applyBlockTranspose(*L.block, L.rowOrder, L.in.data(), L.x.data(), L.n());
-    L.system.K.apply(L.x.data(), L.y.data());
-    applyBlock(*L.block, L.y.data(), L.out.data());
+    // out = B_s K_bb B_s^T in: B_s^T in is zero off b, and B_s reads b only. Each row of K_bb
+    // adds its terms in K's column order less the ones that multiply those zeros, with K_ji
+    // for K_ij below the diagonal (the stored triangle): B_s K B_s^T to rounding.
+    DirichletBlocks& D = L.dirichlet;
+    applyBlockTranspose(*L.block, L.rowOrder, D.boundaryDof, L.in.data(), D.xb.data(), static_cast<LO>(D.xb.size()));
+    D.Kbb.applySymmetric(D.xb.data(), D.yb.data());
+    applyBlock(*L.block, D.boundaryDof, D.yb.data(), L.out.data());
   });
   ++profile_.preconditionerApplications;
   profile_.preconditionerSeconds += watch.seconds();
@@ -1039,14 +1098,15 @@ void TotalFeti::applyDirichlet(const DualVector& x, DualVector& y) const {
                              "settings.dirichletPreconditioner = true");
   core::Stopwatch watch;
   applyBlockwise(x, y, [](Local& L, bool) {
-    // x_b = B_s^T in; y_b = K_bb x_b - K_bi K_ii^{-1} K_ib x_b; out = B_s y_b.
+    // x_b = B_s^T in; y_b = K_bb x_b - K_ib^T K_ii^{-1} K_ib x_b; out = B_s y_b. Per subdomain,
+    // in one fixed order: the same bits on every rank and thread layout.
     DirichletBlocks& D = L.dirichlet;
     applyBlockTranspose(*L.block, L.rowOrder, D.boundaryDof, L.in.data(), D.xb.data(), static_cast<LO>(D.xb.size()));
-    D.Kbb.apply(D.xb.data(), D.yb.data());
+    D.Kbb.applySymmetric(D.xb.data(), D.yb.data());
     if (D.interiorFactor) {
       D.Kib.apply(D.xb.data(), D.t.data());
       D.interiorFactor->solveInPlace(D.t.data());
-      D.Kbi.apply(D.t.data(), D.yb.data(), /*subtract=*/true);
+      D.Kib.subtractTransposed(D.t.data(), D.yb.data());
     }
     applyBlock(*L.block, D.boundaryDof, D.yb.data(), L.out.data());
   });

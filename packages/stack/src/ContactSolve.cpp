@@ -204,6 +204,7 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
   settings.explicitF = fetiList.get<std::string>("Dual Operator") == "Explicit";
   const std::string preconditioner = fetiList.get<std::string>("Preconditioner");
   settings.dirichletPreconditioner = preconditioner == "Dirichlet";
+  settings.lumpedPreconditioner = preconditioner == "Lumped";
   auto friction = frictionSettings(tribos);
   auto smalse = smalseSettings(tribos);
   WallClockBudget budget(tribos.sublist("Solver").get<double>("Max Seconds"), comm);

@@ -63,6 +63,7 @@ LinearFetiResult solveLinearFeti(const Scene& scene, std::vector<fem::SubdomainS
   settings.factorization = fetiList.get<std::string>("Factorization");
   settings.explicitF = fetiList.get<std::string>("Dual Operator") == "Explicit";
   settings.dirichletPreconditioner = fetiList.get<std::string>("Preconditioner") == "Dirichlet";
+  settings.lumpedPreconditioner = fetiList.get<std::string>("Preconditioner") == "Lumped";
   const feti::TotalFeti feti(scene.mesh, scene.decomposition, std::move(owned), B, teuchosComm, settings);
   result.factorizationSeconds = feti.factorizationSeconds();
 

@@ -45,6 +45,7 @@ struct TotalFetiSettings {
   std::string factorization = "CHOLMOD";  ///< SparseCholesky for K_reg and G G^T
   bool explicitF = false;                 ///< dense local F_s assembled once vs two solves per apply
   bool dirichletPreconditioner = false;   ///< factorise K_ii per subdomain for applyDirichlet
+  bool lumpedPreconditioner = false;      ///< keep K_bb per subdomain for applyLumped (also kept with Dirichlet)
 };
 
 /// Where the time of the dual operators goes (cumulative over the object's life, this rank;
@@ -64,8 +65,8 @@ struct OperatorProfile {
   long long coarseFactorNonzeros = 0;  ///< stored entries of the factor of G G^T
   int coarseSubtrees = 0;  ///< subtrees its solves run concurrently (0: serial solves)
   long long gEntries = 0, gRows = 0;   ///< entries (row, subdomain) of G on this rank's rows, rows
-  /// The least bytes one projection (G x and G^T a) and one Dirichlet preconditioner
-  /// application (B S B^T; 0 without it) move, summed over the ranks (measureTraffic).
+  /// The least bytes one projection (G x and G^T a) and one preconditioner application
+  /// (B S B^T or B K_bb B^T; 0 without one) move, summed over the ranks (measureTraffic).
   double projectionBytes = 0.0, preconditionerBytes = 0.0;
 };
 
@@ -109,7 +110,8 @@ class TotalFeti {
   /// or a coarse solve, when x is one of the last four projected vectors (same bits on every
   /// rank); else computed. Collective.
   void coarseCoordinates(const DualVector& x, std::vector<double>& gx, std::vector<double>& a) const;
-  /// y = B K B^T x (the lumped preconditioner, before projection).
+  /// y = B K B^T x (the lumped preconditioner, before projection), from K_bb only (b = the
+  /// dofs that B touches). Requires settings.lumpedPreconditioner or dirichletPreconditioner.
   void applyLumped(const DualVector& x, DualVector& y) const;
   /// y = B S B^T x with S_s = K_bb - K_bi K_ii^{-1} K_ib the Schur complement of each
   /// subdomain on the dofs that B touches (the Dirichlet preconditioner, before projection).
