@@ -182,6 +182,24 @@ TEST(TotalFeti, aReleasedCoarseFactorIsRebuiltWithTheSameBits) {
   for (size_t i = 0; i < a.extent(0); ++i) EXPECT_EQ(a(i, 0), b(i, 0));
 }
 
+TEST(TotalFeti, aSingularRigidMotionSystemThrowsOnEveryRankAndKeepsThemInStep) {
+  // G_I G_I^T (and G G^T) are factorised and solved on rank 0 alone and the result broadcast:
+  // a failure there must reach every rank as the same exception, and the ranks must meet in
+  // the next collective. With no row counted, G_I G_I^T = 0: singular.
+  auto p = makeProblem("4x2x2", 2, false);
+  auto lambda = p->feti->createDualVector(), x = p->feti->createDualVector(), Px = p->feti->createDualVector();
+  lambda->putScalar(0.0);
+  const std::vector<char> noRow(lambda->getLocalLength(), 0);
+  EXPECT_THROW(p->feti->rigidBodyCoefficients(*lambda, noRow), feti::RigidMotionsUndetermined);
+  randomize(*x, 5);
+  p->feti->project(*x, *Px);  // collective: hangs if a rank were left behind
+  std::vector<double> gx;
+  p->feti->applyG(*Px, gx);
+  double worst = 0.0;
+  for (double v : gx) worst = std::max(worst, std::abs(v));
+  EXPECT_LE(worst, 1e-10 * Px->norm2());
+}
+
 TEST(TotalFeti, coarseCoordinatesOfARecentProjectionAreCopiedAndGiveNormQ) {
   // coarseCoordinates(x) = (G x, (G G^T)^{-1} G x): copied from the projection memo (no coarse
   // solve) while x is one of the last four projected vectors, with the bits of a fresh

@@ -909,28 +909,70 @@ fem::CsrMatrix TotalFeti::assembleCoarse(const std::vector<char>* ownedRowMask) 
 }
 
 void TotalFeti::factorizeCoarse() const {
-  // G G^T, replicated: its assembled matrix lives only as long as the factorisation (the
-  // largest replicated items at thousands of subdomains, doc/scalability.md).
+  // G G^T is assembled on every rank (one all-reduce of its reproducible slots) and
+  // factorised on rank 0 alone (onRootThenBroadcast): its assembled matrix lives only as
+  // long as the factorisation (the largest replicated items at thousands of subdomains,
+  // doc/scalability.md).
   core::Stopwatch watch;
-  auto factor = makeSparseCholesky(settings_.factorization);
-  factor->setSubtreeSolve(true);  // solved on the main thread, by every rank alike
-  try {
-    factor->factorizeConsuming(assembleCoarse(nullptr));
-  } catch (const std::exception& e) {
-    throw core::InputError(std::string("the constraints do not fix every rigid body mode of every subdomain "
-                                       "(G G^T is singular: ") +
-                           e.what() + "); check Boundary/Dirichlet Node Sets and the contact surfaces");
-  }
-  coarse_ = std::move(factor);
+  fem::CsrMatrix GGt = assembleCoarse(nullptr);
+  std::vector<double> nothing;
+  onRootThenBroadcast(
+      nothing,
+      [&] {
+        auto factor = makeSparseCholesky(settings_.factorization);
+        factor->setSubtreeSolve(true);  // solved on the main thread of rank 0
+        try {
+          factor->factorizeConsuming(std::move(GGt));
+        } catch (const std::exception& e) {
+          throw core::InputError(std::string("the constraints do not fix every rigid body mode of every subdomain "
+                                             "(G G^T is singular: ") +
+                                 e.what() + "); check Boundary/Dirichlet Node Sets and the contact surfaces");
+        }
+        coarse_ = std::move(factor);
+        profile_.coarseFactorNonzeros = coarse_->factorNonzeros();
+        profile_.coarseSubtrees = coarse_->subtreeCount();
+      },
+      [](const std::string& message) { throw core::InputError(message); });
+  GGt = fem::CsrMatrix{};  // the ranks > 0: not needed past the assembly
+  coarseFactored_ = true;
   profile_.coarseFactorSeconds += watch.seconds();
-  profile_.coarseFactorNonzeros = coarse_->factorNonzeros();
-  profile_.coarseSubtrees = coarse_->subtreeCount();
 }
 
 void TotalFeti::releaseCoarseFactor() const {
   coarse_.reset();
+  coarseFactored_ = false;
   for (CoarseMemo& memo : coarseMemo_) memo = CoarseMemo{};
   for (ProjectionMemo& memo : projectionMemo_) memo = ProjectionMemo{};
+}
+
+void TotalFeti::onRootThenBroadcast(std::vector<double>& v, const std::function<void()>& work,
+                                    const std::function<void(const std::string&)>& fail) const {
+  if (comm_->getSize() == 1) {
+    work();  // its exceptions as they are
+    return;
+  }
+  // Every rank reaches both broadcasts, also when rank 0's work failed: then every rank
+  // throws, with rank 0's message (a rank left waiting in a collective would hang the job).
+  int failed = 0;
+  std::string message;
+  if (comm_->getRank() == 0) {
+    try {
+      work();
+    } catch (const std::exception& e) {
+      failed = 1;
+      message = e.what();
+    }
+  }
+  Teuchos::broadcast(*comm_, 0, 1, &failed);
+  if (failed) {
+    int length = static_cast<int>(message.size());
+    Teuchos::broadcast(*comm_, 0, 1, &length);
+    message.resize(static_cast<size_t>(length));
+    if (length > 0) Teuchos::broadcast(*comm_, 0, length, message.data());
+    fail(message);
+    throw std::logic_error("tribos::feti::TotalFeti::onRootThenBroadcast: `fail` must throw");
+  }
+  if (!v.empty()) Teuchos::broadcast(*comm_, 0, static_cast<int>(v.size()), v.data());
 }
 
 std::vector<double> TotalFeti::rigidBodyCoefficients(const DualVector& lambda,
@@ -948,15 +990,24 @@ std::vector<double> TotalFeti::rigidBodyCoefficients(const DualVector& lambda,
   }
   std::vector<double> alpha;
   applyG(residual, alpha);
-  auto factor = makeSparseCholesky(settings_.factorization);
-  try {
-    factor->factorizeConsuming(assembleCoarse(&ownedRowMask));
-  } catch (const std::exception& e) {
-    throw RigidMotionsUndetermined(std::string("tribos::feti::TotalFeti::rigidBodyCoefficients: G_I G_I^T is singular "
-                                         "(the inactive rows do not fix every rigid body mode): ") + e.what());
-  }
-  std::vector<double> rhs = alpha;
-  factor->solve(rhs.data(), alpha.data());
+  // Assembled on every rank, factorised and solved on rank 0 (as G G^T: onRootThenBroadcast).
+  fem::CsrMatrix GiGit = assembleCoarse(&ownedRowMask);
+  onRootThenBroadcast(
+      alpha,
+      [&] {
+        auto factor = makeSparseCholesky(settings_.factorization);
+        try {
+          factor->factorizeConsuming(std::move(GiGit));
+        } catch (const std::exception& e) {
+          throw RigidMotionsUndetermined(
+              std::string("tribos::feti::TotalFeti::rigidBodyCoefficients: G_I G_I^T is singular "
+                          "(the inactive rows do not fix every rigid body mode): ") +
+              e.what());
+        }
+        std::vector<double> rhs = alpha;
+        factor->solve(rhs.data(), alpha.data());
+      },
+      [](const std::string& message) { throw RigidMotionsUndetermined(message); });
   return alpha;
 }
 
@@ -1267,6 +1318,7 @@ void TotalFeti::applyGt(const std::vector<double>& a, DualVector& y) const {
 void TotalFeti::solveCoarse(std::vector<double>& a) const {
   core::Stopwatch watch;
   ++profile_.coarseSolves;
+  // a is the same on every rank, so every rank finds the same memo entry (or none).
   for (const CoarseMemo& memo : coarseMemo_)
     if (memo.valid && std::equal(a.begin(), a.end(), memo.rhs.begin(), [](double x, double y) {
           return std::memcmp(&x, &y, sizeof(double)) == 0;
@@ -1280,8 +1332,13 @@ void TotalFeti::solveCoarse(std::vector<double>& a) const {
   coarseMemoNext_ = 1 - coarseMemoNext_;
   memo.valid = false;
   memo.rhs.assign(a.begin(), a.end());
-  if (!coarse_) factorizeCoarse();  // released (releaseCoarseFactor): the same factor again
-  coarse_->solve(memo.rhs.data(), a.data());
+  if (!coarseFactored_) factorizeCoarse();  // released (releaseCoarseFactor): the same factor again
+  // On rank 0 alone, then broadcast: with every rank solving, the R ranks of a node streamed
+  // R copies of the factor at once (16 ranks at 4 000 subdomains: doc/scalability.md). The
+  // solution has the bits it had on every rank.
+  onRootThenBroadcast(
+      a, [&] { coarse_->solve(memo.rhs.data(), a.data()); },
+      [](const std::string& message) { throw std::runtime_error(message); });
   memo.solution.assign(a.begin(), a.end());
   memo.valid = true;
   profile_.coarseSolveSeconds += watch.seconds();

@@ -21,6 +21,7 @@
 #include <Tpetra_Map_decl.hpp>
 #include <Tpetra_Vector_decl.hpp>
 
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -226,10 +227,18 @@ class TotalFeti {
   long long primalDofs_ = 0;     ///< sum of n_s over all subdomains
 
   std::unique_ptr<CoarseRows> G_;           ///< G on the owned rows
-  /// G G^T, replicated; null after releaseCoarseFactor() until the next coarse solve.
+  /// G G^T's factor, on rank 0 only; null after releaseCoarseFactor() until the next coarse
+  /// solve.
   mutable std::unique_ptr<SparseCholesky> coarse_;
-  /// Assembles and factorises G G^T into coarse_ (collective).
+  /// Whether G G^T is factorised (on rank 0): the same on every rank.
+  mutable bool coarseFactored_ = false;
+  /// Assembles G G^T (collective) and factorises it into coarse_ on rank 0.
   void factorizeCoarse() const;
+  /// Runs `work` on rank 0 alone, then broadcasts v (of the same length on every rank) from
+  /// it; if `work` throws there, every rank calls fail(rank 0's message), which throws.
+  /// One rank: work() alone. Collective.
+  void onRootThenBroadcast(std::vector<double>& v, const std::function<void()>& work,
+                           const std::function<void(const std::string&)>& fail) const;
   /// Coarse work vectors of project() and solveCoarse(), allocated once (length l).
   mutable std::vector<double> coarseLocal_, coarseVector_;
   /// The last two coarse solves (right-hand side, solution): the solvers project the same
