@@ -462,6 +462,8 @@ namespace {
 /// Rows per task of the row loops (G^T a, the sums of applyBlockwise): fixed, so that the
 /// work split does not depend on the number of threads.
 constexpr LO kRowChunk = 8192;
+/// Subdomains per task of G x (applyGOwnedSubdomains).
+constexpr int kGxSubdomains = 8;
 /// Slots per entry of the reproducible sums of G G^T.
 constexpr int kSlots = core::SumBins::kSlices;
 /// A subdomain's frame as it travels: centre (3), scale, M_s (36).
@@ -1152,6 +1154,31 @@ void sumComponent(const CoarseTerm* __restrict t, const CoarseTerm* end, const d
   sum[1] = s1 + u1;
   sum[2] = s2 + u2;
 }
+
+// (G x)_s of one owned subdomain into gx[6 s, 6 s + 6) (applyGOwnedSubdomains).
+void sumOwnedSubdomain(const TotalFeti::CoarseRows& G, const TotalFeti::Local& L, const double* xOverlap, double* gx) {
+  const CoarseTerm* t = L.gTerms.data();
+  const auto& start = L.gGroupStart;
+  double s0[3], s1[3], s2[3], full[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  sumComponent<0>(t + start[0], t + start[1], xOverlap, G.coords.data(), s0);
+  sumComponent<1>(t + start[1], t + start[2], xOverlap, G.coords.data(), s1);
+  sumComponent<2>(t + start[2], t + start[3], xOverlap, G.coords.data(), s2);
+  for (LO k = start[3]; k < start[4]; ++k) {
+    const double xr = xOverlap[t[k].index];
+    const double* g = &G.full[6 * static_cast<size_t>(t[k].code >> 2)];
+    for (int j = 0; j < 6; ++j) full[j] += g[j] * xr;
+  }
+  // sum of w [e_d; (e_0 x p~)_d, (e_1 x p~)_d, (e_2 x p~)_d] (geometricRow): rotation 0
+  // reads z~ of d = 1 and y~ of d = 2, rotation 1 z~ of d = 0 and x~ of d = 2, rotation 2
+  // y~ of d = 0 and x~ of d = 1.
+  const double geo[6] = {s0[0] + full[0],
+                         s1[0] + full[1],
+                         s2[0] + full[2],
+                         (s2[2] - s1[2]) + full[3],
+                         (s0[2] - s2[1]) + full[4],
+                         (s1[1] - s0[1]) + full[5]};
+  transposedProduct(G.M(L.subdomain), geo, gx + 6 * L.subdomain);
+}
 }  // namespace
 
 void TotalFeti::applyGOwnedSubdomains(const double* xOverlap, double* gx) const {
@@ -1162,31 +1189,18 @@ void TotalFeti::applyGOwnedSubdomains(const double* xOverlap, double* gx) const 
   // [e_d; (e_k x p~)_d]: the sums of w and w p~ per component, combined at the end.
   std::fill(gx, gx + numCoarse(), 0.0);
   const CoarseRows& G = *G_;
-  core::forEachSubdomain(numOwnedSubdomains(), [&](int i) {
-    const Local& L = *local_[i];
-    const CoarseTerm* t = L.gTerms.data();
-    const auto& start = L.gGroupStart;
-    double s0[3], s1[3], s2[3], full[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
-    sumComponent<0>(t + start[0], t + start[1], xOverlap, G.coords.data(), s0);
-    sumComponent<1>(t + start[1], t + start[2], xOverlap, G.coords.data(), s1);
-    sumComponent<2>(t + start[2], t + start[3], xOverlap, G.coords.data(), s2);
-    for (LO k = start[3]; k < start[4]; ++k) {
-      const double xr = xOverlap[t[k].index];
-      const double* g = &G.full[6 * static_cast<size_t>(t[k].code >> 2)];
-      for (int j = 0; j < 6; ++j) full[j] += g[j] * xr;
-    }
-    // sum of w [e_d; (e_0 x p~)_d, (e_1 x p~)_d, (e_2 x p~)_d] (geometricRow): rotation 0
-    // reads z~ of d = 1 and y~ of d = 2, rotation 1 z~ of d = 0 and x~ of d = 2, rotation 2
-    // y~ of d = 0 and x~ of d = 1.
-    const double geo[6] = {s0[0] + full[0],
-                           s1[0] + full[1],
-                           s2[0] + full[2],
-                           (s2[2] - s1[2]) + full[3],
-                           (s0[2] - s2[1]) + full[4],
-                           (s1[1] - s0[1]) + full[5]};
-    transposedProduct(G.M(L.subdomain), geo, gx + 6 * L.subdomain);
+  // A subdomain's sum is about a microsecond of work: the threads take up to kGxSubdomains
+  // of them per task (at least 8 tasks per thread), so that the shared counter of the dynamic
+  // schedule (a cache line that moves between the cores at every grab) is not touched 500
+  // times per G x. Each subdomain writes only its own 6 entries: the same bits for any grouping.
+  const int numOwned = numOwnedSubdomains();
+  const int group = std::max(1, std::min(kGxSubdomains, numOwned / (8 * core::numThreads())));
+  core::forEachSubdomain((numOwned + group - 1) / group, [&](int task) {
+    const int end = std::min(numOwned, (task + 1) * group);
+    for (int i = task * group; i < end; ++i) sumOwnedSubdomain(G, *local_[i], xOverlap, gx);
   });
 }
+
 
 void TotalFeti::reduceCoarse(std::vector<double>& local, double* gx) const {
   if (comm_->getSize() == 1)
