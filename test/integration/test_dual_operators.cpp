@@ -120,8 +120,9 @@ TEST(TotalFeti, projectorIsIdempotentAndAnnihilatedByG) {
 }
 
 TEST(TotalFeti, repeatedProjectionIsReusedWithTheSameBits) {
-  // P x, P y, P x again: the third projection is copied from the memo of the last two (no
-  // coarse solve) and has the same bits as the first; a third vector z is projected afresh.
+  // P x, P y, P x again: the third projection is answered from the memo of the last two (G^T a
+  // with the stored a: no G x, no coarse solve) and has the same bits as the first; a third
+  // vector z is projected afresh.
   auto p = makeProblem("4x2x2", 2, false);
   auto x = p->feti->createDualVector(), y = p->feti->createDualVector(), z = p->feti->createDualVector();
   auto Px = p->feti->createDualVector(), Py = p->feti->createDualVector(), Px2 = p->feti->createDualVector();

@@ -462,6 +462,8 @@ namespace {
 /// Rows per task of the row loops (G^T a, the sums of applyBlockwise): fixed, so that the
 /// work split does not depend on the number of threads.
 constexpr LO kRowChunk = 8192;
+/// Subdomains per task of G x (applyGOwnedSubdomains).
+constexpr int kGxSubdomains = 8;
 /// Slots per entry of the reproducible sums of G G^T.
 constexpr int kSlots = core::SumBins::kSlices;
 /// A subdomain's frame as it travels: centre (3), scale, M_s (36).
@@ -1203,6 +1205,31 @@ void sumComponent(const CoarseTerm* __restrict t, const CoarseTerm* end, const d
   sum[1] = s1 + u1;
   sum[2] = s2 + u2;
 }
+
+// (G x)_s of one owned subdomain into gx[6 s, 6 s + 6) (applyGOwnedSubdomains).
+void sumOwnedSubdomain(const TotalFeti::CoarseRows& G, const TotalFeti::Local& L, const double* xOverlap, double* gx) {
+  const CoarseTerm* t = L.gTerms.data();
+  const auto& start = L.gGroupStart;
+  double s0[3], s1[3], s2[3], full[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  sumComponent<0>(t + start[0], t + start[1], xOverlap, G.coords.data(), s0);
+  sumComponent<1>(t + start[1], t + start[2], xOverlap, G.coords.data(), s1);
+  sumComponent<2>(t + start[2], t + start[3], xOverlap, G.coords.data(), s2);
+  for (LO k = start[3]; k < start[4]; ++k) {
+    const double xr = xOverlap[t[k].index];
+    const double* g = &G.full[6 * static_cast<size_t>(t[k].code >> 2)];
+    for (int j = 0; j < 6; ++j) full[j] += g[j] * xr;
+  }
+  // sum of w [e_d; (e_0 x p~)_d, (e_1 x p~)_d, (e_2 x p~)_d] (geometricRow): rotation 0
+  // reads z~ of d = 1 and y~ of d = 2, rotation 1 z~ of d = 0 and x~ of d = 2, rotation 2
+  // y~ of d = 0 and x~ of d = 1.
+  const double geo[6] = {s0[0] + full[0],
+                         s1[0] + full[1],
+                         s2[0] + full[2],
+                         (s2[2] - s1[2]) + full[3],
+                         (s0[2] - s2[1]) + full[4],
+                         (s1[1] - s0[1]) + full[5]};
+  transposedProduct(G.M(L.subdomain), geo, gx + 6 * L.subdomain);
+}
 }  // namespace
 
 void TotalFeti::applyGOwnedSubdomains(const double* xOverlap, double* gx) const {
@@ -1213,31 +1240,18 @@ void TotalFeti::applyGOwnedSubdomains(const double* xOverlap, double* gx) const 
   // [e_d; (e_k x p~)_d]: the sums of w and w p~ per component, combined at the end.
   std::fill(gx, gx + numCoarse(), 0.0);
   const CoarseRows& G = *G_;
-  core::forEachSubdomain(numOwnedSubdomains(), [&](int i) {
-    const Local& L = *local_[i];
-    const CoarseTerm* t = L.gTerms.data();
-    const auto& start = L.gGroupStart;
-    double s0[3], s1[3], s2[3], full[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
-    sumComponent<0>(t + start[0], t + start[1], xOverlap, G.coords.data(), s0);
-    sumComponent<1>(t + start[1], t + start[2], xOverlap, G.coords.data(), s1);
-    sumComponent<2>(t + start[2], t + start[3], xOverlap, G.coords.data(), s2);
-    for (LO k = start[3]; k < start[4]; ++k) {
-      const double xr = xOverlap[t[k].index];
-      const double* g = &G.full[6 * static_cast<size_t>(t[k].code >> 2)];
-      for (int j = 0; j < 6; ++j) full[j] += g[j] * xr;
-    }
-    // sum of w [e_d; (e_0 x p~)_d, (e_1 x p~)_d, (e_2 x p~)_d] (geometricRow): rotation 0
-    // reads z~ of d = 1 and y~ of d = 2, rotation 1 z~ of d = 0 and x~ of d = 2, rotation 2
-    // y~ of d = 0 and x~ of d = 1.
-    const double geo[6] = {s0[0] + full[0],
-                           s1[0] + full[1],
-                           s2[0] + full[2],
-                           (s2[2] - s1[2]) + full[3],
-                           (s0[2] - s2[1]) + full[4],
-                           (s1[1] - s0[1]) + full[5]};
-    transposedProduct(G.M(L.subdomain), geo, gx + 6 * L.subdomain);
+  // A subdomain's sum is about a microsecond of work: the threads take up to kGxSubdomains
+  // of them per task (at least 8 tasks per thread), so that the shared counter of the dynamic
+  // schedule (a cache line that moves between the cores at every grab) is not touched 500
+  // times per G x. Each subdomain writes only its own 6 entries: the same bits for any grouping.
+  const int numOwned = numOwnedSubdomains();
+  const int group = std::max(1, std::min(kGxSubdomains, numOwned / (8 * core::numThreads())));
+  core::forEachSubdomain((numOwned + group - 1) / group, [&](int task) {
+    const int end = std::min(numOwned, (task + 1) * group);
+    for (int i = task * group; i < end; ++i) sumOwnedSubdomain(G, *local_[i], xOverlap, gx);
   });
 }
+
 
 void TotalFeti::reduceCoarse(std::vector<double>& local, double* gx) const {
   if (comm_->getSize() == 1)
@@ -1268,8 +1282,9 @@ void addComponent(const TotalFeti::CoarseRows& G, LO first, LO end, double b0, d
 }
 
 // y_r = x_r - sum over the entries of row r of g_{s,r} . a_s, for the owned rows (y may be
-// x: each row reads its x_r before writing y_r); copyOfY (optional) gets y as well.
-void subtractGt(const TotalFeti::CoarseRows& G, const double* a, const double* x, double* y, double* copyOfY) {
+// x: each row reads its x_r before writing y_r); copyOfX (optional) gets x as well, in the
+// same pass (the projection memo's input: no pass of its own over x on the main thread).
+void subtractGt(const TotalFeti::CoarseRows& G, const double* a, const double* x, double* y, double* copyOfX) {
   core::forEachSubdomain(G.numChunks(), [&](int c) {
     const LO first = c * kRowChunk, end = std::min<LO>(G.numRows, first + kRowChunk);
     double* __restrict rowSum = G.rowSum.data();
@@ -1300,8 +1315,14 @@ void subtractGt(const TotalFeti::CoarseRows& G, const double* a, const double* x
         rowSum[t.index] += (g[0] * b[0] + g[1] * b[1]) + (g[2] * b[2] + g[3] * b[3]) + (g[4] * b[4] + g[5] * b[5]);
       }
     }
-    for (LO r = first; r < end; ++r) y[r] = x[r] - rowSum[r];
-    if (copyOfY) std::copy(y + first, y + end, copyOfY + first);
+    if (copyOfX)
+      for (LO r = first; r < end; ++r) {
+        const double xr = x[r];
+        copyOfX[r] = xr;
+        y[r] = xr - rowSum[r];
+      }
+    else
+      for (LO r = first; r < end; ++r) y[r] = x[r] - rowSum[r];
   });
 }
 }  // namespace
@@ -1348,24 +1369,26 @@ void TotalFeti::project(const DualVector& x, DualVector& y) const {
   // y = x - G^T (G G^T)^{-1} G x on the owned rows: x on the overlap rows (several ranks),
   // one all-reduce of length l, no allocation.
   const double* xd = readOnly(x);
-  double* yd = nullptr;
   auto yView = [&]() { return &x == &y ? readWrite(y) : y.getLocalViewHost(Tpetra::Access::OverwriteAll).data(); };
   ++profile_.projections;
   core::Stopwatch watch;
-  const size_t n = static_cast<size_t>(G_->numRows);
   const int hit = findProjection(xd);
   if (hit >= 0) {
-    yd = yView();
-    std::copy(projectionMemo_[hit].solution.begin(), projectionMemo_[hit].solution.end(), yd);
+    // x has the bits of the memo's input: G^T a again with its a = (G G^T)^{-1} G x, the same
+    // operations on the same numbers as the projection that stored it (the same bits), and
+    // no copy of P x kept for the few projections that repeat (17 of 1140 on Table 1's
+    // 10x5x5/5; the coarse coordinates, which repeat, need only gx and a).
+    double* yd = yView();
+    if (&x == &y) xd = yd;
+    subtractGt(*G_, projectionMemo_[hit].coarse.data(), xd, yd, nullptr);
     ++profile_.projectionsReused;
     profile_.gSeconds += watch.seconds();
     return;
   }
   ProjectionMemo& memo = projectionMemo_[projectionMemoNext_];
   projectionMemoNext_ = (projectionMemoNext_ + 1) % kProjectionMemo;
-  memo.valid = false;           // until its answer is stored below
-  memo.rhs.assign(xd, xd + n);  // before y (which may be x) is written
-  memo.solution.resize(n);
+  memo.valid = false;  // until its answer is stored below
+  memo.rhs.resize(static_cast<size_t>(G_->numRows));  // filled by the G^T pass, before y (maybe x) is written
   applyGOwnedSubdomains(overlapValues(x), coarseLocal_.data());
   profile_.gSeconds += watch.seconds();
   watch.restart();
@@ -1375,9 +1398,9 @@ void TotalFeti::project(const DualVector& x, DualVector& y) const {
   solveCoarse(coarseVector_);
   memo.coarse.assign(coarseVector_.begin(), coarseVector_.end());
   watch.restart();
-  yd = yView();
+  double* yd = yView();
   if (&x == &y) xd = yd;
-  subtractGt(*G_, coarseVector_.data(), xd, yd, memo.solution.data());
+  subtractGt(*G_, coarseVector_.data(), xd, yd, memo.rhs.data());
   memo.valid = true;
   profile_.gSeconds += watch.seconds();
 }

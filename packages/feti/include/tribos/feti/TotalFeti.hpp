@@ -54,7 +54,7 @@ struct TotalFetiSettings {
 struct OperatorProfile {
   long long fApplications = 0, projections = 0, coarseSolves = 0, preconditionerApplications = 0;
   long long coarseSolvesReused = 0;    ///< of coarseSolves: answered from the last two (same rhs bits)
-  long long projectionsReused = 0;     ///< of projections: P x copied from the last four (same x bits)
+  long long projectionsReused = 0;     ///< of projections: x one of the last four (same bits): G^T a only
   long long coarseCoordinates = 0;     ///< coarseCoordinates calls (SMALSE-M's ||Q x||)
   long long coarseCoordinatesReused = 0;  ///< of those: copied from a projection of the same x
   double fSeconds = 0.0;               ///< B K^+ B^T (imports, subdomain solves, export-add)
@@ -251,14 +251,16 @@ class TotalFeti {
   };
   mutable CoarseMemo coarseMemo_[2];
   mutable int coarseMemoNext_ = 0;
-  /// The last projections (x and P x on the owned rows): a hit skips G x, the coarse
-  /// solve and G^T a, i.e. two passes over G, which at small H/h weigh more than F.
+  /// The last projections (x on the owned rows, G x and a = (G G^T)^{-1} G x): a hit skips
+  /// G x and the coarse solve (coarseCoordinates: all of its work; project: all but one G^T
+  /// pass, which gives the bits of P x again without a stored copy of it).
   /// Four: SMALSE-M asks for the coarse coordinates of its iterate x (coarseCoordinates)
-  /// after the products with A_rho (P x, P F P x) and the preconditioner (P phi, P D P phi);
-  /// each entry keeps G x and (G G^T)^{-1} G x (gx, coarse) too.
+  /// after the products with A_rho (P x, P F P x) and the preconditioner (P phi, P D P phi).
+  /// x is stored by the G^T pass of the projection itself (no pass of its own).
   static constexpr int kProjectionMemo = 4;
-  struct ProjectionMemo : CoarseMemo {
-    std::vector<double> gx, coarse;
+  struct ProjectionMemo {
+    std::vector<double> rhs, gx, coarse;
+    bool valid = false;
   };
   mutable ProjectionMemo projectionMemo_[kProjectionMemo];
   mutable int projectionMemoNext_ = 0;
