@@ -12,6 +12,7 @@
 
 #include "tribos/core/Errors.hpp"
 #include "tribos/core/ReproducibleSum.hpp"
+#include "tribos/qp/VectorOps.hpp"
 
 namespace tribos::contact {
 
@@ -30,7 +31,7 @@ class ProjectedDualOperator : public qp::ProjectedOperator {
   }
   void applyPlusComplement(const qp::Vector& x, qp::Vector& y, double s) const override {
     apply(x, y);
-    y.update(s, x, -s, *tmp_, 1.0);  // + s (x - P x)
+    qp::update(s, x, -s, *tmp_, 1.0, y);  // + s (x - P x), threaded (qp/VectorOps.hpp)
   }
 
  private:
@@ -54,7 +55,7 @@ class ProjectedDualPreconditioner : public qp::ProjectedOperator {
   }
   void applyPlusComplement(const qp::Vector& x, qp::Vector& y, double s) const override {
     apply(x, y);
-    y.update(s, x, -s, *tmp_, 1.0);  // + s (x - P x)
+    qp::update(s, x, -s, *tmp_, 1.0, y);  // + s (x - P x), threaded (qp/VectorOps.hpp)
   }
 
  private:
@@ -69,7 +70,7 @@ class CoarseSpaceProjector : public qp::EqualityProjector {
   explicit CoarseSpaceProjector(const feti::TotalFeti& feti) : feti_(feti) {}
   void applyQ(const qp::Vector& x, qp::Vector& y) const override {
     feti_.project(x, y);
-    y.update(1.0, x, -1.0);
+    qp::axpby(1.0, x, -1.0, y);
   }
   /// ||Q x||^2 = x^T Q x = (G x)^T (G G^T)^{-1} G x: G and the coarse solve, no G^T pass
   /// (neither when x was projected recently: TotalFeti::coarseCoordinates).

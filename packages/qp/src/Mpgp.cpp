@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "tribos/qp/Reductions.hpp"
+#include "tribos/qp/VectorOps.hpp"
 
 namespace tribos::qp {
 
@@ -36,7 +37,7 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
   auto gradient = [&]() {
     A.apply(x, g);
     ++counters.operatorApplications;
-    g.update(-1.0, b, 1.0);
+    axpby(-1.0, b, 1.0, g);
   };
   // z = chi_F M^-1 phi (preconditioning in face; z = phi without a preconditioner): the
   // restriction to the face keeps CG on it, and z^T phi = phi^T M^-1 phi > 0 keeps z a
@@ -44,7 +45,7 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
   const SymmetricOperator* M = settings_.preconditioner;
   auto preconditionedFreeGradient = [&]() {
     if (!M) {
-      z.assign(phi);
+      assign(z, phi);
       return;
     }
     M->apply(phi, zFull);
@@ -54,19 +55,19 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
   // After a step that is not a CG step: a fresh search direction.
   auto restartDirection = [&]() {
     preconditionedFreeGradient();
-    p.assign(z);
+    assign(p, z);
   };
   // Saved iterate and gradient, to undo a step that did not decrease f.
   Vector previousX(map), previousG(map);
   int proportioningRun = 0;  // consecutive proportioning steps so far
   // f(x) = 1/2 x^T A x - b^T x = 1/2 x^T (g - b), free given g.
   auto objective = [&](const Vector& at, const Vector& gradientAt) {
-    trial.update(1.0, gradientAt, -1.0, b, 0.0);
+    update(1.0, gradientAt, -1.0, b, 0.0, trial);
     return 0.5 * dot(at, trial);
   };
   // x := P(x - alpha_bar d), then g.
   auto projectedStep = [&](const Vector& direction) {
-    x.update(-alphaBar, direction, 1.0);
+    axpby(-alphaBar, direction, 1.0, x);
     omega.project(x);
     gradient();
   };
@@ -108,14 +109,9 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
       return;
     }
     const double f0 = objective(x, g);
-    previousX.assign(x);
-    previousG.assign(g);
-    x.update(-alpha, beta, 1.0);
-    trial.assign(x);
-    omega.project(x);
-    trial.update(1.0, x, -1.0);
-    if (trial.normInf() == 0.0) {
-      g.update(-alpha, Ap, 1.0);  // the projection did not move x: g = A x - b exactly
+    saveAndStep(alpha, beta, x, g, previousX, previousG);
+    if (!omega.projectMoved(x)) {
+      axpby(-alpha, Ap, 1.0, g);  // the projection did not move x: g = A x - b exactly
     } else {
       gradient();
     }
@@ -129,8 +125,8 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
       startSliding();
       return;
     }
-    x.assign(previousX);
-    g.assign(previousG);
+    assign(x, previousX);
+    assign(g, previousG);
     split(x, g, phi, beta);
     gradientProjectionStep();
   };
@@ -140,27 +136,22 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
   // (x and g restored) and the caller takes a gradient projection step. True without a projection
   // correction too (then it is the plain CG step).
   auto slidingCgStep = [&](double alphaCg, double pAp) {
-    previousX.assign(x);
-    previousG.assign(g);
-    x.update(-alphaCg, p, 1.0);
-    trial.assign(x);
-    omega.project(x);
-    trial.update(1.0, x, -1.0);
-    if (trial.normInf() == 0.0) {
+    saveAndStep(alphaCg, p, x, g, previousX, previousG);
+    if (!omega.projectMoved(x)) {
       if (settings_.cgStep) settings_.cgStep(alphaCg, p);
-      g.update(-alphaCg, Ap, 1.0);
+      axpby(-alphaCg, Ap, 1.0, g);
     } else {
       gradient();
       // f(x) - f(x0) = (x - x0)^T (g + g0) / 2 exactly for a quadratic: from the step, free of
       // the cancellation in 1/2 x^T (g - b), which decided the test by round-off near the
       // solution (cylinder h0.05: f = -42.6, 8 of 16 slides "failed" with f - f0 between 2e-11
       // and 4e-10; with the difference 1 of 29 fails, and the run needs 1 548 F, not 14 442).
-      trial.update(1.0, x, -1.0, previousX, 0.0);
-      gradientProjected.update(1.0, g, 1.0, previousG, 0.0);
+      update(1.0, x, -1.0, previousX, 0.0, trial);
+      update(1.0, g, 1.0, previousG, 0.0, gradientProjected);
       const double change = 0.5 * dot(trial, gradientProjected);
       if (!(change < 0.0)) {
-        x.assign(previousX);
-        g.assign(previousG);
+        assign(x, previousX);
+        assign(g, previousG);
         slide = false;
         const long long wait = static_cast<long long>(std::max(settings_.tangentCgAfter, 1)) << std::min(failedSlides++, 20);
         slideFrom = static_cast<int>(std::min<long long>(counters.proportioningSteps + wait, INT_MAX));
@@ -170,14 +161,14 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
     split(x, g, phi, beta);
     preconditionedFreeGradient();
     const double gammaCg = dot(z, trialGradient) / pAp;  // trialGradient: (A + H_c) p
-    p.update(1.0, z, -gammaCg);
+    axpby(1.0, z, -gammaCg, p);
     ++counters.cgSteps;
     return true;
   };
   // ||g^P||^2 and the proportioning test's ||beta||^2 and phi~^T phi in one reduction
   // (Reductions.hpp: the bits of three separate ones).
   auto iterationSums = [&]() {
-    gradientProjected.update(1.0, phi, 1.0, beta, 0.0);
+    update(1.0, phi, 1.0, beta, 0.0, gradientProjected);
     omega.reducedFreeGradient(x, phi, alphaBar, reduced);
     return dots(gradientProjected, gradientProjected, beta, beta, reduced, phi);
   };
@@ -213,7 +204,7 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
       ++counters.operatorApplications;
       // Tangent CG: the Hessian on the curved face adds the boundary's curvature term.
       if (slide) {
-        trialGradient.assign(Ap);
+        assign(trialGradient, Ap);
         omega.addCurvatureProduct(x, g, p, trialGradient);
       }
       const auto [pAp, gTp] = dots(p, slide ? trialGradient : Ap, g, p);  // one reduction for both
@@ -229,18 +220,16 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
       }
       if (alphaCg <= alphaFeasible) {
         // Conjugate gradient step on the current face.
-        x.update(-alphaCg, p, 1.0);
+        stepAlong(alphaCg, p, Ap, x, g);  // x -= alpha p, g -= alpha A p
         if (settings_.cgStep) settings_.cgStep(alphaCg, p);
-        g.update(-alphaCg, Ap, 1.0);
         split(x, g, phi, beta);
         preconditionedFreeGradient();
         const double gammaCg = dot(z, Ap) / pAp;
-        p.update(1.0, z, -gammaCg);
+        axpby(1.0, z, -gammaCg, p);
         ++counters.cgSteps;
       } else {
         // Expansion: to the boundary, then a projected step with the free gradient.
-        x.update(-alphaFeasible, p, 1.0);
-        g.update(-alphaFeasible, Ap, 1.0);
+        stepAlong(alphaFeasible, p, Ap, x, g);
         omega.project(x);  // absorb round-off of the step onto the boundary
         split(x, g, phi, beta);
         if (settings_.optimalExpansion) {
@@ -251,17 +240,17 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
           const auto [phiAphi, phiPhi] = dots(phi, Ap, phi, phi);
           const double alphaOpt = phiAphi > 0.0 ? phiPhi / phiAphi : 0.0;
           if (alphaOpt > alphaBar) {
-            reduced.update(1.0, g, -1.0, b, 0.0);
+            update(1.0, g, -1.0, b, 0.0, reduced);
             const double fHalf = 0.5 * dot(x, reduced);
-            trial.update(1.0, x, -alphaOpt, phi, 0.0);
+            update(1.0, x, -alphaOpt, phi, 0.0, trial);
             omega.project(trial);
             A.apply(trial, trialGradient);
             ++counters.operatorApplications;
-            trialGradient.update(-1.0, b, 1.0);
-            reduced.update(1.0, trialGradient, -1.0, b, 0.0);
+            axpby(-1.0, b, 1.0, trialGradient);
+            update(1.0, trialGradient, -1.0, b, 0.0, reduced);
             if (0.5 * dot(trial, reduced) <= fHalf) {
-              x.assign(trial);
-              g.assign(trialGradient);
+              assign(x, trial);
+              assign(g, trialGradient);
               split(x, g, phi, beta);
               restartDirection();
               ++counters.expansionSteps;
