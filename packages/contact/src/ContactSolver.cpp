@@ -12,7 +12,6 @@
 
 #include "tribos/core/Errors.hpp"
 #include "tribos/core/ReproducibleSum.hpp"
-#include "tribos/qp/VectorOps.hpp"
 
 namespace tribos::contact {
 
@@ -31,7 +30,7 @@ class ProjectedDualOperator : public qp::ProjectedOperator {
   }
   void applyPlusComplement(const qp::Vector& x, qp::Vector& y, double s) const override {
     apply(x, y);
-    qp::update(s, x, -s, *tmp_, 1.0, y);  // + s (x - P x), threaded (qp/VectorOps.hpp)
+    y.update(s, x, -s, *tmp_, 1.0);  // + s (x - P x)
   }
 
  private:
@@ -55,7 +54,7 @@ class ProjectedDualPreconditioner : public qp::ProjectedOperator {
   }
   void applyPlusComplement(const qp::Vector& x, qp::Vector& y, double s) const override {
     apply(x, y);
-    qp::update(s, x, -s, *tmp_, 1.0, y);  // + s (x - P x), threaded (qp/VectorOps.hpp)
+    y.update(s, x, -s, *tmp_, 1.0);  // + s (x - P x)
   }
 
  private:
@@ -70,7 +69,7 @@ class CoarseSpaceProjector : public qp::EqualityProjector {
   explicit CoarseSpaceProjector(const feti::TotalFeti& feti) : feti_(feti) {}
   void applyQ(const qp::Vector& x, qp::Vector& y) const override {
     feti_.project(x, y);
-    qp::axpby(1.0, x, -1.0, y);
+    y.update(1.0, x, -1.0);
   }
   /// ||Q x||^2 = x^T Q x = (G x)^T (G G^T)^{-1} G x: G and the coarse solve, no G^T pass
   /// (neither when x was projected recently: TotalFeti::coarseCoordinates).

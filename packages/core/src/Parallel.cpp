@@ -2,7 +2,6 @@
 
 #include <omp.h>
 
-#include <algorithm>
 #include <exception>
 #include <mutex>
 
@@ -32,18 +31,6 @@ void forEachSubdomain(int count, const std::function<void(int)>& body) {
     }
   }
   if (firstError) std::rethrow_exception(firstError);
-}
-
-long numChunks(long n, long chunk) { return n > chunk ? (n + chunk - 1) / chunk : 1; }
-
-void forEachChunk(long n, const std::function<void(long, long, long)>& body, long chunk) {
-  const long count = numChunks(n, chunk);
-  if (count == 1 || numThreads() == 1) {
-    // The same chunks in order on this thread: no parallel region for short vectors.
-    for (long c = 0; c < count; ++c) body(c, c * chunk, std::min(n, (c + 1) * chunk));
-    return;
-  }
-  forEachSubdomain(static_cast<int>(count), [&](int c) { body(c, c * chunk, std::min(n, (c + 1) * chunk)); });
 }
 
 }  // namespace tribos::core

@@ -1,5 +1,4 @@
 #include "tribos/core/ReproducibleSum.hpp"
-#include "tribos/core/Parallel.hpp"
 
 #include <Teuchos_Comm.hpp>
 #include <Teuchos_CommHelpers.hpp>
@@ -71,20 +70,20 @@ Pair load(const double* p) {
   return v;
 }
 
-// The addends x_i = term(i) two at a time (term2(i) = {x_i, x_i+1}) for i in [begin, end); the
-// scalar tail by term. max |x_i| over them, +inf when some x_i is not finite (so that every
-// rank falls back together; MPI's MAX of a NaN is not defined).
+// The addends x_i = term(i) two at a time (term2(i) = {x_i, x_i+1}); the scalar tail by term.
+// max |x_i| over this rank, +inf when some x_i is not finite (so that every rank falls back
+// together; MPI's MAX of a NaN is not defined).
 template <class Term, class Term2>
-double localBound(std::size_t begin, std::size_t end, Term term, Term2 term2) {
+double localBound(std::size_t n, Term term, Term2 term2) {
   Pair m = {0.0, 0.0}, check = {0.0, 0.0};  // check: sum of x - x, NaN once an x is not finite
-  std::size_t i = begin;
-  for (; i + 2 <= end; i += 2) {
+  std::size_t i = 0;
+  for (; i + 2 <= n; i += 2) {
     const Pair x = term2(i), a = x < 0.0 ? -x : x;
     m = a > m ? a : m;
     check += x - x;
   }
   double bound = std::max(m[0], m[1]), nonFinite = check[0] + check[1];
-  for (; i < end; ++i) {
+  for (; i < n; ++i) {
     const double x = term(i);
     bound = std::max(bound, std::abs(x));
     nonFinite += x - x;
@@ -92,16 +91,16 @@ double localBound(std::size_t begin, std::size_t end, Term term, Term2 term2) {
   return nonFinite == 0.0 ? bound : std::numeric_limits<double>::infinity();
 }
 
-// slots[0..2) += the slices of every x_i, i in [begin, end) (SumBins::deposit, the same
-// operations), with four independent accumulators per slice (exact sums: their order does
-// not matter), so that the loop runs at the adds' throughput, not their latency.
+// slots[0..2) += the slices of every x_i (SumBins::deposit, the same operations), with
+// four independent accumulators per slice (exact sums: their order does not matter), so
+// that the loop runs at the adds' throughput, not their latency.
 template <class Term, class Term2>
-void depositAll(const SumBins& bins, std::size_t begin, std::size_t end, Term term, Term2 term2, double* slots) {
+void depositAll(const SumBins& bins, std::size_t n, Term term, Term2 term2, double* slots) {
   static_assert(SumBins::kSlices == 2, "depositAll is written for two slices");
   const Pair s0 = {bins.sigma(0), bins.sigma(0)}, s1 = {bins.sigma(1), bins.sigma(1)};
   Pair a0 = {0.0, 0.0}, b0 = a0, a1 = a0, b1 = a0;
-  std::size_t i = begin;
-  for (; i + 4 <= end; i += 4) {
+  std::size_t i = 0;
+  for (; i + 4 <= n; i += 4) {
     const Pair x = term2(i), y = term2(i + 2);
     const Pair qx = (x + s0) - s0, qy = (y + s0) - s0, rx = x - qx, ry = y - qy;
     a0 += qx;
@@ -113,81 +112,29 @@ void depositAll(const SumBins& bins, std::size_t begin, std::size_t end, Term te
   a1 += b1;
   slots[0] += a0[0] + a0[1];
   slots[1] += a1[0] + a1[1];
-  for (; i < end; ++i) bins.deposit(term(i), slots);
-}
-
-// out[s] = sum over all ranks of the addends terms(s) (a pair (term, term2) as above), for
-// s < k, n addends each on this rank: one MAX and one SUM all-reduce for all k. Each sum
-// keeps its own bound, hence its own quanta. Both passes run over the fixed chunks of
-// core::forEachChunk, each chunk into its own bounds and slots: the maxima are exact, and so
-// are the slots' sums (ReproducibleSum.hpp), so their order does not matter and the bits do
-// not depend on the thread count any more than on the rank count.
-template <class Terms>
-void sums(const Teuchos::Comm<int>* comm, Terms terms, int k, std::size_t n, long long count, double* out) {
-  const long length = static_cast<long>(n), chunks = numChunks(length);
-  std::vector<double> chunkBound(static_cast<std::size_t>(chunks) * k);
-  forEachChunk(length, [&](long c, long begin, long end) {
-    for (int s = 0; s < k; ++s) {
-      const auto [term, term2] = terms(s);
-      chunkBound[c * k + s] = localBound(begin, end, term, term2);
-    }
-  });
-  std::vector<double> local(k, 0.0), bound(k);
-  for (long c = 0; c < chunks; ++c)
-    for (int s = 0; s < k; ++s) local[s] = std::max(local[s], chunkBound[c * k + s]);
-  bound = local;
-  if (comm && comm->getSize() > 1) Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, k, local.data(), bound.data());
-  std::vector<SumBins> bins;
-  bool reproducible = true;
-  for (int s = 0; s < k; ++s) {
-    bins.emplace_back(bound[s], count);
-    reproducible = reproducible && bins.back().reproducible();
-  }
-  constexpr int kS = SumBins::kSlices;
-  std::vector<double> slots(static_cast<std::size_t>(kS) * k, 0.0);
-  if (!reproducible) {
-    // Plain addition (a bound beyond the quanta's range): its bits follow the order of the
-    // additions, so one pass on this thread, as before the chunks.
-    for (int s = 0; s < k; ++s) {
-      const auto [term, term2] = terms(s);
-      depositAll(bins[s], 0, n, term, term2, slots.data() + kS * s);
-    }
-  } else {
-    std::vector<double> chunkSlots(static_cast<std::size_t>(chunks) * kS * k, 0.0);
-    forEachChunk(length, [&](long c, long begin, long end) {
-      for (int s = 0; s < k; ++s) {
-        const auto [term, term2] = terms(s);
-        depositAll(bins[s], begin, end, term, term2, chunkSlots.data() + kS * (c * k + s));
-      }
-    });
-    for (long c = 0; c < chunks; ++c)
-      for (std::size_t j = 0; j < slots.size(); ++j) slots[j] += chunkSlots[c * kS * k + j];
-  }
-  allReduceSlots(comm, slots);
-  for (int s = 0; s < k; ++s) out[s] = SumBins::combine(slots.data() + kS * s);
-}
-
-// The addends a_i b_i (each product rounded once).
-auto productTerms(const double* a, const double* b) {
-  return std::make_pair([a, b](std::size_t j) { return a[j] * b[j]; },
-                        [a, b](std::size_t j) { return load(a + j) * load(b + j); });
+  for (; i < n; ++i) bins.deposit(term(i), slots);
 }
 }  // namespace
 
 double reproducibleSum(const Teuchos::Comm<int>* comm, const double* x, std::size_t n, long long count) {
-  auto terms = [x](int) {
-    return std::make_pair([x](std::size_t i) { return x[i]; }, [x](std::size_t i) { return load(x + i); });
-  };
-  double out = 0.0;
-  sums(comm, terms, 1, n, count, &out);
-  return out;
+  auto term = [x](std::size_t i) { return x[i]; };
+  auto term2 = [x](std::size_t i) { return load(x + i); };
+  const SumBins bins(globalMax(comm, localBound(n, term, term2)), count);
+  std::vector<double> slots(SumBins::kSlices, 0.0);
+  depositAll(bins, n, term, term2, slots.data());
+  allReduceSlots(comm, slots);
+  return SumBins::combine(slots.data());
 }
 
 double reproducibleDot(const Teuchos::Comm<int>* comm, const double* a, const double* b, std::size_t n,
                        long long count) {
-  double out = 0.0;
-  sums(comm, [a, b](int) { return productTerms(a, b); }, 1, n, count, &out);
-  return out;
+  auto term = [a, b](std::size_t i) { return a[i] * b[i]; };
+  auto term2 = [a, b](std::size_t i) { return load(a + i) * load(b + i); };
+  const SumBins bins(globalMax(comm, localBound(n, term, term2)), count);
+  std::vector<double> slots(SumBins::kSlices, 0.0);
+  depositAll(bins, n, term, term2, slots.data());
+  allReduceSlots(comm, slots);
+  return SumBins::combine(slots.data());
 }
 
 void reproducibleDots(const Teuchos::Comm<int>* comm, const double* a, const double* b, const double* c,
@@ -199,7 +146,27 @@ void reproducibleDots(const Teuchos::Comm<int>* comm, const double* a, const dou
 
 void reproducibleDots(const Teuchos::Comm<int>* comm, const double* const* a, const double* const* b, int k,
                       std::size_t n, long long count, double* out) {
-  sums(comm, [a, b](int s) { return productTerms(a[s], b[s]); }, k, n, count, out);
+  auto terms = [&](int i) {
+    const double *ai = a[i], *bi = b[i];
+    return std::make_pair([ai, bi](std::size_t j) { return ai[j] * bi[j]; },
+                          [ai, bi](std::size_t j) { return load(ai + j) * load(bi + j); });
+  };
+  // Each sum keeps its own bound (its own quanta), as reproducibleDot; all bounds travel in
+  // one all-reduce of length k, all slots in one of length kSlices k.
+  std::vector<double> local(k), bound(k);
+  for (int i = 0; i < k; ++i) {
+    const auto [term, term2] = terms(i);
+    local[i] = localBound(n, term, term2);
+  }
+  bound = local;
+  if (comm && comm->getSize() > 1) Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, k, local.data(), bound.data());
+  std::vector<double> slots(static_cast<std::size_t>(SumBins::kSlices) * k, 0.0);
+  for (int i = 0; i < k; ++i) {
+    const auto [term, term2] = terms(i);
+    depositAll(SumBins(bound[i], count), n, term, term2, slots.data() + SumBins::kSlices * i);
+  }
+  allReduceSlots(comm, slots);
+  for (int i = 0; i < k; ++i) out[i] = SumBins::combine(slots.data() + SumBins::kSlices * i);
 }
 
 }  // namespace tribos::core

@@ -7,7 +7,6 @@
 #include <cmath>
 
 #include "tribos/qp/Reductions.hpp"
-#include "tribos/qp/VectorOps.hpp"
 
 namespace tribos::qp {
 
@@ -37,7 +36,7 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
   auto gradient = [&]() {
     A.apply(x, g);
     ++counters.operatorApplications;
-    axpby(-1.0, b, 1.0, g);
+    g.update(-1.0, b, 1.0);
   };
   // z = chi_F M^-1 phi (preconditioning in face; z = phi without a preconditioner): the
   // restriction to the face keeps CG on it, and z^T phi = phi^T M^-1 phi > 0 keeps z a
@@ -45,7 +44,7 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
   const SymmetricOperator* M = settings_.preconditioner;
   auto preconditionedFreeGradient = [&]() {
     if (!M) {
-      assign(z, phi);
+      z.assign(phi);
       return;
     }
     M->apply(phi, zFull);
@@ -55,19 +54,19 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
   // After a step that is not a CG step: a fresh search direction.
   auto restartDirection = [&]() {
     preconditionedFreeGradient();
-    assign(p, z);
+    p.assign(z);
   };
   // Saved iterate and gradient, to undo a step that did not decrease f.
   Vector previousX(map), previousG(map);
   int proportioningRun = 0;  // consecutive proportioning steps so far
   // f(x) = 1/2 x^T A x - b^T x = 1/2 x^T (g - b), free given g.
   auto objective = [&](const Vector& at, const Vector& gradientAt) {
-    update(1.0, gradientAt, -1.0, b, 0.0, trial);
+    trial.update(1.0, gradientAt, -1.0, b, 0.0);
     return 0.5 * dot(at, trial);
   };
   // x := P(x - alpha_bar d), then g.
   auto projectedStep = [&](const Vector& direction) {
-    axpby(-alphaBar, direction, 1.0, x);
+    x.update(-alphaBar, direction, 1.0);
     omega.project(x);
     gradient();
   };
@@ -109,9 +108,14 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
       return;
     }
     const double f0 = objective(x, g);
-    saveAndStep(alpha, beta, x, g, previousX, previousG);
-    if (!omega.projectMoved(x)) {
-      axpby(-alpha, Ap, 1.0, g);  // the projection did not move x: g = A x - b exactly
+    previousX.assign(x);
+    previousG.assign(g);
+    x.update(-alpha, beta, 1.0);
+    trial.assign(x);
+    omega.project(x);
+    trial.update(1.0, x, -1.0);
+    if (trial.normInf() == 0.0) {
+      g.update(-alpha, Ap, 1.0);  // the projection did not move x: g = A x - b exactly
     } else {
       gradient();
     }
@@ -125,8 +129,8 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
       startSliding();
       return;
     }
-    assign(x, previousX);
-    assign(g, previousG);
+    x.assign(previousX);
+    g.assign(previousG);
     split(x, g, phi, beta);
     gradientProjectionStep();
   };
@@ -136,22 +140,27 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
   // (x and g restored) and the caller takes a gradient projection step. True without a projection
   // correction too (then it is the plain CG step).
   auto slidingCgStep = [&](double alphaCg, double pAp) {
-    saveAndStep(alphaCg, p, x, g, previousX, previousG);
-    if (!omega.projectMoved(x)) {
+    previousX.assign(x);
+    previousG.assign(g);
+    x.update(-alphaCg, p, 1.0);
+    trial.assign(x);
+    omega.project(x);
+    trial.update(1.0, x, -1.0);
+    if (trial.normInf() == 0.0) {
       if (settings_.cgStep) settings_.cgStep(alphaCg, p);
-      axpby(-alphaCg, Ap, 1.0, g);
+      g.update(-alphaCg, Ap, 1.0);
     } else {
       gradient();
       // f(x) - f(x0) = (x - x0)^T (g + g0) / 2 exactly for a quadratic: from the step, free of
       // the cancellation in 1/2 x^T (g - b), which decided the test by round-off near the
       // solution (cylinder h0.05: f = -42.6, 8 of 16 slides "failed" with f - f0 between 2e-11
       // and 4e-10; with the difference 1 of 29 fails, and the run needs 1 548 F, not 14 442).
-      update(1.0, x, -1.0, previousX, 0.0, trial);
-      update(1.0, g, 1.0, previousG, 0.0, gradientProjected);
+      trial.update(1.0, x, -1.0, previousX, 0.0);
+      gradientProjected.update(1.0, g, 1.0, previousG, 0.0);
       const double change = 0.5 * dot(trial, gradientProjected);
       if (!(change < 0.0)) {
-        assign(x, previousX);
-        assign(g, previousG);
+        x.assign(previousX);
+        g.assign(previousG);
         slide = false;
         const long long wait = static_cast<long long>(std::max(settings_.tangentCgAfter, 1)) << std::min(failedSlides++, 20);
         slideFrom = static_cast<int>(std::min<long long>(counters.proportioningSteps + wait, INT_MAX));
@@ -161,14 +170,14 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
     split(x, g, phi, beta);
     preconditionedFreeGradient();
     const double gammaCg = dot(z, trialGradient) / pAp;  // trialGradient: (A + H_c) p
-    axpby(1.0, z, -gammaCg, p);
+    p.update(1.0, z, -gammaCg);
     ++counters.cgSteps;
     return true;
   };
   // ||g^P||^2 and the proportioning test's ||beta||^2 and phi~^T phi in one reduction
   // (Reductions.hpp: the bits of three separate ones).
   auto iterationSums = [&]() {
-    update(1.0, phi, 1.0, beta, 0.0, gradientProjected);
+    gradientProjected.update(1.0, phi, 1.0, beta, 0.0);
     omega.reducedFreeGradient(x, phi, alphaBar, reduced);
     return dots(gradientProjected, gradientProjected, beta, beta, reduced, phi);
   };
@@ -204,7 +213,7 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
       ++counters.operatorApplications;
       // Tangent CG: the Hessian on the curved face adds the boundary's curvature term.
       if (slide) {
-        assign(trialGradient, Ap);
+        trialGradient.assign(Ap);
         omega.addCurvatureProduct(x, g, p, trialGradient);
       }
       const auto [pAp, gTp] = dots(p, slide ? trialGradient : Ap, g, p);  // one reduction for both
@@ -220,16 +229,18 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
       }
       if (alphaCg <= alphaFeasible) {
         // Conjugate gradient step on the current face.
-        stepAlong(alphaCg, p, Ap, x, g);  // x -= alpha p, g -= alpha A p
+        x.update(-alphaCg, p, 1.0);
         if (settings_.cgStep) settings_.cgStep(alphaCg, p);
+        g.update(-alphaCg, Ap, 1.0);
         split(x, g, phi, beta);
         preconditionedFreeGradient();
         const double gammaCg = dot(z, Ap) / pAp;
-        axpby(1.0, z, -gammaCg, p);
+        p.update(1.0, z, -gammaCg);
         ++counters.cgSteps;
       } else {
         // Expansion: to the boundary, then a projected step with the free gradient.
-        stepAlong(alphaFeasible, p, Ap, x, g);
+        x.update(-alphaFeasible, p, 1.0);
+        g.update(-alphaFeasible, Ap, 1.0);
         omega.project(x);  // absorb round-off of the step onto the boundary
         split(x, g, phi, beta);
         if (settings_.optimalExpansion) {
@@ -240,17 +251,17 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
           const auto [phiAphi, phiPhi] = dots(phi, Ap, phi, phi);
           const double alphaOpt = phiAphi > 0.0 ? phiPhi / phiAphi : 0.0;
           if (alphaOpt > alphaBar) {
-            update(1.0, g, -1.0, b, 0.0, reduced);
+            reduced.update(1.0, g, -1.0, b, 0.0);
             const double fHalf = 0.5 * dot(x, reduced);
-            update(1.0, x, -alphaOpt, phi, 0.0, trial);
+            trial.update(1.0, x, -alphaOpt, phi, 0.0);
             omega.project(trial);
             A.apply(trial, trialGradient);
             ++counters.operatorApplications;
-            axpby(-1.0, b, 1.0, trialGradient);
-            update(1.0, trialGradient, -1.0, b, 0.0, reduced);
+            trialGradient.update(-1.0, b, 1.0);
+            reduced.update(1.0, trialGradient, -1.0, b, 0.0);
             if (0.5 * dot(trial, reduced) <= fHalf) {
-              assign(x, trial);
-              assign(g, trialGradient);
+              x.assign(trial);
+              g.assign(trialGradient);
               split(x, g, phi, beta);
               restartDirection();
               ++counters.expansionSteps;

@@ -8,9 +8,7 @@
 #include <limits>
 #include <vector>
 
-#include "tribos/core/Parallel.hpp"
 #include "tribos/qp/Reductions.hpp"
-#include "tribos/qp/VectorOps.hpp"
 
 namespace tribos::qp {
 
@@ -44,20 +42,6 @@ template <class View>
 double at(const View& v, int i) {
   return i >= 0 ? v(i, 0) : 0.0;
 }
-template <class T>
-double at(T* v, int i) {  // the same on a raw pointer (the threaded loops)
-  return i >= 0 ? v[i] : 0.0;
-}
-
-/// Blocks per chunk of the loops over bounds and ellipses (core::forEachChunk): a block costs
-/// more than a vector entry (an ellipse projection is a Newton solve).
-constexpr long kBlockChunk = 1024;
-template <class T>
-long sizeOf(const std::vector<T>& v) {
-  return static_cast<long>(v.size());
-}
-const double* readOnly(const Vector& v) { return v.getLocalViewHost(Tpetra::Access::ReadOnly).data(); }
-double* readWrite(Vector& v) { return v.getLocalViewHost(Tpetra::Access::ReadWrite).data(); }
 
 bool boundActive(double x, double lower) {
   return x - lower <= kActiveTolerance * (std::abs(lower) + std::abs(x) + std::numeric_limits<double>::min());
@@ -176,48 +160,15 @@ void SeparableSet::setSemiAxes(int k, std::array<double, 2> semiAxes) { semiAxes
 int SeparableSet::numBounds() const { return static_cast<int>(boundIndex_.size()); }
 int SeparableSet::numEllipses() const { return static_cast<int>(ellipseIndex_.size()); }
 
-void SeparableSet::project(Vector& x) const { projectEntries(readWrite(x)); }
-
-bool SeparableSet::projectMoved(Vector& x) const {
-  int moved = projectEntries(readWrite(x)) ? 1 : 0, any = 0;
-  Teuchos::reduceAll(*x.getMap()->getComm(), Teuchos::REDUCE_MAX, 1, &moved, &any);
-  return any == 1;
-}
-
-bool SeparableSet::projectEntries(double* v) const {
-  // Blocks write their own entries only: threads over fixed chunks of blocks. "Moved" as MPGP
-  // tested it with Tpetra, max |new - old| > 0 (a NaN difference does not count).
-  const long boundChunks = core::numChunks(sizeOf(boundIndex_), kBlockChunk);
-  std::vector<char> moved(static_cast<size_t>(boundChunks + core::numChunks(sizeOf(ellipseIndex_), kBlockChunk)), 0);
-  auto set = [&moved](long slot, double before, double after) {
-    if (std::abs(after - before) > 0.0) moved[slot] = 1;
-  };
-  core::forEachChunk(
-      sizeOf(boundIndex_),
-      [&](long c, long begin, long end) {
-        for (long k = begin; k < end; ++k) {
-          const int i = boundIndex_[k];
-          const double before = v[i];
-          v[i] = std::max(before, lower_[k]);
-          set(c, before, v[i]);
-        }
-      },
-      kBlockChunk);
-  core::forEachChunk(
-      sizeOf(ellipseIndex_),
-      [&](long c, long begin, long end) {
-        for (long k = begin; k < end; ++k) {
-          const auto [i, j] = ellipseIndex_[k];
-          const double before[2] = {at(v, i), at(v, j)};
-          const auto y = projectOntoEllipse({before[0] - center_[k][0], before[1] - center_[k][1]}, effectiveAxes(k));
-          if (i >= 0) v[i] = center_[k][0] + y[0];
-          if (j >= 0) v[j] = center_[k][1] + y[1];
-          set(boundChunks + c, before[0], at(v, i));
-          set(boundChunks + c, before[1], at(v, j));
-        }
-      },
-      kBlockChunk);
-  return std::find(moved.begin(), moved.end(), 1) != moved.end();
+void SeparableSet::project(Vector& x) const {
+  auto v = x.getLocalViewHost(Tpetra::Access::ReadWrite);
+  for (size_t k = 0; k < boundIndex_.size(); ++k) v(boundIndex_[k], 0) = std::max(v(boundIndex_[k], 0), lower_[k]);
+  for (size_t k = 0; k < ellipseIndex_.size(); ++k) {
+    const auto [i, j] = ellipseIndex_[k];
+    const auto y = projectOntoEllipse({at(v, i) - center_[k][0], at(v, j) - center_[k][1]}, effectiveAxes(k));
+    if (i >= 0) v(i, 0) = center_[k][0] + y[0];
+    if (j >= 0) v(j, 0) = center_[k][1] + y[1];
+  }
 }
 
 bool SeparableSet::contains(const Vector& x, double tolerance) const {
@@ -238,69 +189,47 @@ bool SeparableSet::contains(const Vector& x, double tolerance) const {
 }
 
 double SeparableSet::maxFeasibleStep(const Vector& x, const Vector& p, bool slideOnEllipses) const {
-  const double* xv = readOnly(x);
-  const double* pv = readOnly(p);
-  // The minimum over fixed chunks of blocks, then over the chunks (exact: any order).
-  const long boundChunks = core::numChunks(sizeOf(boundIndex_), kBlockChunk);
-  std::vector<double> chunkStep(static_cast<size_t>(boundChunks + core::numChunks(sizeOf(ellipseIndex_), kBlockChunk)),
-                                kInfinity);
-  core::forEachChunk(
-      sizeOf(boundIndex_),
-      [&](long c, long begin, long end) {
-        double step = kInfinity;
-        for (long k = begin; k < end; ++k) {
-          const double pk = pv[boundIndex_[k]];
-          if (pk > 0.0) step = std::min(step, std::max(0.0, (xv[boundIndex_[k]] - lower_[k]) / pk));
-        }
-        chunkStep[c] = step;
-      },
-      kBlockChunk);
-  core::forEachChunk(
-      sizeOf(ellipseIndex_),
-      [&](long c, long begin, long end) {
-        double step = kInfinity;
-        for (long k = begin; k < end; ++k) step = std::min(step, ellipseStep(k, xv, pv, slideOnEllipses));
-        chunkStep[boundChunks + c] = step;
-      },
-      kBlockChunk);
+  auto xv = x.getLocalViewHost(Tpetra::Access::ReadOnly);
+  auto pv = p.getLocalViewHost(Tpetra::Access::ReadOnly);
   double step = kInfinity;
-  for (double s : chunkStep) step = std::min(step, s);
+  for (size_t k = 0; k < boundIndex_.size(); ++k) {
+    const double pk = pv(boundIndex_[k], 0);
+    if (pk > 0.0) step = std::min(step, std::max(0.0, (xv(boundIndex_[k], 0) - lower_[k]) / pk));
+  }
+  for (size_t k = 0; k < ellipseIndex_.size(); ++k) {
+    const auto [i, j] = ellipseIndex_[k];
+    const auto a = effectiveAxes(k);
+    const double y[2] = {at(xv, i) - center_[k][0], at(xv, j) - center_[k][1]};
+    const double d[2] = {at(pv, i), at(pv, j)};
+    if (!(a[0] > 0.0) || !(a[1] > 0.0)) {
+      // Degenerate: no motion across a zero axis; along the other axis an interval.
+      for (int ax = 0; ax < 2; ++ax) {
+        if (!(a[ax] > 0.0)) {
+          if (d[ax] != 0.0) step = 0.0;
+        } else if (d[ax] > 0.0) {
+          step = std::min(step, std::max(0.0, (y[ax] + a[ax]) / d[ax]));
+        } else if (d[ax] < 0.0) {
+          step = std::min(step, std::max(0.0, (y[ax] - a[ax]) / d[ax]));
+        }
+      }
+      continue;
+    }
+    if (slideOnEllipses && ellipseNorm({y[0], y[1]}, a) >= 1.0 - ellipseActiveTolerance(center_[k], std::min(a[0], a[1])))
+      continue;  // active: slides along its tangent, projected back afterwards
+    // ||E (y - alpha d)||^2 = 1 with E = diag(1/a): the positive root.
+    const double Ey[2] = {y[0] / a[0], y[1] / a[1]}, Ed[2] = {d[0] / a[0], d[1] / a[1]};
+    const double qa = Ed[0] * Ed[0] + Ed[1] * Ed[1];
+    if (!(qa > 0.0)) continue;
+    const double qb = Ey[0] * Ed[0] + Ey[1] * Ed[1];
+    const double qc = std::min(Ey[0] * Ey[0] + Ey[1] * Ey[1] - 1.0, 0.0);
+    const double disc = std::sqrt(std::max(qb * qb - qa * qc, 0.0));
+    // alpha = (qb + disc) / qa, computed without cancellation when qb < 0.
+    const double alpha = qb >= 0.0 ? (qb + disc) / qa : (qc == 0.0 ? 0.0 : -qc / (disc - qb));
+    step = std::min(step, std::max(alpha, 0.0));
+  }
   double global = kInfinity;
   Teuchos::reduceAll(*x.getMap()->getComm(), Teuchos::REDUCE_MIN, 1, &step, &global);
   return global;
-}
-
-double SeparableSet::ellipseStep(size_t k, const double* xv, const double* pv, bool slideOnEllipses) const {
-  const auto [i, j] = ellipseIndex_[k];
-  const auto a = effectiveAxes(k);
-  const double y[2] = {at(xv, i) - center_[k][0], at(xv, j) - center_[k][1]};
-  const double d[2] = {at(pv, i), at(pv, j)};
-  double step = kInfinity;
-  if (!(a[0] > 0.0) || !(a[1] > 0.0)) {
-    // Degenerate: no motion across a zero axis; along the other axis an interval.
-    for (int ax = 0; ax < 2; ++ax) {
-      if (!(a[ax] > 0.0)) {
-        if (d[ax] != 0.0) step = 0.0;
-      } else if (d[ax] > 0.0) {
-        step = std::min(step, std::max(0.0, (y[ax] + a[ax]) / d[ax]));
-      } else if (d[ax] < 0.0) {
-        step = std::min(step, std::max(0.0, (y[ax] - a[ax]) / d[ax]));
-      }
-    }
-    return step;
-  }
-  if (slideOnEllipses && ellipseNorm({y[0], y[1]}, a) >= 1.0 - ellipseActiveTolerance(center_[k], std::min(a[0], a[1])))
-    return step;  // active: slides along its tangent, projected back afterwards
-  // ||E (y - alpha d)||^2 = 1 with E = diag(1/a): the positive root.
-  const double Ey[2] = {y[0] / a[0], y[1] / a[1]}, Ed[2] = {d[0] / a[0], d[1] / a[1]};
-  const double qa = Ed[0] * Ed[0] + Ed[1] * Ed[1];
-  if (!(qa > 0.0)) return step;
-  const double qb = Ey[0] * Ed[0] + Ey[1] * Ed[1];
-  const double qc = std::min(Ey[0] * Ey[0] + Ey[1] * Ey[1] - 1.0, 0.0);
-  const double disc = std::sqrt(std::max(qb * qb - qa * qc, 0.0));
-  // alpha = (qb + disc) / qa, computed without cancellation when qb < 0.
-  const double alpha = qb >= 0.0 ? (qb + disc) / qa : (qc == 0.0 ? 0.0 : -qc / (disc - qb));
-  return std::max(alpha, 0.0);
 }
 
 void SeparableSet::splitGradient(const Vector& x, const Vector& g, Vector& phi, Vector& beta,
@@ -314,78 +243,62 @@ void SeparableSet::splitGradient(const Vector& x, const Vector& g, Vector& phi, 
   //    along the other, free inside it and a bound at either end.
   // A degenerate block is never "free": phi = 0 on its fixed axis, so CG and expansion
   // steps never move it off its segment/point, and only its interval axis can be free.
-  const double* xv = readOnly(x);
-  const double* gv = readOnly(g);
-  double* fv = phi.getLocalViewHost(Tpetra::Access::OverwriteAll).data();
-  double* bv = beta.getLocalViewHost(Tpetra::Access::OverwriteAll).data();
-  // phi = g, beta = 0 in one pass; then the blocks, each writing its own entries.
-  core::forEachChunk(static_cast<long>(x.getLocalLength()), [&](long, long begin, long end) {
-    std::copy(gv + begin, gv + end, fv + begin);
-    std::fill(bv + begin, bv + end, 0.0);
-  });
-  core::forEachChunk(
-      sizeOf(boundIndex_),
-      [&](long, long begin, long end) {
-        for (long k = begin; k < end; ++k) {
-          const int i = boundIndex_[k];
-          if (boundActive(xv[i], lower_[k])) {
-            fv[i] = 0.0;
-            bv[i] = std::min(gv[i], 0.0);
-          }
-        }
-      },
-      kBlockChunk);
-  core::forEachChunk(
-      sizeOf(ellipseIndex_),
-      [&](long, long begin, long end) {
-        for (long k = begin; k < end; ++k) splitEllipse(k, xv, gv, fv, bv, slideOnEllipses);
-      },
-      kBlockChunk);
-}
-
-void SeparableSet::splitEllipse(size_t k, const double* xv, const double* gv, double* fv, double* bv,
-                                bool slideOnEllipses) const {
-  const auto [i, j] = ellipseIndex_[k];
-  const auto a = effectiveAxes(k);
-  const std::array<double, 2> y{at(xv, i) - center_[k][0], at(xv, j) - center_[k][1]};
-  const double gi = at(gv, i), gj = at(gv, j);
-  if (!(a[0] > 0.0) || !(a[1] > 0.0)) {
-    // Degenerate ellipse: fixed along zero axes; an interval along a positive one.
-    const int idx[2] = {i, j};
-    const double gg[2] = {gi, gj};
-    for (int ax = 0; ax < 2; ++ax) {
-      if (idx[ax] < 0) continue;  // an absent row
-      if (!(a[ax] > 0.0)) {
-        fv[idx[ax]] = 0.0;
-        bv[idx[ax]] = 0.0;
-        continue;
-      }
-      const double gp = intervalProjectedGradient(y[ax], -a[ax], a[ax], gg[ax]);
-      const bool interior = std::abs(y[ax]) < a[ax] * (1.0 - ellipseActiveTolerance(center_[k], a[ax]));
-      fv[idx[ax]] = interior ? gg[ax] : 0.0;
-      bv[idx[ax]] = interior ? 0.0 : gp;
+  phi.assign(g);
+  beta.putScalar(0.0);
+  auto xv = x.getLocalViewHost(Tpetra::Access::ReadOnly);
+  auto gv = g.getLocalViewHost(Tpetra::Access::ReadOnly);
+  auto fv = phi.getLocalViewHost(Tpetra::Access::ReadWrite);
+  auto bv = beta.getLocalViewHost(Tpetra::Access::ReadWrite);
+  for (size_t k = 0; k < boundIndex_.size(); ++k) {
+    const int i = boundIndex_[k];
+    if (boundActive(xv(i, 0), lower_[k])) {
+      fv(i, 0) = 0.0;
+      bv(i, 0) = std::min(gv(i, 0), 0.0);
     }
-    return;
   }
-  if (ellipseNorm(y, a) < 1.0 - ellipseActiveTolerance(center_[k], std::min(a[0], a[1]))) return;  // interior: free
-  // Active: outer unit normal n ~ (y_1/a_1^2, y_2/a_2^2); beta = g - min(n^T g, 0) n.
-  std::array<double, 2> n{y[0] / (a[0] * a[0]), y[1] / (a[1] * a[1])};
-  const double nn = std::hypot(n[0], n[1]);
-  n = {n[0] / nn, n[1] / nn};
-  if (slideOnEllipses) {
-    // Linearised face: the tangential part is free, only a normal part pointing inwards is chopped.
-    const double ngFull = n[0] * gi + n[1] * gj, released = std::max(ngFull, 0.0);
-    fv[i] = gi - ngFull * n[0];
-    fv[j] = gj - ngFull * n[1];
-    bv[i] = released * n[0];
-    bv[j] = released * n[1];
-    return;
+  for (size_t k = 0; k < ellipseIndex_.size(); ++k) {
+    const auto [i, j] = ellipseIndex_[k];
+    const auto a = effectiveAxes(k);
+    const std::array<double, 2> y{at(xv, i) - center_[k][0], at(xv, j) - center_[k][1]};
+    const double gi = at(gv, i), gj = at(gv, j);
+    if (!(a[0] > 0.0) || !(a[1] > 0.0)) {
+      // Degenerate ellipse: fixed along zero axes; an interval along a positive one.
+      const int idx[2] = {i, j};
+      const double gg[2] = {gi, gj};
+      for (int ax = 0; ax < 2; ++ax) {
+        if (idx[ax] < 0) continue;  // an absent row
+        if (!(a[ax] > 0.0)) {
+          fv(idx[ax], 0) = 0.0;
+          bv(idx[ax], 0) = 0.0;
+          continue;
+        }
+        const double gp = intervalProjectedGradient(y[ax], -a[ax], a[ax], gg[ax]);
+        const bool interior = std::abs(y[ax]) < a[ax] * (1.0 - ellipseActiveTolerance(center_[k], a[ax]));
+        fv(idx[ax], 0) = interior ? gg[ax] : 0.0;
+        bv(idx[ax], 0) = interior ? 0.0 : gp;
+      }
+      continue;
+    }
+    if (ellipseNorm(y, a) < 1.0 - ellipseActiveTolerance(center_[k], std::min(a[0], a[1]))) continue;  // interior: free
+    // Active: outer unit normal n ~ (y_1/a_1^2, y_2/a_2^2); beta = g - min(n^T g, 0) n.
+    std::array<double, 2> n{y[0] / (a[0] * a[0]), y[1] / (a[1] * a[1])};
+    const double nn = std::hypot(n[0], n[1]);
+    n = {n[0] / nn, n[1] / nn};
+    if (slideOnEllipses) {
+      // Linearised face: the tangential part is free, only a normal part pointing inwards is chopped.
+      const double ngFull = n[0] * gi + n[1] * gj, released = std::max(ngFull, 0.0);
+      fv(i, 0) = gi - ngFull * n[0];
+      fv(j, 0) = gj - ngFull * n[1];
+      bv(i, 0) = released * n[0];
+      bv(j, 0) = released * n[1];
+      continue;
+    }
+    const double ng = std::min(n[0] * gi + n[1] * gj, 0.0);
+    fv(i, 0) = 0.0;
+    fv(j, 0) = 0.0;
+    bv(i, 0) = gi - ng * n[0];
+    bv(j, 0) = gj - ng * n[1];
   }
-  const double ng = std::min(n[0] * gi + n[1] * gj, 0.0);
-  fv[i] = 0.0;
-  fv[j] = 0.0;
-  bv[i] = gi - ng * n[0];
-  bv[j] = gj - ng * n[1];
 }
 
 bool SeparableSet::onSmoothBoundary(size_t k, double xi, double xj, std::array<double, 2>& y,
@@ -433,27 +346,10 @@ void SeparableSet::addCurvatureProduct(const Vector& x, const Vector& g, const V
 }
 
 void SeparableSet::reducedFreeGradient(const Vector& x, const Vector& phi, double alpha, Vector& out) const {
-  // phi~ = (x - P(x - alpha phi)) / alpha, with the arithmetic of the three Tpetra passes
-  // t = x + (-alpha) phi, t := P(t), out = (1/alpha) x + (-1/alpha) t. P changes only the
-  // entries of blocks, so one pass computes out on all entries as if P were the identity, and
-  // the blocks' entries are then redone with the projection.
-  const double inverse = 1.0 / alpha, minusInverse = -1.0 / alpha, minusAlpha = -alpha;
-  const double* xv = readOnly(x);
-  const double* fv = readOnly(phi);
-  double* ov = out.getLocalViewHost(Tpetra::Access::OverwriteAll).data();
-  core::forEachChunk(static_cast<long>(x.getLocalLength()), [&](long, long begin, long end) {
-    for (long i = begin; i < end; ++i) ov[i] = inverse * xv[i] + minusInverse * (xv[i] + minusAlpha * fv[i]);
-  });
-  auto forEachBlockEntry = [&](auto&& f) {
-    for (int i : boundIndex_) f(i);
-    for (const auto& [i, j] : ellipseIndex_) {
-      if (i >= 0) f(i);
-      if (j >= 0) f(j);
-    }
-  };
-  forEachBlockEntry([&](int i) { ov[i] = xv[i] + minusAlpha * fv[i]; });
-  projectEntries(ov);
-  forEachBlockEntry([&](int i) { ov[i] = inverse * xv[i] + minusInverse * ov[i]; });
+  // phi~ = (x - P(x - alpha phi)) / alpha.
+  out.update(1.0, x, -alpha, phi, 0.0);
+  project(out);
+  out.update(1.0 / alpha, x, -1.0 / alpha);
 }
 
 }  // namespace tribos::qp

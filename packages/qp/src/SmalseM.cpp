@@ -9,7 +9,6 @@
 #include "EqualityNorm.hpp"
 #include "TimedOperators.hpp"
 #include "tribos/qp/Reductions.hpp"
-#include "tribos/qp/VectorOps.hpp"
 
 namespace tribos::qp {
 
@@ -121,7 +120,7 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
   double M = s.M0 * counters.normA;
   const double eta = s.eta * normC, eps = s.tolerance * normC;
   PenalisedOperator Arho(A, rawQ, rho, map, inside);
-  Vector betaT(map), b(map), g(map), Qmu(map), gMinusB(map);  // betaT = G^T beta (the multiplier as a dual vector)
+  Vector betaT(map), b(map), g(map), Qmu(map);  // betaT = G^T beta (the multiplier as a dual vector)
   betaT.putScalar(0.0);
   double previousL = 0.0, previousGmu = 0.0;
   // The outer iteration in progress, the last inner ||G mu|| and the inner stopping bound,
@@ -170,7 +169,7 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
   for (int k = 0; k < s.maxOuterIterations; ++k) {
     // Step 1: mu^k ~ argmin L_rho(mu, beta^k) over Omega with ||g^P|| <= min(M_k ||G mu||, eta)
     // (or the final accuracy reached).
-    update(1.0, c, -1.0, betaT, 0.0, b);
+    b.update(1.0, c, -1.0, betaT, 0.0);
     outer = k + 1;
     innerEquality.restart();
     // The inner bound never drops below a tenth of the final accuracy: M_k may shrink
@@ -196,7 +195,8 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
     counters.preconditionerApplications += inner.preconditionerApplications;
     const double gp = inner.projectedGradientNorm;
     // L_rho(mu, beta) = 1/2 mu^T A_rho mu - b^T mu = 1/2 mu^T (g - b) with g = A_rho mu - b.
-    update(1.0, g, -1.0, b, 0.0, gMinusB);
+    Vector gMinusB(map);
+    gMinusB.update(1.0, g, -1.0, b, 0.0);
     // ||Q mu|| (Qmu = Q mu from the test above) and mu^T (g - b) in one reduction (the bits of
     // norm2 and dot alone).
     const auto [gmu2, muGminusB] = dots(Qmu, Qmu, mu, gMinusB);
@@ -207,7 +207,7 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
     const bool done = smalseConverged(gp, gmu, mu);
 
     // Step 3: beta^{k+1} = beta^k + rho G mu^k, kept as G^T beta (+= rho Q mu).
-    if (!done) axpby(rho, Qmu, 1.0, betaT);
+    if (!done) betaT.update(rho, Qmu, 1.0);
     // Step 4: M_{k+1} = betaM M_k when the Lagrangian did not grow enough.
     if (k > 0 && L < previousL + 0.5 * rho * gmu * gmu) M *= s.betaM;
     previousL = L;

@@ -12,7 +12,6 @@
 #include <random>
 #include <vector>
 
-#include "tribos/core/Parallel.hpp"
 #include "tribos/core/ReproducibleSum.hpp"
 
 namespace {
@@ -142,27 +141,4 @@ TEST(ReproducibleSum, zerosAndNonFiniteValues) {
   // Tiny values: exact sums of two, quanta raised to the smallest normal.
   std::vector<double> tiny{std::ldexp(1.0, -1000), std::ldexp(1.0, -1000)};
   EXPECT_EQ(tribos::core::reproducibleSum(nullptr, tiny.data(), tiny.size(), 2), std::ldexp(1.0, -999));
-}
-
-TEST(ReproducibleSum, sameBitsOnOneAndTwoThreads) {
-  // Several chunks of core::forEachChunk and a tail: the threads deposit chunk by chunk.
-  const size_t n = 5 * static_cast<size_t>(tribos::core::kVectorChunk) + 3;
-  const auto x = wideValues(n, 21u), y = wideValues(n, 22u);
-  const long long count = static_cast<long long>(n);
-  std::vector<double> products(n);
-  for (size_t i = 0; i < n; ++i) products[i] = x[i] * y[i];
-  const double oneProcess = splitSum(products, 1), xSum = splitSum(x, 1);
-  for (int threads : {1, 2}) {
-    SCOPED_TRACE(std::to_string(threads) + " thread(s)");
-    tribos::core::setNumThreads(threads);
-    EXPECT_TRUE(sameBits(tribos::core::reproducibleSum(nullptr, x.data(), n, count), xSum));
-    EXPECT_TRUE(sameBits(tribos::core::reproducibleDot(nullptr, x.data(), y.data(), n, count), oneProcess));
-    const double* left[2] = {x.data(), y.data()};
-    const double* right[2] = {y.data(), y.data()};
-    double two[2];
-    tribos::core::reproducibleDots(nullptr, left, right, 2, n, count, two);
-    EXPECT_TRUE(sameBits(two[0], oneProcess));
-    EXPECT_TRUE(sameBits(two[1], tribos::core::reproducibleDot(nullptr, y.data(), y.data(), n, count)));
-  }
-  tribos::core::setNumThreads(0);
 }

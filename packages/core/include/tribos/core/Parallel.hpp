@@ -22,19 +22,6 @@ void setNumThreads(int n);
 /// Runs body(i) for i in [0, count) on numThreads() threads, dynamic schedule.
 void forEachSubdomain(int count, const std::function<void(int)>& body);
 
-/// Entries per chunk of forEachChunk's vector loops: 64 KiB of doubles, so that a loop over
-/// several vectors keeps its chunk in L2 and a dual vector of 10^5 entries has enough chunks
-/// for two threads.
-constexpr long kVectorChunk = 8192;
-/// The number of chunks of [0, n): ceil(n / chunk), at least 1.
-long numChunks(long n, long chunk = kVectorChunk);
-/// Runs body(c, begin, end) for the FIXED chunks c = 0 .. numChunks(n) - 1, [begin, end) =
-/// [c chunk, min(n, (c + 1) chunk)), on the threads of forEachSubdomain (inline when there
-/// is one chunk). The chunks do not depend on the thread count, so a body that only writes
-/// its own entries, or its own slot c of a reduction combined in chunk order afterwards,
-/// gives the same bits on any number of threads. Same rules for the body as forEachSubdomain.
-void forEachChunk(long n, const std::function<void(long, long, long)>& body, long chunk = kVectorChunk);
-
 }  // namespace tribos::core
 
 namespace tribos::core {

@@ -15,10 +15,7 @@
 /// is a sum of at most N multiples of u_j each below 2^(k_j - 1) / N, so every partial sum,
 /// in any order and on any rank, is exact in double; so is the all-reduce of the slices.
 /// The slices are then added in a fixed order. M and N must be the same on every rank (a MAX
-/// all-reduce, exact, and a count that does not depend on the layout). For the same reason the
-/// sums below run on threads (core::forEachChunk): each fixed chunk takes its own maximum and
-/// its own slots, which are then combined, exactly, so the bits depend on neither the thread
-/// count nor the chunks (except in the plain-addition fallback, which runs on one thread).
+/// all-reduce, exact, and a count that does not depend on the layout).
 ///
 /// Accuracy: the dropped remainder is at most N u_K / 2 = 2^(e + 3L - 104) with K = kSlices = 2,
 /// and M >= 2^(e - 1), N > 2^(L - 1), so |result - exact sum| <= 2^(2L - 102) N M + eps |exact

@@ -29,9 +29,6 @@ class SeparableSet {
 
   /// x := P_Omega(x) (Euclidean projection).
   void project(Vector& x) const;
-  /// x := P_Omega(x); true when it changed an entry on some rank (max |new - old| > 0 over
-  /// all ranks, one all-reduce).
-  bool projectMoved(Vector& x) const;
   /// True if x lies in Omega up to a relative tolerance.
   bool contains(const Vector& x, double tolerance = 1e-12) const;
   /// The largest alpha >= 0 with x - alpha p in Omega (x in Omega); a global minimum over
@@ -60,12 +57,6 @@ class SeparableSet {
 
  private:
   std::array<double, 2> effectiveAxes(size_t k) const;
-  /// P_Omega on this rank's entries v (local indices); true when an entry changed.
-  bool projectEntries(double* v) const;
-  /// The largest step along -p that ellipse block k allows from x (maxFeasibleStep).
-  double ellipseStep(size_t k, const double* x, const double* p, bool slideOnEllipses) const;
-  /// phi and beta of ellipse block k (splitGradient).
-  void splitEllipse(size_t k, const double* x, const double* g, double* phi, double* beta, bool slideOnEllipses) const;
   /// Ellipse block k at (x_i, x_j) when it is smooth (both axes > 0) and on its boundary: sets
   /// y = x - c_k and a = its effective axes and returns true (the curvature terms' blocks).
   bool onSmoothBoundary(size_t k, double xi, double xj, std::array<double, 2>& y, std::array<double, 2>& a) const;
