@@ -395,6 +395,10 @@ int run(int argc, char** argv, int rank) {
     summary["contact_force_on_master"] = contactSolve.totalContactForce;
     summary["times"]["factorization_s"] = contactSolve.factorizationSeconds;
     summary["times"]["solve_s"] = contactSolve.solveSeconds;
+    // Of solve_s: the SMALSE-M runs, and of them the work outside A, M^-1, Q and the
+    // Coulomb hook (MPGP's vector updates, projections onto Omega, reductions; issue 9).
+    summary["times"]["smalse_s"] = r.counters.seconds;
+    summary["times"]["vector_s"] = r.counters.seconds - r.counters.operatorSeconds;
     summary["operator_profile"] = profileJson(contactSolve.profile);
     if (rank == 0)
       std::cout << "  SMALSE-M: " << (r.converged ? "converged" : "NOT CONVERGED (" + r.message + ")") << ": "

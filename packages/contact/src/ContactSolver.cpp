@@ -266,6 +266,8 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
     s.proportioningSteps += k.proportioningSteps;
     s.operatorApplications += k.operatorApplications;
     s.preconditionerApplications += k.preconditionerApplications;
+    s.seconds += k.seconds;
+    s.operatorSeconds += k.operatorSeconds;
     applicationsBefore = s.operatorApplications;
     s.projectedGradient = k.projectedGradient;
     s.equalityResidual = k.equalityResidual;

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "EqualityNorm.hpp"
+#include "TimedOperators.hpp"
 #include "tribos/qp/Reductions.hpp"
 
 namespace tribos::qp {
@@ -20,10 +21,12 @@ namespace {
 /// A_rho = A + rho Q (the penalised Hessian of paper (19)). Counts products with A only.
 class PenalisedOperator : public SymmetricOperator {
  public:
-  PenalisedOperator(const SymmetricOperator& A, const EqualityProjector& Q, double rho, const Teuchos::RCP<const Map>& map)
-      : A_(A), projected_(dynamic_cast<const ProjectedOperator*>(&A)), Q_(Q), rho_(rho), tmp_(map) {}
+  PenalisedOperator(const SymmetricOperator& A, const EqualityProjector& Q, double rho, const Teuchos::RCP<const Map>& map,
+                    double& seconds)
+      : A_(A), projected_(dynamic_cast<const ProjectedOperator*>(&A)), Q_(Q), rho_(rho), tmp_(map), seconds_(seconds) {}
   void setRho(double rho) { rho_ = rho; }
   void apply(const Vector& x, Vector& y) const override {
+    ScopedSeconds timed(seconds_);
     if (projected_) {
       projected_->applyPlusComplement(x, y, rho_);  // Q x from the P x that A computes
       return;
@@ -39,16 +42,18 @@ class PenalisedOperator : public SymmetricOperator {
   const EqualityProjector& Q_;
   double rho_;
   mutable Vector tmp_;
+  double& seconds_;  ///< time in products (SmalseCounters::operatorSeconds)
 };
 
 /// M^-1 + Q / rho: the inner preconditioner of A_rho (paper (19)) from one of PFP on Ker G.
 class PenalisedPreconditioner : public SymmetricOperator {
  public:
   PenalisedPreconditioner(const SymmetricOperator& M, const EqualityProjector& Q, double rho,
-                          const Teuchos::RCP<const Map>& map)
-      : M_(M), projected_(dynamic_cast<const ProjectedOperator*>(&M)), Q_(Q), rho_(rho), tmp_(map) {}
+                          const Teuchos::RCP<const Map>& map, double& seconds)
+      : M_(M), projected_(dynamic_cast<const ProjectedOperator*>(&M)), Q_(Q), rho_(rho), tmp_(map), seconds_(seconds) {}
   void setRho(double rho) { rho_ = rho; }
   void apply(const Vector& x, Vector& y) const override {
+    ScopedSeconds timed(seconds_);
     if (projected_) {
       projected_->applyPlusComplement(x, y, 1.0 / rho_);
       return;
@@ -64,27 +69,38 @@ class PenalisedPreconditioner : public SymmetricOperator {
   const EqualityProjector& Q_;
   double rho_;
   mutable Vector tmp_;
+  double& seconds_;
 };
 }  // namespace
 
-SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjector& Q, const Vector& c,
+SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjector& rawQ, const Vector& c,
                               SeparableSet& omega, Vector& mu, const OuterHook& hook) const {
   const SmalseSettings& s = settings_;
   SmalseCounters counters;
+  // The time of the whole solve, and of it what A, M^-1, Q and the hook take (the operators'
+  // wrappers add it; A_rho and M^-1 + Q/rho are given rawQ, so that no call counts twice).
+  const core::Stopwatch watch;
+  double inside = 0.0;
+  const TimedProjector Q(rawQ, inside);
+  auto finish = [&]() {
+    counters.seconds = watch.seconds();
+    counters.operatorSeconds = inside;
+    return counters;
+  };
   const auto map = mu.getMap();
   // Scale-free parameters: rho and M relative to ||A||, eta relative to ||c|| (= ||P h||).
-  counters.normA = lanczosNorm(A, *map, s.normEstimateSteps, 1e-4, &counters.operatorApplications);
+  counters.normA = lanczosNorm(TimedOperator(A, inside), *map, s.normEstimateSteps, 1e-4, &counters.operatorApplications);
   double normC = norm2(c);
   if (!std::isfinite(counters.normA) || !std::isfinite(normC)) {
     counters.nonFinite = true;  // a NaN / Inf in A or c: nothing to iterate on
-    return counters;
+    return finish();
   }
   if (counters.normA == 0.0) {
     // A = 0: the problem is linear and SMALSE-M's scaling is undefined. Only c = 0 with a
     // feasible mu is a (trivially) solved problem.
     omega.project(mu);
     counters.converged = normC == 0.0;
-    return counters;
+    return finish();
   }
   if (normC == 0.0) {
     // c = 0: the solution is 0 when 0 lies in Omega (it does in Ker G). Otherwise the
@@ -94,7 +110,7 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
     normC = counters.normA * norm2(mu);
     if (normC == 0.0) {
       counters.converged = true;
-      return counters;
+      return finish();
     }
   }
   double rho = s.rho * counters.normA;
@@ -103,7 +119,7 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
   double normArho = 1.02 * std::max(counters.normA, rho);
   double M = s.M0 * counters.normA;
   const double eta = s.eta * normC, eps = s.tolerance * normC;
-  PenalisedOperator Arho(A, Q, rho, map);
+  PenalisedOperator Arho(A, rawQ, rho, map, inside);
   Vector betaT(map), b(map), g(map), Qmu(map);  // betaT = G^T beta (the multiplier as a dual vector)
   betaT.putScalar(0.0);
   double previousL = 0.0, previousGmu = 0.0;
@@ -113,9 +129,13 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
   double innerGmu = 0.0, innerBound = 0.0;
   MpgpSettings mpgpSettings = s.mpgp;
   std::unique_ptr<PenalisedPreconditioner> preconditioner;
+  std::unique_ptr<TimedOperator> givenPreconditioner;  // mpgp.preconditioner as it stands, timed
   if (s.preconditioner) {
-    preconditioner = std::make_unique<PenalisedPreconditioner>(*s.preconditioner, Q, rho, map);
+    preconditioner = std::make_unique<PenalisedPreconditioner>(*s.preconditioner, rawQ, rho, map, inside);
     mpgpSettings.preconditioner = preconditioner.get();
+  } else if (s.mpgp.preconditioner) {
+    givenPreconditioner = std::make_unique<TimedOperator>(*s.mpgp.preconditioner, inside);
+    mpgpSettings.preconditioner = givenPreconditioner.get();
   }
   // ||Q mu|| at every inner stop test, followed along CG steps where Q allows it.
   EqualityNorm innerEquality(Q);
@@ -200,7 +220,11 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
     }
     previousGmu = gmu;
     // Coulomb: the slip bound update (inexact successive approximations) may veto the stop.
-    const bool veto = hook ? hook(k, mu, gp / normC, normA * gmu / normC, M / normA) : false;
+    bool veto = false;
+    if (hook) {
+      ScopedSeconds timed(inside);
+      veto = hook(k, mu, gp / normC, normA * gmu / normC, M / normA);
+    }
     // After the hook, so that a progress line reports what the hook did in this iteration
     // (the slip-bound change), not what it did in the previous one.
     if (s.monitor)
@@ -211,7 +235,7 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
     }
     if (s.stopRequested && s.stopRequested()) break;
   }
-  return counters;
+  return finish();
 }
 
 }  // namespace tribos::qp

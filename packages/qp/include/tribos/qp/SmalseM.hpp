@@ -76,6 +76,10 @@ struct SmalseCounters {
   double projectedGradient = 0.0;      ///< ||g^P|| / ||c|| at return
   double equalityResidual = 0.0;       ///< ||A|| ||Q mu|| / ||c|| at return
   double normA = 0.0;
+  /// Wall seconds of solve(), and of them those spent inside A (products with A_rho and the
+  /// norm estimate's), the preconditioner, Q and the hook: seconds - operatorSeconds is
+  /// SMALSE-M's and MPGP's own work (vector updates, projections onto Omega, reductions).
+  double seconds = 0.0, operatorSeconds = 0.0;
   bool converged = false;
   bool nonFinite = false;  ///< stopped on a NaN or infinite norm (||PFP||, ||g^P||, ||G mu||)
 };
