@@ -71,6 +71,19 @@ class PenalisedPreconditioner : public SymmetricOperator {
   mutable Vector tmp_;
   double& seconds_;
 };
+
+/// The factor for rho after an outer iteration that reduced ||G mu|| by the ratio r (> 1: grow).
+/// "Ratio": rho growth whenever r missed the target. "Model": the augmented-Lagrangian rate
+/// r = 1 / (1 + rho s) (s: the curvature that the active constraints give the dual function
+/// on Im G^T) solved for the rho that gives the target: rho (1/r_t - 1) / (1/r - 1), at most
+/// rho growth; not once the equality test holds (r is then round-off and inner accuracy).
+double rhoFactor(const SmalseSettings& s, double r, bool equalityMet) {
+  if (s.rhoGrowth <= 1.0 || !(r > s.rhoTargetRatio)) return 1.0;
+  if (s.rhoUpdate != "Model") return s.rhoGrowth;
+  if (equalityMet) return 1.0;
+  if (r >= 1.0) return s.rhoGrowth;
+  return std::min(s.rhoGrowth, (1.0 / s.rhoTargetRatio - 1.0) / (1.0 / r - 1.0));
+}
 }  // namespace
 
 SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjector& rawQ, const Vector& c,
@@ -159,11 +172,11 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
   // M_k ||Q mu|| is consistent with it: M_k = M0 ||A|| carries the same factor. The Paper
   // test ||Q mu|| <= eps M0 ||mu|| is scale-free as printed.
   const double normA = counters.normA;
-  auto smalseConverged = [&](double gp, double gmu, const Vector& x) {
-    if (gp > eps) return false;
+  auto equalityMet = [&](double gmu, const Vector& x) {
     if (s.equalityTest == "Paper") return gmu <= s.tolerance * s.M0 * norm2(x);
     return normA * gmu <= eps;
   };
+  auto smalseConverged = [&](double gp, double gmu, const Vector& x) { return gp <= eps && equalityMet(gmu, x); };
 
   omega.project(mu);
   for (int k = 0; k < s.maxOuterIterations; ++k) {
@@ -212,8 +225,9 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
     if (k > 0 && L < previousL + 0.5 * rho * gmu * gmu) M *= s.betaM;
     previousL = L;
     // Optional penalty growth when ||G mu|| decreased by less than the target ratio.
-    if (s.rhoGrowth > 1.0 && k > 0 && gmu > s.rhoTargetRatio * previousGmu) {
-      rho *= s.rhoGrowth;
+    const double factor = k > 0 && s.rhoGrowth > 1.0 ? rhoFactor(s, gmu / previousGmu, equalityMet(gmu, mu)) : 1.0;
+    if (factor > 1.0) {
+      rho *= factor;
       normArho = 1.02 * std::max(counters.normA, rho);
       Arho.setRho(rho);
       if (preconditioner) preconditioner->setRho(rho);

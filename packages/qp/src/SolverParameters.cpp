@@ -51,12 +51,18 @@ const core::ParameterTable<SmalseSettings>& smalseTable() {
                "(||Q mu|| <= epsilon M_0 ||mu||)",
                {"Conventional", "Paper"})
           .add("rho growth", &SmalseSettings::rhoGrowth,
-               "rho is multiplied by it after an outer iteration that reduced ||G mu|| by less than the rho target "
-               "ratio (1: fixed rho, the paper's algorithm)",
+               "rho is multiplied by it (rho update Ratio; Model: by at most it) after an outer iteration that "
+               "reduced ||G mu|| by less than the rho target ratio (1: fixed rho, the paper's algorithm)",
                core::atLeast(1.0))
           .add("rho target ratio", &SmalseSettings::rhoTargetRatio,
                "the reduction of ||G mu|| per outer iteration that rho growth asks for",
                Teuchos::rcp(new core::RealRangeValidator(0.0, /*lowIncluded=*/false, 1.0, /*highIncluded=*/true)))
+          .add("rho update", &SmalseSettings::rhoUpdate,
+               "how rho grows after an outer iteration that reduced ||G mu|| by a ratio r above the rho target "
+               "ratio t (rho growth > 1 only): \"Ratio\" multiplies it by rho growth; \"Model\" by (1/t - 1) / "
+               "(1/r - 1), at most rho growth, while the equality test fails (the augmented-Lagrangian rate r = 1 / "
+               "(1 + rho s) solved for the rho that gives t; doc/parameters.md)",
+               {"Ratio", "Model"})
           .add("norm estimate steps", &SmalseSettings::normEstimateSteps,
                "cap on the Lanczos steps (products with A, counted in the PFP applications) that estimate ||A|| to 1e-4 "
                "(about 10 on Table 1; the power method needed about 25)",

@@ -8,6 +8,7 @@
 #include <Teuchos_ParameterList.hpp>
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <random>
 
@@ -109,6 +110,47 @@ TEST(SmalseM, matchesEnumerationWithAnEqualityConstraint) {
     const auto run = runSmalse(qp, blocks, seed % 2 ? paperSettings() : tunedSettings());
     EXPECT_LE(test::maxDifference(run.x, exact), 1e-8) << "seed " << seed;
   }
+}
+
+// rho update "Model" (SmalseM.cpp, rhoFactor): from a small rho, whose outer iterations
+// contract ||G mu|| slowly, rho grows to the value the augmented-Lagrangian rate predicts for
+// the target ratio. The solutions stay exact and the outer iterations, summed over the seeds,
+// must be fewer than with the small rho kept fixed.
+TEST(SmalseM, modelRhoUpdateKeepsTheSolutionAndNeedsFewerOuterIterations) {
+  int fixedOuter = 0, modelOuter = 0;
+  for (unsigned seed = 1; seed <= 16; ++seed) {
+    std::mt19937 gen(seed);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    const int n = 6 + seed % 4;
+    const Dense M = test::randomSpd(n, 30.0, seed + 200);
+    std::vector<double> b(n);
+    for (double& v : b) v = u(gen);
+    test::BlockSet blocks;
+    for (int i = 0; i < n; ++i)
+      if (u(gen) < 0.3) {
+        blocks.boundIndex.push_back(i);
+        blocks.lower.push_back(0.2 * u(gen));
+      }
+    std::vector<double> x0(n, 0.0);
+    blocks.project(x0);
+    const auto qp = test::makeEqualityQp(M, randomRowsVanishingAt(x0, gen), b);
+    const auto exact = test::enumerateActiveSets(M, b, blocks.boundIndex, blocks.lower, qp.G);
+    qp::SmalseSettings fixed = tunedSettings();
+    fixed.rho = 0.2;
+    fixed.maxOuterIterations = 2000;
+    qp::SmalseSettings model = fixed;
+    model.rhoUpdate = "Model";
+    model.rhoGrowth = 8.0;
+    model.rhoTargetRatio = 0.25;
+    const auto a = runSmalse(qp, blocks, fixed);
+    const auto m = runSmalse(qp, blocks, model);
+    EXPECT_LE(test::maxDifference(a.x, exact), 1e-8) << "seed " << seed;
+    EXPECT_LE(test::maxDifference(m.x, exact), 1e-8) << "seed " << seed;
+    fixedOuter += a.counters.outerIterations;
+    modelOuter += m.counters.outerIterations;
+  }
+  EXPECT_LT(modelOuter, fixedOuter);
+  std::printf("outer iterations over 16 seeds: rho 0.2 fixed %d, Model update %d\n", fixedOuter, modelOuter);
 }
 
 TEST(SmalseM, satisfiesKktAndMatchesAdmmWithBoundsEllipsesAndEquality) {
@@ -384,6 +426,13 @@ TEST(SmalseM, parametersAreDocumentedAndValidated) {
   EXPECT_EQ(s.rho, 10.0);
   EXPECT_EQ(s.equalityTest, "Paper");
   EXPECT_EQ(s.mpgp.gamma, 2.0);
+  EXPECT_EQ(defaults.rhoUpdate, "Ratio");
+  Teuchos::ParameterList model;
+  model.sublist("SMALSE-M").set("rho update", "Model");
+  EXPECT_EQ(qp::SmalseM::settingsFromParameters(model).rhoUpdate, "Model");
+  Teuchos::ParameterList badUpdate;
+  badUpdate.sublist("SMALSE-M").set("rho update", "Fast");
+  EXPECT_THROW(qp::SmalseM::settingsFromParameters(badUpdate), std::exception);
   Teuchos::ParameterList bad;
   bad.sublist("SMALSE-M").set("beta", 1.0);
   EXPECT_THROW(qp::SmalseM::settingsFromParameters(bad), std::exception);

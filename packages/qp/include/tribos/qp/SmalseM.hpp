@@ -53,6 +53,9 @@ struct SmalseSettings {
   int normEstimateSteps = 50;  ///< cap on the Lanczos steps for ||A||
   double rhoGrowth = 1.0;      ///< > 1: rho *= rhoGrowth when ||G mu|| fell by less than rhoTargetRatio
   double rhoTargetRatio = 0.5;
+  /// "Ratio": rho *= rhoGrowth; "Model": rho *= min(rhoGrowth, (1/t - 1)/(1/r - 1)) for the
+  /// measured ratio r and the target t, while the equality test fails (SmalseM.cpp, rhoFactor).
+  std::string rhoUpdate = "Ratio";
   double innerFloor = 0.1;     ///< inner solves stop at ||g^P|| <= innerFloor eps ||c|| at the latest
   /// Called on every rank after each outer iteration (after the hook, so that it sees what
   /// the hook changed; not when the hook throws); may be empty.
@@ -105,7 +108,7 @@ class SmalseM {
 
   /// The valid parameters (STYLE.md 3), a list shaped like the scene's "Solver":
   /// "Tolerance", "Max Outer Iterations", sublist "SMALSE-M" (eta, rho, initial M, beta,
-  /// equality test, rho growth, rho target ratio, norm estimate steps, inner floor) and sublist
+  /// equality test, rho growth, rho target ratio, rho update, norm estimate steps, inner floor) and sublist
   /// "MPGP" (step scale, Gamma, max iterations, optimal expansion), each with a doc string
   /// and its validated range. The defaults are those of SmalseSettings / MpgpSettings.
   /// Declared in src/SolverParameters.cpp (qp/SolverParameters.hpp).
