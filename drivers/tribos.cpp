@@ -118,6 +118,8 @@ nlohmann::json profileJson(const feti::OperatorProfile& p) {
           {"coarse_factor_s", p.coarseFactorSeconds},
           {"coarse_factor_nonzeros", p.coarseFactorNonzeros},
           {"coarse_subtrees", p.coarseSubtrees},
+          {"coarse_rank_subtrees", p.coarseRankSubtrees},
+          {"coarse_values_per_solve", p.coarseValuesPerSolve},
           {"g_entries", p.gEntries},
           {"g_rows", p.gRows},
           {"projection_bytes", p.projectionBytes},

@@ -90,3 +90,21 @@ TEST(tribosDriver, tangentCgSameResultOnOneTwoThreeRanks) {
                                 " --set 'Solver/MPGP/tangent CG after=0'",
                                 {Layout{2, 1}, Layout{3, 1}, Layout{1, 2}});
 }
+
+// The coarse solves spread over the ranks (DistributedCoarseSolve, issue 11), switched on for
+// this small coarse factor (G G^T of 108 subdomains) by its threshold's override: the counts
+// and the energy's bits of one rank on 2 and 3 ranks, and the multi-rank runs did spread them.
+TEST(tribosDriver, coarseSolvesSpreadOverTheRanksSameResult) {
+  ::setenv("TRIBOS_DISTRIBUTED_COARSE_FROM", "0", 1);
+  const std::string settings = "--set 'Mesh/Subdomains Per Brick=6x3x3' --set 'Mesh/H Over h=2'";
+  expectSameResultOnEveryLayout("two_bricks.xml", settings, {Layout{2, 1}, Layout{3, 1}});
+  char tmpl[] = "/tmp/tribos_spread_XXXXXX";
+  ASSERT_NE(::mkdtemp(tmpl), nullptr);
+  const auto j = solve({2, 1}, tmpl, "two_bricks.xml", settings);
+  ::unsetenv("TRIBOS_DISTRIBUTED_COARSE_FROM");
+  ASSERT_FALSE(j.is_null());
+  EXPECT_GE(j["operator_profile"]["coarse_rank_subtrees"].get<int>(), 2);
+  EXPECT_LT(j["operator_profile"]["coarse_values_per_solve"].get<long long>(),
+            j["operator_profile"]["coarse_factor_nonzeros"].get<long long>());
+  std::filesystem::remove_all(tmpl);
+}

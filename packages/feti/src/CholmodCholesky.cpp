@@ -270,6 +270,7 @@ class CholmodCholesky final : public SparseCholesky {
   std::string name() const override { return "CHOLMOD"; }
   void setSubtreeSolve(bool enabled) override { subtreeSolve_ = enabled; }
   int subtreeCount() const override { return packed_.numSubtrees(); }
+  const PackedFactor* packedFactor() const override { return &packed_; }
 
  private:
   bool subtreeSolve_ = false;

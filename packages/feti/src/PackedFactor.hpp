@@ -20,6 +20,7 @@
 // what two can (doc/coarse_problem.md).
 #include <algorithm>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "tribos/core/Types.hpp"
@@ -81,6 +82,34 @@ class PackedFactor {
   /// Share of the stored values in the serial top part of the split (0 without a split).
   double topShare() const;
 
+  /// The elimination tree's greedy splits into independent subtrees: starting from the roots,
+  /// each step replaces the largest subtree that has children by its children (its root joins
+  /// the top). One entry per step, while fewer than maxCount subtrees; empty when the
+  /// supernodes are not a postordered elimination tree. planSubtrees takes the first with at
+  /// least four subtrees; DistributedCoarseSolve the one with the least work on its busiest rank.
+  struct TreeSplit {
+    std::vector<LO> first, last;      ///< supernode range [first, last) of each subtree, ascending
+    std::vector<long long> values;    ///< stored values of each subtree
+    long long totalValues = 0;        ///< of the whole factor
+  };
+  std::vector<TreeSplit> greedySplits(int maxCount) const;
+  /// One past the last column of the subtree that ends at supernode last - 1.
+  LO columnEndOf(LO last) const { return supernodes_[last - 1].firstColumn + supernodes_[last - 1].numColumns; }
+  /// First column of supernode k.
+  LO firstColumnOf(LO k) const { return supernodes_[k].firstColumn; }
+  /// Entries of forward()'s topUpdates for supernodes [first, last) with that columnEnd.
+  long long topUpdateCount(LO first, LO last, LO columnEnd) const;
+
+  /// The supernodes of `ranges` (each [first, last), ascending) as a factor of their own, for a
+  /// rank that solves only those subtrees (DistributedCoarseSolve): their values and row
+  /// indices (still in the whole factor's column numbering), the whole permutation and
+  /// reciprocal diagonal (n entries each: small against the values). Supernode k of the
+  /// ranges becomes supernode (its position among them).
+  PackedFactor extract(const std::vector<std::pair<LO, LO>>& ranges) const;
+  /// The factor as bytes (to send it to another rank) and back.
+  std::vector<char> serialize() const;
+  static PackedFactor deserialize(const std::vector<char>& bytes);
+
   PackedFactor();
   ~PackedFactor();
   PackedFactor(PackedFactor&&) noexcept;
@@ -101,6 +130,7 @@ class PackedFactor {
   void applyTopUpdates(LO first, LO last, double* x, LO columnEnd, const double* topUpdates) const;
   /// Backward substitution over supernodes [first, last), from the last.
   void backward(LO first, LO last, double* x, double* panelWork) const;
+  friend class DistributedCoarseSolve;  ///< runs forward, applyTopUpdates and backward by ranges
   struct Subtrees;  ///< the split of planSubtrees (PackedFactorSubtrees.cpp)
   void solveSubtrees(double* v) const;
 

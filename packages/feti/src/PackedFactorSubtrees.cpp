@@ -14,7 +14,9 @@
 //    each reading top rows that no longer change.
 // The bits are those of the serial solve, for any number of threads.
 #include <algorithm>
+#include <cstring>
 #include <numeric>
+#include <stdexcept>
 
 #include "PackedFactor.hpp"
 #include "tribos/core/Parallel.hpp"
@@ -52,10 +54,9 @@ PackedFactor& PackedFactor::operator=(PackedFactor&&) noexcept = default;
 int PackedFactor::numSubtrees() const { return subtrees_ ? static_cast<int>(subtrees_->first.size()) : 0; }
 double PackedFactor::topShare() const { return subtrees_ ? subtrees_->topShare : 0.0; }
 
-bool PackedFactor::planSubtrees(long long fromValues) {
-  subtrees_.reset();
+std::vector<PackedFactor::TreeSplit> PackedFactor::greedySplits(int maxCount) const {
   const LO ns = numSupernodes(), n = size();
-  if (storedValues() < fromValues || ns < 2) return false;
+  std::vector<TreeSplit> splits;
   // Supernode tree: the parent of a supernode holds its first panel row (the parent of its
   // last column in the elimination tree).
   std::vector<LO> supernodeOfColumn(n);
@@ -70,7 +71,7 @@ bool PackedFactor::planSubtrees(long long fromValues) {
                  static_cast<long long>(s.numColumns) * s.numPanelRows;
     if (s.numPanelRows == 0) continue;
     const LO p = supernodeOfColumn[rows_[s.rowOffset]];
-    if (p <= k) return false;  // not an elimination tree in this order
+    if (p <= k) return splits;  // not an elimination tree in this order
     parent[k] = p;
     firstDescendant[p] = std::min(firstDescendant[p], firstDescendant[k]);
     subtreeSize[p] += subtreeSize[k];
@@ -78,15 +79,27 @@ bool PackedFactor::planSubtrees(long long fromValues) {
   }
   // Postorder: every subtree is the contiguous range [firstDescendant, k].
   for (LO k = 0; k < ns; ++k)
-    if (subtreeSize[k] != k - firstDescendant[k] + 1) return false;
+    if (subtreeSize[k] != k - firstDescendant[k] + 1) return splits;
   std::vector<std::vector<LO>> children(ns);
   std::vector<LO> roots;
   for (LO k = 0; k < ns; ++k) (parent[k] < 0 ? roots : children[parent[k]]).push_back(k);
+  long long total = 0;
+  for (LO root : roots) total += values[root];
 
-  // Greedy: replace the largest subtree that has children by its children (its root joins
-  // the top) until there are kTargetSubtrees of them.
+  auto record = [&](std::vector<LO> chosen) {
+    std::sort(chosen.begin(), chosen.end());
+    TreeSplit split;
+    split.totalValues = total;
+    for (LO root : chosen) {
+      split.first.push_back(firstDescendant[root]);
+      split.last.push_back(root + 1);
+      split.values.push_back(values[root]);
+    }
+    splits.push_back(std::move(split));
+  };
   std::vector<LO> chosen = roots;
-  for (int guard = 0; guard < ns && static_cast<int>(chosen.size()) < kTargetSubtrees; ++guard) {
+  record(chosen);
+  for (int guard = 0; guard < ns && static_cast<int>(chosen.size()) < maxCount; ++guard) {
     auto largest = chosen.end();
     for (auto it = chosen.begin(); it != chosen.end(); ++it)
       if (!children[*it].empty() && (largest == chosen.end() || values[*it] > values[*largest])) largest = it;
@@ -94,34 +107,49 @@ bool PackedFactor::planSubtrees(long long fromValues) {
     const LO k = *largest;
     chosen.erase(largest);
     chosen.insert(chosen.end(), children[k].begin(), children[k].end());
+    record(chosen);
   }
-  if (chosen.size() < 2) return false;
-  std::sort(chosen.begin(), chosen.end());
+  return splits;
+}
+
+long long PackedFactor::topUpdateCount(LO first, LO last, LO columnEnd) const {
+  long long count = 0;
+  for (LO k = first; k < last; ++k) {
+    const Supernode& s = supernodes_[k];
+    const LO* rows = rows_.data() + s.rowOffset;
+    count += rows + s.numPanelRows - std::lower_bound(rows, rows + s.numPanelRows, columnEnd);
+  }
+  return count;
+}
+
+bool PackedFactor::planSubtrees(long long fromValues) {
+  subtrees_.reset();
+  const LO ns = numSupernodes();
+  if (storedValues() < fromValues || ns < 2) return false;
+  const std::vector<TreeSplit> splits = greedySplits(kTargetSubtrees);
+  if (splits.empty()) return false;
+  const TreeSplit& split = splits.back();  // the first with kTargetSubtrees, or the finest there is
+  if (split.first.size() < 2) return false;
 
   auto plan = std::make_unique<Subtrees>();
+  const int count = static_cast<int>(split.first.size());
   long long subtreeValues = 0;
   size_t workSize = 0;
-  for (LO root : chosen) {
-    const LO first = firstDescendant[root], columnEnd = supernodes_[root].firstColumn + supernodes_[root].numColumns;
+  for (int i = 0; i < count; ++i) {
+    const LO first = split.first[i], last = split.last[i], columnEnd = columnEndOf(last);
     LO maxRows = 0;
-    size_t topUpdates = 0;
-    for (LO k = first; k <= root; ++k) {
-      const Supernode& s = supernodes_[k];
-      maxRows = std::max(maxRows, s.numPanelRows);
-      const LO* rows = rows_.data() + s.rowOffset;
-      topUpdates += static_cast<size_t>(rows + s.numPanelRows - std::lower_bound(rows, rows + s.numPanelRows, columnEnd));
-    }
+    for (LO k = first; k < last; ++k) maxRows = std::max(maxRows, supernodes_[k].numPanelRows);
     plan->first.push_back(first);
-    plan->last.push_back(root + 1);
+    plan->last.push_back(last);
     plan->columnEnd.push_back(columnEnd);
     plan->panelOffset.push_back(workSize);
     plan->updateOffset.push_back(workSize + static_cast<size_t>(maxRows));
-    workSize += static_cast<size_t>(maxRows) + topUpdates;
-    subtreeValues += values[root];
+    workSize += static_cast<size_t>(maxRows) + static_cast<size_t>(topUpdateCount(first, last, columnEnd));
+    subtreeValues += split.values[i];
   }
   LO maxTopRows = 0;
   for (LO k = 0, i = 0; k < ns;) {
-    if (i < static_cast<LO>(chosen.size()) && k == plan->first[i]) {
+    if (i < count && k == plan->first[i]) {
       plan->segments.push_back({static_cast<int>(i), plan->first[i], plan->last[i]});
       k = plan->last[i++];
       continue;
@@ -130,18 +158,86 @@ bool PackedFactor::planSubtrees(long long fromValues) {
     maxTopRows = std::max(maxTopRows, supernodes_[k].numPanelRows);
     plan->segments.back().last = ++k;
   }
-  const int count = static_cast<int>(chosen.size());
   plan->schedule.resize(count);
   std::iota(plan->schedule.begin(), plan->schedule.end(), 0);
   std::stable_sort(plan->schedule.begin(), plan->schedule.end(),
-                   [&](int a, int b) { return values[chosen[a]] > values[chosen[b]]; });
+                   [&](int a, int b) { return split.values[a] > split.values[b]; });
   plan->topPanelOffset = workSize;
   plan->work.assign(workSize + static_cast<size_t>(maxTopRows), 0.0);
-  long long total = 0;
-  for (LO root : roots) total += values[root];
+  const long long total = split.totalValues;
   plan->topShare = total > 0 ? 1.0 - static_cast<double>(subtreeValues) / static_cast<double>(total) : 0.0;
   subtrees_ = std::move(plan);
   return true;
+}
+
+PackedFactor PackedFactor::extract(const std::vector<std::pair<LO, LO>>& ranges) const {
+  PackedFactor part;
+  const double* values = valueData();
+  part.perm_ = perm_;
+  part.inverseDiagonal_ = inverseDiagonal_;
+  for (const auto& [first, last] : ranges)
+    for (LO k = first; k < last; ++k) {
+      Supernode s = supernodes_[k];
+      const long long triangle = static_cast<long long>(s.numColumns) * (s.numColumns - 1) / 2;
+      const long long panel = static_cast<long long>(s.numColumns) * s.numPanelRows;
+      part.rows_.insert(part.rows_.end(), rows_.begin() + s.rowOffset, rows_.begin() + s.rowOffset + s.numPanelRows);
+      s.rowOffset = static_cast<LO>(part.rows_.size()) - s.numPanelRows;
+      part.values_.insert(part.values_.end(), values + s.triangleOffset, values + s.triangleOffset + triangle);
+      s.triangleOffset = static_cast<long long>(part.values_.size()) - triangle;
+      part.values_.insert(part.values_.end(), values + s.panelOffset, values + s.panelOffset + panel);
+      s.panelOffset = static_cast<long long>(part.values_.size()) - panel;
+      part.maxPanelRows_ = std::max(part.maxPanelRows_, s.numPanelRows);
+      part.supernodes_.push_back(s);
+    }
+  return part;
+}
+
+namespace {
+template <class T>
+void appendArray(std::vector<char>& bytes, const T* data, size_t count) {
+  const unsigned long long n = count;
+  const char* header = reinterpret_cast<const char*>(&n);
+  bytes.insert(bytes.end(), header, header + sizeof n);
+  const char* begin = reinterpret_cast<const char*>(data);
+  bytes.insert(bytes.end(), begin, begin + sizeof(T) * count);
+}
+
+template <class T>
+std::vector<T> readArray(const std::vector<char>& bytes, size_t& at) {
+  unsigned long long n = 0;
+  if (at + sizeof n > bytes.size()) throw std::runtime_error("tribos::feti::PackedFactor::deserialize: truncated");
+  std::memcpy(&n, bytes.data() + at, sizeof n);
+  at += sizeof n;
+  if (n > (bytes.size() - at) / sizeof(T)) throw std::runtime_error("tribos::feti::PackedFactor::deserialize: truncated");
+  std::vector<T> v(static_cast<size_t>(n));
+  if (n > 0) std::memcpy(v.data(), bytes.data() + at, sizeof(T) * v.size());
+  at += sizeof(T) * v.size();
+  return v;
+}
+}  // namespace
+
+std::vector<char> PackedFactor::serialize() const {
+  std::vector<char> bytes;
+  appendArray(bytes, supernodes_.data(), supernodes_.size());
+  appendArray(bytes, rows_.data(), rows_.size());
+  appendArray(bytes, valueData(), static_cast<size_t>(valueCount()));
+  appendArray(bytes, inverseDiagonal_.data(), inverseDiagonal_.size());
+  appendArray(bytes, perm_.data(), perm_.size());
+  appendArray(bytes, &maxPanelRows_, 1);
+  return bytes;
+}
+
+PackedFactor PackedFactor::deserialize(const std::vector<char>& bytes) {
+  PackedFactor f;
+  size_t at = 0;
+  f.supernodes_ = readArray<Supernode>(bytes, at);
+  f.rows_ = readArray<LO>(bytes, at);
+  f.values_ = readArray<double>(bytes, at);
+  f.inverseDiagonal_ = readArray<double>(bytes, at);
+  f.perm_ = readArray<LO>(bytes, at);
+  const std::vector<LO> maxRows = readArray<LO>(bytes, at);
+  f.maxPanelRows_ = maxRows.empty() ? 0 : maxRows[0];
+  return f;
 }
 
 void PackedFactor::solveSubtrees(double* v) const {

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 #include <map>
@@ -18,6 +19,7 @@
 #include "tribos/core/Parallel.hpp"
 #include "tribos/core/ReproducibleSum.hpp"
 #include "tribos/core/Timer.hpp"
+#include "tribos/feti/DistributedCoarseSolve.hpp"
 #include "tribos/fem/SubdomainSystem.hpp"
 
 namespace tribos::feti {
@@ -76,11 +78,26 @@ fem::CsrMatrix principalSubmatrix(const fem::CsrMatrix& K, const std::vector<LO>
   return S;
 }
 
+MPI_Comm rawComm(const Teuchos::Comm<int>& comm) {
+  const auto* mpi = dynamic_cast<const Teuchos::MpiComm<int>*>(&comm);
+  TEUCHOS_TEST_FOR_EXCEPTION(!mpi, std::logic_error, "tribos::feti: collectives need an MPI communicator");
+  return (*mpi->getRawMpiComm())();
+}
+
+/// Coarse factors with at least this many stored values are solved over the ranks
+/// (DistributedCoarseSolve) when there are several; smaller ones on rank 0 alone, where the
+/// three collectives of a spread solve would cost more than they save. Measured in
+/// doc/coarse_problem.md ("The coarse solve over the ranks"). Depends on the factor alone:
+/// the bits are those of the serial solve either way. TRIBOS_DISTRIBUTED_COARSE_FROM=<values>
+/// overrides it (for those measurements).
+long long distributedCoarseFromValues() {
+  if (const char* from = std::getenv("TRIBOS_DISTRIBUTED_COARSE_FROM")) return std::atoll(from);
+  return 500000;
+}
+
 // Every rank's `mine`, concatenated in rank order (all ranks get the whole list).
 std::vector<long long> allGather(const Teuchos::Comm<int>& comm, const std::vector<long long>& mine) {
-  const auto* mpi = dynamic_cast<const Teuchos::MpiComm<int>*>(&comm);
-  TEUCHOS_TEST_FOR_EXCEPTION(!mpi, std::logic_error, "tribos::feti: an all-gather needs an MPI communicator");
-  const MPI_Comm raw = (*mpi->getRawMpiComm())();
+  const MPI_Comm raw = rawComm(comm);
   const int size = comm.getSize(), count = static_cast<int>(mine.size());
   std::vector<int> counts(size), offsets(size + 1, 0);
   MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, raw);
@@ -936,11 +953,17 @@ void TotalFeti::factorizeCoarse() const {
       },
       [](const std::string& message) { throw core::InputError(message); });
   GGt = fem::CsrMatrix{};  // the ranks > 0: not needed past the assembly
+  // Collective: the subtrees of its elimination tree to the ranks that will solve them.
+  distributedCoarse_ = DistributedCoarseSolve::create(rawComm(*comm_), coarse_.get(), distributedCoarseFromValues());
+  profile_.coarseRankSubtrees = distributedCoarse_ ? distributedCoarse_->numSubtrees() : 0;
+  profile_.coarseValuesPerSolve =
+      distributedCoarse_ ? distributedCoarse_->valuesOnThisRank() : (coarse_ ? coarse_->factorNonzeros() : 0);
   coarseFactored_ = true;
   profile_.coarseFactorSeconds += watch.seconds();
 }
 
 void TotalFeti::releaseCoarseFactor() const {
+  distributedCoarse_.reset();  // it reads coarse_'s factor on rank 0
   coarse_.reset();
   coarseFactored_ = false;
   for (CoarseMemo& memo : coarseMemo_) memo = CoarseMemo{};
@@ -1354,9 +1377,16 @@ void TotalFeti::solveCoarse(std::vector<double>& a) const {
   memo.valid = false;
   memo.rhs.assign(a.begin(), a.end());
   if (!coarseFactored_) factorizeCoarse();  // released (releaseCoarseFactor): the same factor again
-  // On rank 0 alone, then broadcast: with every rank solving, the R ranks of a node streamed
-  // R copies of the factor at once (16 ranks at 4 000 subdomains: doc/scalability.md). The
-  // solution has the bits it had on every rank.
+  // Over the ranks when the factor is large (the bits of the serial solve), else on rank 0
+  // alone, then broadcast: with every rank solving, the R ranks of a node streamed R copies
+  // of the factor at once (16 ranks at 4 000 subdomains: doc/scalability.md).
+  if (distributedCoarse_) {
+    distributedCoarse_->solve(memo.rhs.data(), a.data());
+    memo.solution.assign(a.begin(), a.end());
+    memo.valid = true;
+    profile_.coarseSolveSeconds += watch.seconds();
+    return;
+  }
   onRootThenBroadcast(
       a, [&] { coarse_->solve(memo.rhs.data(), a.data()); },
       [](const std::string& message) { throw std::runtime_error(message); });

@@ -17,6 +17,8 @@
 
 namespace tribos::feti {
 
+class PackedFactor;  // src/PackedFactor.hpp (internal)
+
 class SparseCholesky {
  public:
   virtual ~SparseCholesky() = default;
@@ -55,6 +57,9 @@ class SparseCholesky {
   virtual void setSubtreeSolve(bool enabled) { (void)enabled; }
   /// Subtrees the solves run concurrently (0: serial solves).
   virtual int subtreeCount() const { return 0; }
+  /// The factor in tribos's packed form ("CHOLMOD"), for DistributedCoarseSolve; null when
+  /// the implementation has none ("Tacho").
+  virtual const PackedFactor* packedFactor() const { return nullptr; }
 };
 
 /// Names accepted by makeSparseCholesky.

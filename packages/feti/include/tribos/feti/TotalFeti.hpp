@@ -33,6 +33,8 @@
 
 namespace tribos::feti {
 
+class DistributedCoarseSolve;
+
 /// The rows I leave a rigid body mode free (G_I G_I^T singular): no constraint active at the
 /// end holds some body, e.g. a load beyond what contact and friction can carry.
 struct RigidMotionsUndetermined : std::runtime_error {
@@ -65,6 +67,11 @@ struct OperatorProfile {
   double coarseFactorSeconds = 0.0;    ///< assembly + factorisation of G G^T
   long long coarseFactorNonzeros = 0;  ///< stored entries of the factor of G G^T
   int coarseSubtrees = 0;  ///< subtrees its solves run concurrently (0: serial solves)
+  /// Subtrees of its solves spread over the ranks (0: solved on rank 0 and broadcast).
+  int coarseRankSubtrees = 0;
+  /// Stored values of the coarse factor that this rank reads per solve (rank 0: the whole
+  /// factor, or with coarseRankSubtrees its subtrees and the top).
+  long long coarseValuesPerSolve = 0;
   long long gEntries = 0, gRows = 0;   ///< entries (row, subdomain) of G on this rank's rows, rows
   /// The least bytes one projection (G x and G^T a) and one preconditioner application
   /// (B S B^T or B K_bb B^T; 0 without one) move, summed over the ranks (measureTraffic).
@@ -230,6 +237,9 @@ class TotalFeti {
   /// G G^T's factor, on rank 0 only; null after releaseCoarseFactor() until the next coarse
   /// solve.
   mutable std::unique_ptr<SparseCholesky> coarse_;
+  /// The coarse solves spread over the ranks (several ranks and a factor large enough to
+  /// pay, DistributedCoarseSolve.hpp); null: solved on rank 0 and broadcast. Reset before coarse_.
+  mutable std::unique_ptr<DistributedCoarseSolve> distributedCoarse_;
   /// Whether G G^T is factorised (on rank 0): the same on every rank.
   mutable bool coarseFactored_ = false;
   /// Assembles G G^T (collective) and factorises it into coarse_ on rank 0.
