@@ -124,7 +124,7 @@ void DistributedCoarseSolve::distributeParts(const PackedFactor* whole) {
   if (rank_ == 0) {
     whole_ = whole;
     factor_ = whole;
-    for (int r = 1; r < size_; ++r) sendBytes(whole->extract(rangesOf(r)).serialize(), r, comm_);
+    for (int r = 1; r < size_; ++r) sendBytes(whole->serialize(rangesOf(r)), r, comm_);
   } else {
     part_ = std::make_unique<PackedFactor>(PackedFactor::deserialize(receiveBytes(0, comm_)));
     factor_ = part_.get();

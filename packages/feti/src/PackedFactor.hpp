@@ -100,14 +100,13 @@ class PackedFactor {
   /// Entries of forward()'s topUpdates for supernodes [first, last) with that columnEnd.
   long long topUpdateCount(LO first, LO last, LO columnEnd) const;
 
-  /// The supernodes of `ranges` (each [first, last), ascending) as a factor of their own, for a
-  /// rank that solves only those subtrees (DistributedCoarseSolve): their values and row
-  /// indices (still in the whole factor's column numbering), the whole permutation and
-  /// reciprocal diagonal (n entries each: small against the values). Supernode k of the
-  /// ranges becomes supernode (its position among them).
-  PackedFactor extract(const std::vector<std::pair<LO, LO>>& ranges) const;
-  /// The factor as bytes (to send it to another rank) and back.
-  std::vector<char> serialize() const;
+  /// The supernodes of `ranges` (each [first, last), ascending) as bytes for a rank that
+  /// solves only those subtrees (DistributedCoarseSolve), written straight from this factor
+  /// (rank 0 sends one part per rank while it holds the whole factor); deserialize reads them
+  /// as a factor of their own: their values and row indices (still in the whole factor's
+  /// column numbering), the whole permutation and reciprocal diagonal (n entries each: small
+  /// against the values); supernode k of the ranges becomes supernode (its position among them).
+  std::vector<char> serialize(const std::vector<std::pair<LO, LO>>& ranges) const;
   static PackedFactor deserialize(const std::vector<char>& bytes);
 
   PackedFactor();

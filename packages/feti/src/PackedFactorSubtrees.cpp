@@ -170,36 +170,23 @@ bool PackedFactor::planSubtrees(long long fromValues) {
   return true;
 }
 
-PackedFactor PackedFactor::extract(const std::vector<std::pair<LO, LO>>& ranges) const {
-  PackedFactor part;
-  const double* values = valueData();
-  part.perm_ = perm_;
-  part.inverseDiagonal_ = inverseDiagonal_;
-  for (const auto& [first, last] : ranges)
-    for (LO k = first; k < last; ++k) {
-      Supernode s = supernodes_[k];
-      const long long triangle = static_cast<long long>(s.numColumns) * (s.numColumns - 1) / 2;
-      const long long panel = static_cast<long long>(s.numColumns) * s.numPanelRows;
-      part.rows_.insert(part.rows_.end(), rows_.begin() + s.rowOffset, rows_.begin() + s.rowOffset + s.numPanelRows);
-      s.rowOffset = static_cast<LO>(part.rows_.size()) - s.numPanelRows;
-      part.values_.insert(part.values_.end(), values + s.triangleOffset, values + s.triangleOffset + triangle);
-      s.triangleOffset = static_cast<long long>(part.values_.size()) - triangle;
-      part.values_.insert(part.values_.end(), values + s.panelOffset, values + s.panelOffset + panel);
-      s.panelOffset = static_cast<long long>(part.values_.size()) - panel;
-      part.maxPanelRows_ = std::max(part.maxPanelRows_, s.numPanelRows);
-      part.supernodes_.push_back(s);
-    }
-  return part;
-}
-
 namespace {
-template <class T>
-void appendArray(std::vector<char>& bytes, const T* data, size_t count) {
+void appendCount(std::vector<char>& bytes, size_t count) {
   const unsigned long long n = count;
   const char* header = reinterpret_cast<const char*>(&n);
   bytes.insert(bytes.end(), header, header + sizeof n);
+}
+
+template <class T>
+void appendItems(std::vector<char>& bytes, const T* data, size_t count) {
   const char* begin = reinterpret_cast<const char*>(data);
   bytes.insert(bytes.end(), begin, begin + sizeof(T) * count);
+}
+
+template <class T>
+void appendArray(std::vector<char>& bytes, const T* data, size_t count) {
+  appendCount(bytes, count);
+  appendItems(bytes, data, count);
 }
 
 template <class T>
@@ -216,14 +203,44 @@ std::vector<T> readArray(const std::vector<char>& bytes, size_t& at) {
 }
 }  // namespace
 
-std::vector<char> PackedFactor::serialize() const {
+std::vector<char> PackedFactor::serialize(const std::vector<std::pair<LO, LO>>& ranges) const {
+  // The layout of deserialize: supernodes (offsets into the part's arrays), row indices,
+  // values (triangle then panel, supernode by supernode), reciprocal diagonal, permutation,
+  // maxPanelRows.
+  std::vector<Supernode> parts;
+  size_t rows = 0, values = 0;
+  LO maxRows = 0;
+  for (const auto& [first, last] : ranges)
+    for (LO k = first; k < last; ++k) {
+      Supernode s = supernodes_[k];
+      const long long triangle = static_cast<long long>(s.numColumns) * (s.numColumns - 1) / 2;
+      s.rowOffset = static_cast<LO>(rows);
+      s.triangleOffset = static_cast<long long>(values);
+      s.panelOffset = s.triangleOffset + triangle;
+      rows += static_cast<size_t>(s.numPanelRows);
+      values += static_cast<size_t>(triangle + static_cast<long long>(s.numColumns) * s.numPanelRows);
+      maxRows = std::max(maxRows, s.numPanelRows);
+      parts.push_back(s);
+    }
   std::vector<char> bytes;
-  appendArray(bytes, supernodes_.data(), supernodes_.size());
-  appendArray(bytes, rows_.data(), rows_.size());
-  appendArray(bytes, valueData(), static_cast<size_t>(valueCount()));
+  bytes.reserve(sizeof(Supernode) * parts.size() + sizeof(LO) * rows + sizeof(double) * values +
+                (sizeof(double) + sizeof(LO)) * perm_.size() + 64);
+  appendArray(bytes, parts.data(), parts.size());
+  appendCount(bytes, rows);
+  for (const auto& [first, last] : ranges)
+    for (LO k = first; k < last; ++k)
+      appendItems(bytes, rows_.data() + supernodes_[k].rowOffset, static_cast<size_t>(supernodes_[k].numPanelRows));
+  appendCount(bytes, values);
+  const double* all = valueData();
+  for (const auto& [first, last] : ranges)
+    for (LO k = first; k < last; ++k) {
+      const Supernode& s = supernodes_[k];
+      appendItems(bytes, all + s.triangleOffset, static_cast<size_t>(s.numColumns) * (s.numColumns - 1) / 2);
+      appendItems(bytes, all + s.panelOffset, static_cast<size_t>(s.numColumns) * s.numPanelRows);
+    }
   appendArray(bytes, inverseDiagonal_.data(), inverseDiagonal_.size());
   appendArray(bytes, perm_.data(), perm_.size());
-  appendArray(bytes, &maxPanelRows_, 1);
+  appendArray(bytes, &maxRows, 1);
   return bytes;
 }
 
