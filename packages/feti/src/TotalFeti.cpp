@@ -92,7 +92,7 @@ MPI_Comm rawComm(const Teuchos::Comm<int>& comm) {
 /// overrides it (for those measurements).
 long long distributedCoarseFromValues() {
   if (const char* from = std::getenv("TRIBOS_DISTRIBUTED_COARSE_FROM")) return std::atoll(from);
-  return 500000;
+  return 200000;
 }
 
 // Every rank's `mine`, concatenated in rank order (all ranks get the whole list).
