@@ -119,6 +119,7 @@ nlohmann::json profileJson(const feti::OperatorProfile& p) {
           {"coarse_factor_nonzeros", p.coarseFactorNonzeros},
           {"coarse_subtrees", p.coarseSubtrees},
           {"coarse_rank_subtrees", p.coarseRankSubtrees},
+          {"coarse_split_depth", p.coarseSplitDepth},
           {"coarse_values_per_solve", p.coarseValuesPerSolve},
           {"g_entries", p.gEntries},
           {"g_rows", p.gRows},

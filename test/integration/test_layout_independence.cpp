@@ -91,12 +91,13 @@ TEST(tribosDriver, tangentCgSameResultOnOneTwoThreeRanks) {
                                 {Layout{2, 1}, Layout{3, 1}, Layout{1, 2}});
 }
 
-// The coarse solves spread over the ranks (DistributedCoarseSolve, issue 11), switched on for
-// this small coarse factor (G G^T of 108 subdomains) by its threshold's override: the counts
-// and the energy's bits of one rank on 2 and 3 ranks, and the multi-rank runs did spread them.
+// The coarse solves spread over the ranks (DistributedCoarseSolve, issue 11), on whatever
+// factor size (its threshold's override), here G G^T of 256 subdomains (271 488 values, split
+// over 2 and 3 ranks): the counts and the energy's bits of one rank, and the multi-rank runs
+// did spread them.
 TEST(tribosDriver, coarseSolvesSpreadOverTheRanksSameResult) {
   ::setenv("TRIBOS_DISTRIBUTED_COARSE_FROM", "0", 1);
-  const std::string settings = "--set 'Mesh/Subdomains Per Brick=6x3x3' --set 'Mesh/H Over h=2'";
+  const std::string settings = "--set 'Mesh/Subdomains Per Brick=8x4x4' --set 'Mesh/H Over h=2'";
   expectSameResultOnEveryLayout("two_bricks.xml", settings, {Layout{2, 1}, Layout{3, 1}});
   char tmpl[] = "/tmp/tribos_spread_XXXXXX";
   ASSERT_NE(::mkdtemp(tmpl), nullptr);

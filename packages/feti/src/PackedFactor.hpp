@@ -82,11 +82,25 @@ class PackedFactor {
   /// Share of the stored values in the serial top part of the split (0 without a split).
   double topShare() const;
 
-  /// The elimination tree's greedy splits into independent subtrees: starting from the roots,
-  /// each step replaces the largest subtree that has children by its children (its root joins
-  /// the top). One entry per step, while fewer than maxCount subtrees; empty when the
-  /// supernodes are not a postordered elimination tree. planSubtrees takes the first with at
-  /// least four subtrees; DistributedCoarseSolve the one with the least work on its busiest rank.
+  /// The supernodes as an elimination tree (they are in postorder, as CHOLMOD's are): the
+  /// parent of each (-1: a root), the first supernode of its subtree ([firstDescendant[k], k]
+  /// is the subtree), its stored values and its subtree's, its children; the roots. Empty when
+  /// the supernodes are not a postordered elimination tree.
+  struct SupernodeTree {
+    std::vector<LO> parent, firstDescendant, roots;
+    std::vector<long long> values, subtreeValues;
+    std::vector<std::vector<LO>> children;
+    bool empty() const { return parent.empty(); }
+  };
+  SupernodeTree supernodeTree() const;
+  /// The greedy splits of the subtrees rooted at `start` into independent subtrees: each step
+  /// replaces the largest subtree that has children by its children (its root joins the
+  /// top). The roots of each state (ascending), the start first, then one per step while
+  /// fewer than maxCount subtrees and at most maxSteps steps.
+  static std::vector<std::vector<LO>> greedyStates(const SupernodeTree& tree, std::vector<LO> start, int maxCount,
+                                                   int maxSteps);
+  /// The states of greedyStates from the tree's roots as supernode ranges; planSubtrees takes
+  /// the first with at least four subtrees. Empty when the supernodes are not a tree.
   struct TreeSplit {
     std::vector<LO> first, last;      ///< supernode range [first, last) of each subtree, ascending
     std::vector<long long> values;    ///< stored values of each subtree
@@ -99,6 +113,8 @@ class PackedFactor {
   LO firstColumnOf(LO k) const { return supernodes_[k].firstColumn; }
   /// Entries of forward()'s topUpdates for supernodes [first, last) with that columnEnd.
   long long topUpdateCount(LO first, LO last, LO columnEnd) const;
+  /// The rows those entries update, in their order.
+  std::vector<LO> topUpdateRows(LO first, LO last, LO columnEnd) const;
 
   /// The supernodes of `ranges` (each [first, last), ascending) as bytes for a rank that
   /// solves only those subtrees (DistributedCoarseSolve), written straight from this factor

@@ -54,62 +54,93 @@ PackedFactor& PackedFactor::operator=(PackedFactor&&) noexcept = default;
 int PackedFactor::numSubtrees() const { return subtrees_ ? static_cast<int>(subtrees_->first.size()) : 0; }
 double PackedFactor::topShare() const { return subtrees_ ? subtrees_->topShare : 0.0; }
 
-std::vector<PackedFactor::TreeSplit> PackedFactor::greedySplits(int maxCount) const {
+PackedFactor::SupernodeTree PackedFactor::supernodeTree() const {
   const LO ns = numSupernodes(), n = size();
-  std::vector<TreeSplit> splits;
-  // Supernode tree: the parent of a supernode holds its first panel row (the parent of its
-  // last column in the elimination tree).
+  SupernodeTree tree;
+  // The parent of a supernode holds its first panel row (the parent of its last column in
+  // the elimination tree).
   std::vector<LO> supernodeOfColumn(n);
   for (LO k = 0; k < ns; ++k)
     for (LO j = 0; j < supernodes_[k].numColumns; ++j) supernodeOfColumn[supernodes_[k].firstColumn + j] = k;
   std::vector<LO> parent(ns, -1), firstDescendant(ns), subtreeSize(ns, 1);
-  std::vector<long long> values(ns, 0);
+  std::vector<long long> values(ns, 0), subtreeValues(ns, 0);
   std::iota(firstDescendant.begin(), firstDescendant.end(), 0);
   for (LO k = 0; k < ns; ++k) {
     const Supernode& s = supernodes_[k];
-    values[k] += static_cast<long long>(s.numColumns) * (s.numColumns + 1) / 2 +
-                 static_cast<long long>(s.numColumns) * s.numPanelRows;
+    values[k] = static_cast<long long>(s.numColumns) * (s.numColumns + 1) / 2 +
+                static_cast<long long>(s.numColumns) * s.numPanelRows;
+    subtreeValues[k] += values[k];
     if (s.numPanelRows == 0) continue;
     const LO p = supernodeOfColumn[rows_[s.rowOffset]];
-    if (p <= k) return splits;  // not an elimination tree in this order
+    if (p <= k) return tree;  // not an elimination tree in this order
     parent[k] = p;
     firstDescendant[p] = std::min(firstDescendant[p], firstDescendant[k]);
     subtreeSize[p] += subtreeSize[k];
-    values[p] += values[k];
+    subtreeValues[p] += subtreeValues[k];
   }
   // Postorder: every subtree is the contiguous range [firstDescendant, k].
   for (LO k = 0; k < ns; ++k)
-    if (subtreeSize[k] != k - firstDescendant[k] + 1) return splits;
-  std::vector<std::vector<LO>> children(ns);
-  std::vector<LO> roots;
-  for (LO k = 0; k < ns; ++k) (parent[k] < 0 ? roots : children[parent[k]]).push_back(k);
-  long long total = 0;
-  for (LO root : roots) total += values[root];
+    if (subtreeSize[k] != k - firstDescendant[k] + 1) return tree;
+  tree.children.resize(ns);
+  for (LO k = 0; k < ns; ++k) (parent[k] < 0 ? tree.roots : tree.children[parent[k]]).push_back(k);
+  tree.parent = std::move(parent);
+  tree.firstDescendant = std::move(firstDescendant);
+  tree.values = std::move(values);
+  tree.subtreeValues = std::move(subtreeValues);
+  return tree;
+}
 
+std::vector<std::vector<LO>> PackedFactor::greedyStates(const SupernodeTree& tree, std::vector<LO> start,
+                                                        int maxCount, int maxSteps) {
+  std::vector<std::vector<LO>> states;
   auto record = [&](std::vector<LO> chosen) {
     std::sort(chosen.begin(), chosen.end());
-    TreeSplit split;
-    split.totalValues = total;
-    for (LO root : chosen) {
-      split.first.push_back(firstDescendant[root]);
-      split.last.push_back(root + 1);
-      split.values.push_back(values[root]);
-    }
-    splits.push_back(std::move(split));
+    states.push_back(std::move(chosen));
   };
-  std::vector<LO> chosen = roots;
+  std::vector<LO> chosen = std::move(start);
   record(chosen);
-  for (int guard = 0; guard < ns && static_cast<int>(chosen.size()) < maxCount; ++guard) {
+  for (int step = 0; step < maxSteps && static_cast<int>(chosen.size()) < maxCount; ++step) {
     auto largest = chosen.end();
     for (auto it = chosen.begin(); it != chosen.end(); ++it)
-      if (!children[*it].empty() && (largest == chosen.end() || values[*it] > values[*largest])) largest = it;
+      if (!tree.children[*it].empty() &&
+          (largest == chosen.end() || tree.subtreeValues[*it] > tree.subtreeValues[*largest]))
+        largest = it;
     if (largest == chosen.end()) break;
     const LO k = *largest;
     chosen.erase(largest);
-    chosen.insert(chosen.end(), children[k].begin(), children[k].end());
+    chosen.insert(chosen.end(), tree.children[k].begin(), tree.children[k].end());
     record(chosen);
   }
+  return states;
+}
+
+std::vector<PackedFactor::TreeSplit> PackedFactor::greedySplits(int maxCount) const {
+  const SupernodeTree tree = supernodeTree();
+  std::vector<TreeSplit> splits;
+  if (tree.empty()) return splits;
+  long long total = 0;
+  for (LO root : tree.roots) total += tree.subtreeValues[root];
+  for (const auto& roots : greedyStates(tree, tree.roots, maxCount, numSupernodes())) {
+    TreeSplit split;
+    split.totalValues = total;
+    for (LO root : roots) {
+      split.first.push_back(tree.firstDescendant[root]);
+      split.last.push_back(root + 1);
+      split.values.push_back(tree.subtreeValues[root]);
+    }
+    splits.push_back(std::move(split));
+  }
   return splits;
+}
+
+std::vector<LO> PackedFactor::topUpdateRows(LO first, LO last, LO columnEnd) const {
+  std::vector<LO> out;
+  for (LO k = first; k < last; ++k) {
+    const Supernode& s = supernodes_[k];
+    const LO* rows = rows_.data() + s.rowOffset;
+    out.insert(out.end(), std::lower_bound(rows, rows + s.numPanelRows, columnEnd), rows + s.numPanelRows);
+  }
+  return out;
 }
 
 long long PackedFactor::topUpdateCount(LO first, LO last, LO columnEnd) const {

@@ -955,7 +955,8 @@ void TotalFeti::factorizeCoarse() const {
   GGt = fem::CsrMatrix{};  // the ranks > 0: not needed past the assembly
   // Collective: the subtrees of its elimination tree to the ranks that will solve them.
   distributedCoarse_ = DistributedCoarseSolve::create(rawComm(*comm_), coarse_.get(), distributedCoarseFromValues());
-  profile_.coarseRankSubtrees = distributedCoarse_ ? distributedCoarse_->numSubtrees() : 0;
+  profile_.coarseRankSubtrees = distributedCoarse_ ? distributedCoarse_->numLeaves() : 0;
+  profile_.coarseSplitDepth = distributedCoarse_ ? distributedCoarse_->depth() : 0;
   profile_.coarseValuesPerSolve =
       distributedCoarse_ ? distributedCoarse_->valuesOnThisRank() : (coarse_ ? coarse_->factorNonzeros() : 0);
   coarseFactored_ = true;

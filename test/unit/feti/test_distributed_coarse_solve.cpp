@@ -49,7 +49,7 @@ TEST(DistributedCoarseSolve, givesTheSerialSolveBitsOnEveryRank) {
       continue;
     }
     ASSERT_NE(spread, nullptr) << "m = " << m;
-    EXPECT_GE(spread->numSubtrees(), 2);
+    EXPECT_GE(spread->numLeaves(), 2);
     EXPECT_LT(spread->valuesOnThisRank(), factor->factorNonzeros());
     for (int threads : {1, 2}) {
       core::setNumThreads(threads);

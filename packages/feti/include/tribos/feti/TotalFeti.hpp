@@ -67,8 +67,9 @@ struct OperatorProfile {
   double coarseFactorSeconds = 0.0;    ///< assembly + factorisation of G G^T
   long long coarseFactorNonzeros = 0;  ///< stored entries of the factor of G G^T
   int coarseSubtrees = 0;  ///< subtrees its solves run concurrently (0: serial solves)
-  /// Subtrees of its solves spread over the ranks (0: solved on rank 0 and broadcast).
-  int coarseRankSubtrees = 0;
+  /// Leaves (subtrees solved by one rank) of its solves spread over the ranks (0: solved on
+  /// rank 0 and broadcast), and the splits from the whole factor to the deepest leaf.
+  int coarseRankSubtrees = 0, coarseSplitDepth = 0;
   /// Stored values of the coarse factor that this rank reads per solve (rank 0: the whole
   /// factor, or with coarseRankSubtrees its subtrees and the top).
   long long coarseValuesPerSolve = 0;
