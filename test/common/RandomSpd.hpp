@@ -1,9 +1,10 @@
 #pragma once
-// Test helper: random SPD matrices with the sparsity of 3D elasticity (the factorisation and
-// coarse-solve tests).
+// Test helpers: random SPD matrices with the sparsity of 3D elasticity and random vectors (the
+// factorisation and coarse-solve tests).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <random>
 #include <vector>
 
 #include "tribos/fem/SubdomainSystem.hpp"
@@ -54,6 +55,15 @@ inline fem::CsrMatrix randomSpd(int m, double shift, unsigned seed) {
           A.rowPtr.push_back(static_cast<LO>(A.colInd.size()));
         }
   return A;
+}
+
+/// n values uniform in [-1, 1] from a seeded Mersenne twister.
+inline std::vector<double> randomVector(size_t n, unsigned seed) {
+  std::mt19937 gen(seed);
+  std::uniform_real_distribution<double> dist(-1.0, 1.0);
+  std::vector<double> v(n);
+  for (double& x : v) x = dist(gen);
+  return v;
 }
 
 }  // namespace tribos::test

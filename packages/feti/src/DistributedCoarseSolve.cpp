@@ -226,13 +226,13 @@ std::unique_ptr<DistributedCoarseSolve> DistributedCoarseSolve::create(MPI_Comm 
     t.updates = plan[at + 8];
     solve->tasks_.push_back(t);
   }
-  solve->buildSplits(factor);
+  solve->buildSplits();
   solve->receiveParts(factor);
   solve->planBuffers();
   return solve;
 }
 
-void DistributedCoarseSolve::buildSplits(const PackedFactor* /*whole*/) {
+void DistributedCoarseSolve::buildSplits() {
   // The chain of splits that hold this rank, from the whole factor down, each with a
   // communicator over its ranks (split from its parent's: every rank of the parent calls
   // MPI_Comm_split once for it).

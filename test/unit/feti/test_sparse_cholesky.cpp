@@ -19,16 +19,9 @@
 
 using namespace tribos;
 using test::randomSpd;
+using test::randomVector;
 
 namespace {
-
-std::vector<double> randomVector(size_t n, unsigned seed) {
-  std::mt19937 gen(seed);
-  std::uniform_real_distribution<double> dist(-1.0, 1.0);
-  std::vector<double> v(n);
-  for (double& x : v) x = dist(gen);
-  return v;
-}
 
 double norm(const double* v, size_t n) {
   double s = 0.0;

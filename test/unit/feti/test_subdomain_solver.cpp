@@ -7,6 +7,7 @@
 #include <random>
 #include <string>
 
+#include "RandomSpd.hpp"
 #include "tribos/core/Errors.hpp"
 #include "tribos/core/Parallel.hpp"
 #include "tribos/feti/SparseCholesky.hpp"
@@ -15,6 +16,7 @@
 #include "tribos/mesh/TwoBricks.hpp"
 
 using namespace tribos;
+using test::randomVector;
 
 namespace {
 struct Floating {
@@ -30,14 +32,6 @@ Floating floatingSubdomain(int hOverH, int s = 0) {
   f.system = fem::assembleSubdomain(mesh, d.subdomains[s], {{2.792e4, 2.593e4}, {6.360e4, 8.301e4}}, {});
   for (LO n : d.subdomains[s].nodes) f.coords.push_back(mesh.coords[n]);
   return f;
-}
-
-std::vector<double> randomVector(size_t n, unsigned seed) {
-  std::mt19937 gen(seed);
-  std::uniform_real_distribution<double> dist(-1.0, 1.0);
-  std::vector<double> v(n);
-  for (double& x : v) x = dist(gen);
-  return v;
 }
 
 double norm(const std::vector<double>& v) {

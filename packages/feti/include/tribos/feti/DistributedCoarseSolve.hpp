@@ -88,7 +88,7 @@ class DistributedCoarseSolve {
     mutable std::vector<double> gathered, send, top;
   };
   DistributedCoarseSolve() = default;
-  void buildSplits(const PackedFactor* whole);
+  void buildSplits();
   void receiveParts(const PackedFactor* whole);
   void planBuffers();
   /// The supernode index in factor_ of supernode k of the whole factor.
