@@ -16,7 +16,9 @@
 # Speed-up: against the cell's first layout (list 1 first for speed-ups over one core).
 # Table columns: subdomains, n (primal dofs), ranks x threads, outer iterations, F
 # applications, total and solve seconds, speed-up (total, solve), ms per F application,
-# µs per F application per 1 000 dofs, peak memory per rank (largest, mean; MiB), exit status.
+# µs per F application per 1 000 dofs, milliseconds per coarse solve with the leaves and depth
+# of its spread over the ranks (DistributedCoarseSolve; 0, 0: on rank 0 alone), peak memory per
+# rank (largest, mean; MiB), exit status.
 set -uo pipefail
 cd "${SOURCE_DIR:-$(dirname "$0")/../..}"
 python=${PYTHON:-python3}
@@ -31,13 +33,14 @@ for path in sorted(glob.glob(os.path.join(sys.argv[1], "*.json"))):
 rows.sort(key=lambda j: (j["run"]["order"]))
 first = {}
 print("| cell | subdomains | n | ranks x threads | outer | F appl. | total s | solve s | speed-up total | "
-      "speed-up solve | ms / F | µs / F / 1000 dofs | max RSS per rank MiB (max / mean) | exit |")
-print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+      "speed-up solve | ms / F | µs / F / 1000 dofs | coarse solve ms (leaves, depth) | "
+      "max RSS per rank MiB (max / mean) | exit |")
+print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
 for j in rows:
     r = j["run"]
     cell = f'{r["cell"]}, H/h={r["h"]}'
     if "times" not in j or "n_primal" not in j:
-        print(f'| {cell} | | | {r["ranks"]} x {r["threads"]} | | | | | | | | | | {r["status"]} (wall {r["wall_s"]:.0f} s) |')
+        print(f'| {cell} | | | {r["ranks"]} x {r["threads"]} | | | | | | | | | | | {r["status"]} (wall {r["wall_s"]:.0f} s) |')
         continue
     f = j.get("f_applications", j.get("pfp_applications", 0)) or 0
     total, solve = j["times"]["total_s"], j["times"].get("solve_s", 0.0)
@@ -45,10 +48,14 @@ for j in rows:
     rss = [kb / 1024 for kb in j.get("max_rss_per_rank_kb", [])]
     rss_text = f"{max(rss):.0f} / {sum(rss) / len(rss):.0f}" if rss else "n/a"
     per_f = solve / f if f else float("nan")
+    p = j.get("operator_profile", {})
+    solves = p.get("coarse_solves", 0)
+    coarse = (f'{1e3 * p["coarse_solve_s"] / solves:.3f} ({p.get("coarse_rank_subtrees", 0)}, '
+              f'{p.get("coarse_split_depth", 0)})') if solves else "n/a"
     print(f'| {cell} | {j["n_subdomains"]} | {j["n_primal"]} | {r["ranks"]} x {r["threads"]} | '
           f'{j.get("outer_iterations", "")} | {f} | {total:.2f} | {solve:.2f} | {base[0] / total:.2f} | '
           f'{(base[1] / solve) if solve else float("nan"):.2f} | {1e3 * per_f:.2f} | '
-          f'{1e6 * per_f / (j["n_primal"] / 1000):.1f} | {rss_text} | {r["status"]} |')
+          f'{1e6 * per_f / (j["n_primal"] / 1000):.1f} | {coarse} | {rss_text} | {r["status"]} |')
 PY
 }
 
