@@ -880,25 +880,38 @@ fem::CsrMatrix TotalFeti::assembleCoarse(const std::vector<char>* ownedRowMask) 
   // (G G^T)_{st} = sum over rows r touching both s and t of g_{s,r} g_{t,r}^T: 6x6 blocks
   // for subdomains that share a row of B (buildCoarsePattern; with a mask the same pattern,
   // the blocks of the rows left out stay zero). Each rank adds the products of its owned
-  // rows into the replicated value array, in row order, and one all-reduce sums the ranks'
-  // parts.
+  // rows into the blocks they touch, in row order; rank 0 adds every rank's blocks into the
+  // whole pattern and builds the matrix, which only it factorises. No rank but 0 holds an
+  // array the size of the pattern (at 4 000 subdomains 62 MB of slots and a 47 MB matrix,
+  // which were the transient peak of every rank on 16 ranks, doc/scalability.md).
   auto counted = [&](LO ownedRow) { return !ownedRowMask || (*ownedRowMask)[ownedRow]; };
   const std::vector<LO>& blockStart = coarseBlockStart_;
   auto blockOf = [&](int s, int t) {
     const auto first = coarseNeighbours_.begin() + blockStart[s], last = coarseNeighbours_.begin() + blockStart[s + 1];
     return blockStart[s] + static_cast<LO>(std::lower_bound(first, last, t) - first);
   };
+  const CoarseRows& G = *G_;
+  std::vector<LO> touched;  // the blocks of this rank's counted rows, ascending
+  for (LO r = 0; r < G.numRows; ++r) {
+    if (!counted(r)) continue;
+    for (LO e = G.rowStart[r]; e < G.rowStart[r + 1]; ++e)
+      for (LO f = G.rowStart[r]; f < G.rowStart[r + 1]; ++f) touched.push_back(blockOf(G.rowSubdomain[e], G.rowSubdomain[f]));
+  }
+  std::sort(touched.begin(), touched.end());
+  touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
 
   // Reproducible sums (core::SumBins): the rows of a block are owned by different ranks on
-  // different layouts. |g_s[a] g_t[c]| <= gMax^2; at most one term per row of B.
+  // different layouts. |g_s[a] g_t[c]| <= gMax^2; at most one term per row of B. The slots
+  // hold exact sums, so rank 0 may add the ranks' slots in any order.
   const core::SumBins bins(gMax_ * gMax_, static_cast<long long>(B_.numRows));
-  std::vector<double> local(kSlots * 36 * static_cast<size_t>(blockStart.back()), 0.0);
-  const CoarseRows& G = *G_;
+  constexpr size_t kBlock = kSlots * 36;
+  std::vector<double> local(kBlock * touched.size(), 0.0);
   for (LO r = 0; r < G.numRows; ++r) {
     if (!counted(r)) continue;
     for (LO e = G.rowStart[r]; e < G.rowStart[r + 1]; ++e)
       for (LO f = G.rowStart[r]; f < G.rowStart[r + 1]; ++f) {
-        double* block = &local[kSlots * 36 * static_cast<size_t>(blockOf(G.rowSubdomain[e], G.rowSubdomain[f]))];
+        const LO k = blockOf(G.rowSubdomain[e], G.rowSubdomain[f]);
+        double* block = &local[kBlock * static_cast<size_t>(std::lower_bound(touched.begin(), touched.end(), k) - touched.begin())];
         double gs[6], gt[6];
         G.rowG(e, gs);
         G.rowG(f, gt);
@@ -906,32 +919,77 @@ fem::CsrMatrix TotalFeti::assembleCoarse(const std::vector<char>* ownedRowMask) 
           for (int c = 0; c < 6; ++c) bins.deposit(gs[a] * gt[c], block + kSlots * (a * 6 + c));
       }
   }
-  core::allReduceSlots(comm_.get(), local);
+  std::vector<double> slots;  // rank 0: the whole pattern's
+  addBlocksOnRoot(touched, local, slots);
+  fem::CsrMatrix GGt;
+  if (comm_->getRank() != 0) return GGt;
 
   // Each value combined from its slots straight into the matrix (no array of the blocks in
-  // between: this replicated transient is the size of G G^T's pattern).
-  fem::CsrMatrix GGt;
+  // between).
   GGt.n = numCoarse();
   GGt.rowPtr.assign(GGt.n + 1, 0);
-  GGt.colInd.reserve(local.size() / kSlots);
-  GGt.values.reserve(local.size() / kSlots);
+  GGt.colInd.reserve(slots.size() / kSlots);
+  GGt.values.reserve(slots.size() / kSlots);
   for (int s = 0; s < numSubdomains_; ++s)
     for (int a = 0; a < 6; ++a) {
       for (LO k = blockStart[s]; k < blockStart[s + 1]; ++k)
         for (int c = 0; c < 6; ++c) {
           GGt.colInd.push_back(6 * coarseNeighbours_[k] + c);
-          GGt.values.push_back(core::SumBins::combine(&local[kSlots * (36 * static_cast<size_t>(k) + a * 6 + c)]));
+          GGt.values.push_back(core::SumBins::combine(&slots[kSlots * (36 * static_cast<size_t>(k) + a * 6 + c)]));
         }
       GGt.rowPtr[6 * s + a + 1] = static_cast<LO>(GGt.colInd.size());
     }
   return GGt;
 }
 
+void TotalFeti::addBlocksOnRoot(const std::vector<LO>& blocks, std::vector<double>& values,
+                                std::vector<double>& sum) const {
+  // Rank 0 receives the ranks' blocks one rank at a time (its transient: one rank's share, not
+  // all of them at once) and adds them to its own.
+  constexpr size_t kBlock = kSlots * 36;
+  auto add = [&](const LO* which, size_t count, const double* v) {
+    for (size_t i = 0; i < count; ++i)
+      for (size_t j = 0; j < kBlock; ++j) sum[kBlock * static_cast<size_t>(which[i]) + j] += v[kBlock * i + j];
+  };
+  const int rank = comm_->getRank(), size = comm_->getSize();
+  if (rank == 0) {
+    sum.assign(kBlock * static_cast<size_t>(coarseBlockStart_.back()), 0.0);
+    add(blocks.data(), blocks.size(), values.data());
+    std::vector<double>().swap(values);
+  }
+  if (size == 1) return;
+  const MPI_Comm raw = rawComm(*comm_);
+  if (rank != 0) {
+    int count = static_cast<int>(blocks.size());
+    MPI_Send(&count, 1, MPI_INT, 0, 0, raw);
+    MPI_Send(blocks.data(), count, MPI_INT, 0, 1, raw);
+    // Block by block bounds the int count of one message (kBlock doubles each).
+    for (int i = 0; i < count; i += 1 << 20) {
+      const int n = std::min(count - i, 1 << 20);
+      MPI_Send(values.data() + kBlock * static_cast<size_t>(i), n * static_cast<int>(kBlock), MPI_DOUBLE, 0, 2, raw);
+    }
+    return;
+  }
+  std::vector<LO> theirs;
+  std::vector<double> theirValues;
+  for (int from = 1; from < size; ++from) {
+    int count = 0;
+    MPI_Recv(&count, 1, MPI_INT, from, 0, raw, MPI_STATUS_IGNORE);
+    theirs.resize(static_cast<size_t>(count));
+    theirValues.resize(kBlock * static_cast<size_t>(count));
+    MPI_Recv(theirs.data(), count, MPI_INT, from, 1, raw, MPI_STATUS_IGNORE);
+    for (int i = 0; i < count; i += 1 << 20) {
+      const int n = std::min(count - i, 1 << 20);
+      MPI_Recv(theirValues.data() + kBlock * static_cast<size_t>(i), n * static_cast<int>(kBlock), MPI_DOUBLE, from, 2,
+               raw, MPI_STATUS_IGNORE);
+    }
+    add(theirs.data(), theirs.size(), theirValues.data());
+  }
+}
+
 void TotalFeti::factorizeCoarse() const {
-  // G G^T is assembled on every rank (one all-reduce of its reproducible slots) and
-  // factorised on rank 0 alone (onRootThenBroadcast): its assembled matrix lives only as
-  // long as the factorisation (the largest replicated items at thousands of subdomains,
-  // doc/scalability.md).
+  // G G^T is assembled on rank 0 from every rank's blocks and factorised there
+  // (onRootThenBroadcast): its assembled matrix lives only as long as the factorisation.
   core::Stopwatch watch;
   fem::CsrMatrix GGt = assembleCoarse(nullptr);
   std::vector<double> nothing;
@@ -952,7 +1010,6 @@ void TotalFeti::factorizeCoarse() const {
         profile_.coarseSubtrees = coarse_->subtreeCount();
       },
       [](const std::string& message) { throw core::InputError(message); });
-  GGt = fem::CsrMatrix{};  // the ranks > 0: not needed past the assembly
   // Collective: the subtrees of its elimination tree to the ranks that will solve them.
   distributedCoarse_ = DistributedCoarseSolve::create(rawComm(*comm_), coarse_.get(), distributedCoarseFromValues());
   profile_.coarseRankSubtrees = distributedCoarse_ ? distributedCoarse_->numLeaves() : 0;
@@ -1016,7 +1073,7 @@ std::vector<double> TotalFeti::rigidBodyCoefficients(const DualVector& lambda,
   }
   std::vector<double> alpha;
   applyG(residual, alpha);
-  // Assembled on every rank, factorised and solved on rank 0 (as G G^T: onRootThenBroadcast).
+  // Assembled, factorised and solved on rank 0 (as G G^T: onRootThenBroadcast).
   fem::CsrMatrix GiGit = assembleCoarse(&ownedRowMask);
   onRootThenBroadcast(
       alpha,

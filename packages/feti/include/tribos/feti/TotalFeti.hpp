@@ -210,9 +210,12 @@ class TotalFeti {
   Teuchos::RCP<DualVector> entrySource_, entryTarget_;
   Teuchos::RCP<const Tpetra::Import<LO, GO>> entryImport_;
   std::vector<LO> entrySourceFirst_;
-  /// G_I G_I^T over the owned rows with mask != 0, summed over the ranks (no mask: G G^T),
-  /// replicated on every rank, on the pattern of G G^T.
+  /// G_I G_I^T over the owned rows with mask != 0, summed over the ranks (no mask: G G^T), on
+  /// the pattern of G G^T, on rank 0 (the other ranks get an empty matrix). Collective.
   fem::CsrMatrix assembleCoarse(const std::vector<char>* ownedRowMask) const;
+  /// Rank 0: sum = the whole pattern's slots, every rank's `values` (their `blocks`, kSlots x 36
+  /// each) added in; rank 0's own values are released. Collective.
+  void addBlocksOnRoot(const std::vector<LO>& blocks, std::vector<double>& values, std::vector<double>& sum) const;
   /// The block pattern of G G^T from the owned rows of G and one all-gather of their
   /// subdomain pairs (no rank reads the blocks of B of subdomains it does not own).
   void buildCoarsePattern();
