@@ -11,6 +11,7 @@
 #include <mpi.h>
 
 #include <Tpetra_Core.hpp>
+#include <Teuchos_DefaultMpiComm.hpp>
 #include <Teuchos_ParameterList.hpp>
 
 #include <sys/resource.h>
@@ -315,7 +316,10 @@ int run(int argc, char** argv, int rank) {
       feti::buildConstraintMatrix(scene.mesh, scene.decomposition, stack::constraintSpec(scene), numRanks);
   // Before any solve: every rigid motion of every body must meet a row of B (exit 2 naming
   // the body and its free motions otherwise).
-  feti::requireRestrainedBodies(scene.mesh, scene.decomposition, B);
+  {
+    const Teuchos::MpiComm<int> world(MPI_COMM_WORLD);
+    feti::requireRestrainedBodies(scene.mesh, scene.decomposition, B, &world);
+  }
   const double constraintSeconds = constraintWatch.seconds();
   const double setupSeconds = setup.seconds();
 

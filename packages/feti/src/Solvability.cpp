@@ -7,7 +7,10 @@
 #include <stdexcept>
 #include <utility>
 
+#include <Teuchos_CommHelpers.hpp>
+
 #include "tribos/core/Errors.hpp"
+#include "tribos/core/ReproducibleSum.hpp"
 
 namespace tribos::feti {
 
@@ -83,15 +86,25 @@ struct RowPart {
   std::array<double, kModes> c;
 };
 
-/// Every (row, body) part of C, summed over the blocks: a row touches a few subdomains,
-/// possibly of different bodies (contact), and only the sum over its copies is the row.
+/// Every (row, body) part of C for the rows [firstRow, endRow), summed over the blocks: a row
+/// touches a few subdomains, possibly of different bodies (contact), and only the sum over its
+/// copies is the row. The parts are stored once (counted first, no growth by doubling): at
+/// 4 000 subdomains every rank held ~100 MB here, the largest item of its set-up
+/// (doc/scalability.md); now a rank holds the parts of its own rows.
 std::vector<RowPart> rowsOfC(const mesh::Mesh& mesh, const mesh::Decomposition& decomposition,
-                             const ConstraintMatrix& B, const std::vector<BodyFrame>& frames) {
+                             const ConstraintMatrix& B, const std::vector<BodyFrame>& frames, GO firstRow,
+                             GO endRow) {
+  auto mine = [&](GO row) { return row >= firstRow && row < endRow; };
+  size_t count = 0;
+  for (int s = 0; s < decomposition.numSubdomains(); ++s)
+    for (GO row : B.blocks[s].rows) count += mine(row) ? 1 : 0;
   std::vector<RowPart> parts;
+  parts.reserve(count);
   for (int s = 0; s < decomposition.numSubdomains(); ++s) {
     const auto& sub = decomposition.subdomains[s];
     const auto& block = B.blocks[s];
     for (size_t i = 0; i < block.rows.size(); ++i) {
+      if (!mine(block.rows[i])) continue;
       RowPart part{block.rows[i], sub.body, {}};
       for (LO k = block.rowPtr[i]; k < block.rowPtr[i + 1]; ++k) {
         const auto& x = mesh.coords[sub.nodes[block.dof[k] / 3]];
@@ -101,25 +114,46 @@ std::vector<RowPart> rowsOfC(const mesh::Mesh& mesh, const mesh::Decomposition& 
       parts.push_back(part);
     }
   }
-  // Merge the parts of the same (row, body).
-  std::sort(parts.begin(), parts.end(),
-            [](const RowPart& a, const RowPart& b) { return a.row != b.row ? a.row < b.row : a.body < b.body; });
-  std::vector<RowPart> merged;
-  for (const RowPart& p : parts)
-    if (!merged.empty() && merged.back().row == p.row && merged.back().body == p.body)
-      for (int j = 0; j < kModes; ++j) merged.back().c[j] += p.c[j];
+  // Merge the parts of the same (row, body), in subdomain order (a stable sort: the sums do
+  // not depend on which rank does them).
+  std::stable_sort(parts.begin(), parts.end(),
+                   [](const RowPart& a, const RowPart& b) { return a.row != b.row ? a.row < b.row : a.body < b.body; });
+  size_t kept = 0;
+  for (size_t i = 0; i < parts.size(); ++i)
+    if (kept > 0 && parts[kept - 1].row == parts[i].row && parts[kept - 1].body == parts[i].body)
+      for (int j = 0; j < kModes; ++j) parts[kept - 1].c[j] += parts[i].c[j];
     else
-      merged.push_back(p);
-  return merged;
+      parts[kept++] = parts[i];
+  parts.resize(kept);
+  return parts;
 }
 
-/// C^T C (dense, n = 6 * bodies, row-major), summing c_r c_r^T row by row; `parts` is
-/// sorted by row, so the parts of one row are consecutive. Every kind of row is included:
+/// C^T C (dense, n = 6 * bodies, row-major), summing c_r c_r^T row by row over the rows of
+/// every rank (`parts` sorted by row, so the parts of one row are consecutive) with
+/// reproducible sums: the same bits on any number of ranks. Every kind of row is included:
 /// gluing rows vanish on the rigid motions of one body (up to round-off), and where two
 /// blocks share nodes they are what ties the blocks' motions together.
-std::vector<double> gramMatrix(const std::vector<RowPart>& parts, int numBodies) {
+std::vector<double> gramMatrix(const std::vector<RowPart>& parts, int numBodies, const Teuchos::Comm<int>* comm) {
   const int n = kModes * numBodies;
-  std::vector<double> gram(static_cast<size_t>(n) * n, 0.0);
+  // The bound and count of the reproducible sums, the same on every rank: the largest |c|
+  // (a MAX, exact) and (all parts) x (most parts of one row), integers summed exactly.
+  double largest = 0.0;
+  long long localCount = static_cast<long long>(parts.size()), perRow = 1;
+  for (size_t first = 0; first < parts.size();) {
+    size_t last = first;
+    while (last < parts.size() && parts[last].row == parts[first].row) ++last;
+    perRow = std::max(perRow, static_cast<long long>(last - first));
+    first = last;
+  }
+  for (const RowPart& p : parts)
+    for (double c : p.c) largest = std::max(largest, std::abs(c));
+  largest = core::globalMax(comm, largest);
+  const double maxPerRow = core::globalMax(comm, static_cast<double>(perRow));
+  long long allParts = localCount;
+  if (comm && comm->getSize() > 1) Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, 1, &localCount, &allParts);
+  const core::SumBins bins(largest * largest, std::max(1LL, allParts * static_cast<long long>(maxPerRow)));
+  constexpr int kSlots = core::SumBins::kSlices;
+  std::vector<double> slots(static_cast<size_t>(n) * n * kSlots, 0.0);
   for (size_t first = 0; first < parts.size();) {
     size_t last = first;
     while (last < parts.size() && parts[last].row == parts[first].row) ++last;
@@ -127,17 +161,16 @@ std::vector<double> gramMatrix(const std::vector<RowPart>& parts, int numBodies)
       for (size_t b = first; b < last; ++b)
         for (int i = 0; i < kModes; ++i)
           for (int j = 0; j < kModes; ++j)
-            gram[static_cast<size_t>(kModes * parts[a].body + i) * n + kModes * parts[b].body + j] +=
-                parts[a].c[i] * parts[b].c[j];
+            bins.deposit(parts[a].c[i] * parts[b].c[j],
+                         &slots[kSlots * (static_cast<size_t>(kModes * parts[a].body + i) * n + kModes * parts[b].body + j)]);
     first = last;
   }
+  core::allReduceSlots(comm, slots);
+  std::vector<double> gram(static_cast<size_t>(n) * n);
+  for (size_t k = 0; k < gram.size(); ++k) gram[k] = core::SumBins::combine(&slots[kSlots * k]);
   return gram;
 }
 
-/// Cyclic Jacobi eigen-decomposition of a symmetric n x n matrix (row-major, destroyed):
-/// returns the eigenvalues; `vectors` gets the eigenvectors as columns (row-major n x n).
-/// n is at most a few hundred here, so O(n^3) per sweep is nothing, and Jacobi is accurate
-/// to O(eps * ||A||) for every eigenvalue, the small ones included.
 std::vector<double> symmetricEigen(std::vector<double>& A, int n, std::vector<double>& vectors) {
   vectors.assign(static_cast<size_t>(n) * n, 0.0);
   for (int i = 0; i < n; ++i) vectors[static_cast<size_t>(i) * n + i] = 1.0;
@@ -257,14 +290,24 @@ FreeMotion describe(const std::vector<double>& v, const mesh::Mesh& mesh) {
 }  // namespace
 
 std::vector<FreeMotion> freeRigidMotions(const mesh::Mesh& mesh, const mesh::Decomposition& decomposition,
-                                         const ConstraintMatrix& B) {
+                                         const ConstraintMatrix& B, const Teuchos::Comm<int>* comm) {
   if (B.blocks.size() != static_cast<size_t>(decomposition.numSubdomains()))
     throw std::invalid_argument("tribos::feti::freeRigidMotions: B has " + std::to_string(B.blocks.size()) +
                                 " subdomain blocks, the decomposition " +
                                 std::to_string(decomposition.numSubdomains()) + " subdomains");
   const int numBodies = mesh.numBlocks();
-  const auto parts = rowsOfC(mesh, decomposition, B, bodyFrames(mesh));
-  auto basis = kernelBasis(gramMatrix(parts, numBodies), kModes * numBodies);
+  // Each rank the rows it owns in B (B split for comm); without comm every row.
+  GO firstRow = 0, endRow = B.numRows;
+  if (comm) {
+    if (B.firstRowOfRank.size() != static_cast<size_t>(comm->getSize()) + 1)
+      throw std::invalid_argument("tribos::feti::freeRigidMotions: B is split for " +
+                                  std::to_string(B.firstRowOfRank.size() - 1) + " ranks, the communicator has " +
+                                  std::to_string(comm->getSize()));
+    firstRow = B.firstRowOfRank[comm->getRank()];
+    endRow = B.firstRowOfRank[comm->getRank() + 1];
+  }
+  const auto parts = rowsOfC(mesh, decomposition, B, bodyFrames(mesh), firstRow, endRow);
+  auto basis = kernelBasis(gramMatrix(parts, numBodies, comm), kModes * numBodies);
   toEchelonForm(basis);
   std::vector<FreeMotion> motions;
   for (const auto& v : basis) motions.push_back(describe(v, mesh));
@@ -272,8 +315,8 @@ std::vector<FreeMotion> freeRigidMotions(const mesh::Mesh& mesh, const mesh::Dec
 }
 
 void requireRestrainedBodies(const mesh::Mesh& mesh, const mesh::Decomposition& decomposition,
-                             const ConstraintMatrix& B) {
-  const auto motions = freeRigidMotions(mesh, decomposition, B);
+                             const ConstraintMatrix& B, const Teuchos::Comm<int>* comm) {
+  const auto motions = freeRigidMotions(mesh, decomposition, B, comm);
   if (motions.empty()) return;
   std::string message = "the constraints cannot hold every body: " + std::to_string(motions.size()) +
                         " rigid motion" + (motions.size() == 1 ? " is" : "s are") +

@@ -2,6 +2,9 @@
 // the bodies' rigid modes, on the paper's two bricks with various Dirichlet / contact sets,
 // over structured and METIS decompositions (rows that touch several subdomains).
 #include <gtest/gtest.h>
+#include <mpi.h>
+
+#include <Teuchos_DefaultMpiComm.hpp>
 
 #include <array>
 #include <cmath>
@@ -193,3 +196,24 @@ TEST(Solvability, inputErrorNamesTheBodyAndTheRemedy) {
   EXPECT_THROW(feti::freeRigidMotions(wrong.mesh, wrong.d, wrong.B), std::invalid_argument);
 }
 
+
+TEST(Solvability, eachRankItsRowsGivesTheAnswerOfAllRows) {
+  // With a communicator every rank forms the products of the rows it owns (B split for that
+  // many ranks) and the Gram matrix is summed reproducibly: every rank reports what one
+  // process with all rows reports, on the tilted sliding scene (combinations of modes whose
+  // coefficients are printed) and on a held one.
+  int size = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  const Teuchos::MpiComm<int> world(MPI_COMM_WORLD);
+  for (const auto& dec : kDecompositions) {
+    SCOPED_TRACE(trace(dec));
+    for (const auto& cs : {spec({"dirichlet_aluminium"}, true, false), spec({"dirichlet_aluminium"}, true, true)}) {
+      Built b = build(cs, dec.first, dec.second, true);
+      const auto alone = feti::freeRigidMotions(b.mesh, b.d, b.B);
+      b.B = feti::buildConstraintMatrix(b.mesh, b.d, cs, size);
+      const auto spread = feti::freeRigidMotions(b.mesh, b.d, b.B, &world);
+      ASSERT_EQ(spread.size(), alone.size());
+      for (size_t i = 0; i < alone.size(); ++i) EXPECT_EQ(spread[i].description, alone[i].description);
+    }
+  }
+}

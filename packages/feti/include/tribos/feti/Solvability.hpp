@@ -24,6 +24,11 @@
 #include "tribos/feti/ConstraintMatrix.hpp"
 #include "tribos/mesh/Decomposition.hpp"
 
+namespace Teuchos {
+template <class Ordinal>
+class Comm;
+}
+
 namespace tribos::feti {
 
 /// Rigid motions of the bodies that no row of B restrains (the kernel of B restricted to the
@@ -39,13 +44,17 @@ struct FreeMotion {
 /// The kernel of B R, R the 6 rigid modes of every body (above). Its basis is brought to
 /// reduced echelon form and ordered by body, then mode, so a kernel spanned by single modes
 /// reads as those modes.
+///
+/// With a communicator each rank forms the products of the rows it owns in B (B split for
+/// that many ranks) and the Gram matrix is summed reproducibly: every rank gets the same
+/// answer, with the same bits on any number of ranks. Collective. Null: this process, every row.
 std::vector<FreeMotion> freeRigidMotions(const mesh::Mesh& mesh, const mesh::Decomposition& decomposition,
-                                         const ConstraintMatrix& B);
+                                         const ConstraintMatrix& B, const Teuchos::Comm<int>* comm = nullptr);
 
 /// Throws core::InputError naming the bodies and their free motions if there are any; the
 /// message also says what to add: a Dirichlet condition on a node set of the body, friction,
 /// or a contact surface against a held body.
 void requireRestrainedBodies(const mesh::Mesh& mesh, const mesh::Decomposition& decomposition,
-                             const ConstraintMatrix& B);
+                             const ConstraintMatrix& B, const Teuchos::Comm<int>* comm = nullptr);
 
 }  // namespace tribos::feti
