@@ -14,7 +14,7 @@
 // the same bits as a solve alone), no allocation (the caller passes the work vector), and a
 // fixed order of every sum (the same bits on every thread, for any number of threads).
 //
-// A factor solved alone (G G^T, replicated on every rank) may also split its elimination tree
+// A factor solved alone (G G^T, on rank 0) may also split its elimination tree
 // into independent subtrees (planSubtrees, PackedFactorSubtrees.cpp) whose substitutions run
 // on the threads of core::forEachSubdomain: bandwidth-bound, one thread reads about half of
 // what two can (doc/coarse_problem.md).
@@ -39,7 +39,7 @@ class PackedFactor {
   /// below the diagonal, `rowIndices` panel rows and `numSupernodes` supernodes in all. A
   /// builder that knows them (CHOLMOD's factor does) avoids the vectors' doubling growth,
   /// which held up to three times the factor's values while one was copied and left up to
-  /// twice in the stored factor (doc/scalability.md, the replicated G G^T).
+  /// twice in the stored factor (doc/scalability.md, G G^T when it was replicated).
   void reserve(long long strictLowerValues, long long rowIndices, LO numSupernodes, LO numColumns);
   /// For a builder that packs the values in place, in an array of its own: a supernode whose
   /// values it has already laid out (triangle and panel as above, at these offsets into that

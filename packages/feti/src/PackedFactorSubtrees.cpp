@@ -1,5 +1,5 @@
 // PackedFactor's split of the elimination tree into independent subtrees (planSubtrees):
-// the triangular solves of a large replicated factor (G G^T) on the threads of
+// the triangular solves of a large factor solved alone (G G^T on rank 0) on the threads of
 // core::forEachSubdomain, with the same bits for any number of threads.
 //
 // In postorder a subtree is a contiguous range of supernodes, and its columns a contiguous

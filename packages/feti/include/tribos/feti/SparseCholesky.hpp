@@ -48,7 +48,7 @@ class SparseCholesky {
   /// substitutions): the numerator of the bandwidth bound of doc/performance.md.
   virtual long long solveBytes() const = 0;
   virtual std::string name() const = 0;
-  /// For a factor solved alone on the main thread (G G^T, replicated): set before
+  /// For a factor solved alone on the main thread (G G^T on rank 0): set before
   /// factorize(), lets its solves run the independent subtrees of the elimination tree on
   /// the threads of core::forEachSubdomain when the factor is large enough to pay
   /// (doc/coarse_problem.md). The solves then give the same bits for any number of threads,

@@ -11,8 +11,9 @@
 /// application of F imports lambda to the rows that touch this rank's subdomains, applies
 /// B_s K_s^dagger B_s^T per subdomain on threads, and export-adds the result. Coarse
 /// vectors (length l = 6 x subdomains) are replicated on every rank; G G^T is assembled and
-/// factorised on every rank (it is small and sparse), so the coarse solve needs no
-/// communication beyond one all-reduce of G lambda. G itself is stored once, on the rows each
+/// factorised on rank 0, and its solves run there (small factors) or over the ranks, each
+/// rank solving subtrees of its elimination tree (DistributedCoarseSolve.hpp); either way
+/// with the serial solve's bits. G itself is stored once, on the rows each
 /// rank owns (g_{s,r} = R_s^T b_{s,r}^T per row r and subdomain s it touches, in the compact
 /// geometric form of CoarseRows: 16 bytes per entry), so the projector reads no R_s, no
 /// n_s-sized vector and moves no dual vector between ranks.
