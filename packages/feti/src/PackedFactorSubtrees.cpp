@@ -1,6 +1,8 @@
-// PackedFactor's split of the elimination tree into independent subtrees (planSubtrees):
-// the triangular solves of a large factor solved alone (G G^T on rank 0) on the threads of
-// core::forEachSubdomain, with the same bits for any number of threads.
+// PackedFactor's elimination tree (supernodeTree, greedyStates) and its split into independent
+// subtrees (planSubtrees): the triangular solves of a large factor solved alone (G G^T on
+// rank 0) on the threads of core::forEachSubdomain, with the same bits for any number of
+// threads. Also the parts of the factor that DistributedCoarseSolve sends to other ranks
+// (serialize, deserialize).
 //
 // In postorder a subtree is a contiguous range of supernodes, and its columns a contiguous
 // range of columns; its panel rows are either its own columns or columns of its ancestors,
