@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "EqualityNorm.hpp"
+#include "MultiplierRelaxation.hpp"
 #include "TimedOperators.hpp"
 #include "tribos/qp/Reductions.hpp"
 
@@ -133,9 +134,11 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
   double M = s.M0 * counters.normA;
   const double eta = s.eta * normC, eps = s.tolerance * normC;
   PenalisedOperator Arho(A, rawQ, rho, map, inside);
-  Vector betaT(map), b(map), g(map), Qmu(map);  // betaT = G^T beta (the multiplier as a dual vector)
+  Vector betaT(map), b(map), g(map), Qmu(map), previousQmu(map);  // betaT = G^T beta (the multiplier as a dual vector)
   betaT.putScalar(0.0);
   double previousL = 0.0, previousGmu = 0.0;
+  MultiplierRelaxation relaxation;
+  const bool relaxed = s.multiplierStep == "Relaxed";
   // The outer iteration in progress, the last inner ||G mu|| and the inner stopping bound,
   // for the progress of long inner solves.
   int outer = 0;
@@ -219,13 +222,21 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
     const double L = 0.5 * muGminusB;
     const bool done = smalseConverged(gp, gmu, mu);
 
-    // Step 3: beta^{k+1} = beta^k + rho G mu^k, kept as G^T beta (+= rho Q mu).
-    if (!done) betaT.update(rho, Qmu, 1.0);
+    // Step 3: beta^{k+1} = beta^k + omega rho G mu^k, kept as G^T beta (+= omega rho Q mu);
+    // omega = 1 is the paper's step, "Relaxed" takes it from the measured contraction
+    // (MultiplierRelaxation.hpp). ratio: that contraction without the relaxation, for rho.
+    double omega = 1.0, ratio = k > 0 ? gmu / previousGmu : 1.0;
+    if (relaxed && k > 0 && previousGmu > 0.0 && gmu > 0.0) {
+      omega = relaxation.next(gmu, previousGmu, dot(Qmu, previousQmu) / (gmu * previousGmu));
+      ratio = relaxation.unrelaxedRatio();
+    }
+    if (!done) betaT.update(omega * rho, Qmu, 1.0);
+    if (relaxed) previousQmu.assign(Qmu);
     // Step 4: M_{k+1} = betaM M_k when the Lagrangian did not grow enough.
     if (k > 0 && L < previousL + 0.5 * rho * gmu * gmu) M *= s.betaM;
     previousL = L;
     // Optional penalty growth when ||G mu|| decreased by less than the target ratio.
-    const double factor = k > 0 && s.rhoGrowth > 1.0 ? rhoFactor(s, gmu / previousGmu, equalityMet(gmu, mu)) : 1.0;
+    const double factor = k > 0 && s.rhoGrowth > 1.0 ? rhoFactor(s, ratio, equalityMet(gmu, mu)) : 1.0;
     if (factor > 1.0) {
       rho *= factor;
       normArho = 1.02 * std::max(counters.normA, rho);

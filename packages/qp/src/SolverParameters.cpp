@@ -63,6 +63,11 @@ const core::ParameterTable<SmalseSettings>& smalseTable() {
                "(1/r - 1), at most rho growth, while the equality test fails (the augmented-Lagrangian rate r = 1 / "
                "(1 + rho s) solved for the rho that gives t; doc/parameters.md)",
                {"Ratio", "Model"})
+          .add("multiplier step", &SmalseSettings::multiplierStep,
+               "Step 3, beta += omega rho G mu: \"Fixed\" omega = 1 (the paper's); \"Relaxed\" omega = 2 / (2 - r0) "
+               "in [1, 5/3], r0 the contraction of ||G mu|| per outer iteration that omega = 1 would give, measured "
+               "(omega = 1 while r0 <= 0.3 or G mu turns; doc/parameters.md)",
+               {"Relaxed", "Fixed"})
           .add("norm estimate steps", &SmalseSettings::normEstimateSteps,
                "cap on the Lanczos steps (products with A, counted in the PFP applications) that estimate ||A|| to 1e-4 "
                "(about 10 on Table 1; the power method needed about 25)",

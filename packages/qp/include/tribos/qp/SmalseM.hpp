@@ -56,6 +56,9 @@ struct SmalseSettings {
   /// "Ratio": rho *= rhoGrowth; "Model": rho *= min(rhoGrowth, (1/t - 1)/(1/r - 1)) for the
   /// measured ratio r and the target t, while the equality test fails (SmalseM.cpp, rhoFactor).
   std::string rhoUpdate = "Ratio";
+  /// Step 3, beta += omega rho G mu: "Fixed" omega = 1 (the paper's); "Relaxed" omega in
+  /// [1, 5/3] from the measured contraction of ||G mu|| (src/MultiplierRelaxation.hpp).
+  std::string multiplierStep = "Relaxed";
   double innerFloor = 0.1;     ///< inner solves stop at ||g^P|| <= innerFloor eps ||c|| at the latest
   /// Called on every rank after each outer iteration (after the hook, so that it sees what
   /// the hook changed; not when the hook throws); may be empty.
@@ -108,7 +111,7 @@ class SmalseM {
 
   /// The valid parameters (STYLE.md 3), a list shaped like the scene's "Solver":
   /// "Tolerance", "Max Outer Iterations", sublist "SMALSE-M" (eta, rho, initial M, beta,
-  /// equality test, rho growth, rho target ratio, rho update, norm estimate steps, inner floor) and sublist
+  /// equality test, rho growth, rho target ratio, rho update, multiplier step, norm estimate steps, inner floor) and sublist
   /// "MPGP" (step scale, Gamma, max iterations, optimal expansion), each with a doc string
   /// and its validated range. The defaults are those of SmalseSettings / MpgpSettings.
   /// Declared in src/SolverParameters.cpp (qp/SolverParameters.hpp).
