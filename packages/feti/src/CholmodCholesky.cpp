@@ -44,7 +44,7 @@ constexpr LO kSupernodalFromDofs = 4000;
 /// TRIBOS_SUBTREE_SOLVE_FROM=<values> overrides it (for those measurements).
 long long subtreeSolveFromValues() {
   if (const char* from = std::getenv("TRIBOS_SUBTREE_SOLVE_FROM")) return std::atoll(from);
-  return 1000000;
+  return 500000;
 }
 
 /// Runs f with OpenMP parallel regions disabled unless already inside an active one.
