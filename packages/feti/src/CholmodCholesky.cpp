@@ -263,6 +263,14 @@ class CholmodCholesky final : public SparseCholesky {
 
   const std::vector<LO>& permutation() const override { return packed_.permutation(); }
   void solveInPlace(double* v) const override { packed_.solvePermuted(v, work_.data()); }
+  void setSparseColumns(const std::vector<LO>& columns) override { reach_ = packed_.reach(columns); }
+  void solveInPlaceOnColumns(double* v) const override {
+    if (reach_.empty()) return solveInPlace(v);
+    packed_.solvePermutedOnReach(v, work_.data(), reach_);
+  }
+  long long solveBytesOnColumns() const override {
+    return reach_.empty() ? solveBytes() : packed_.solveBytes(reach_);
+  }
 
   LO size() const override { return n_; }
   long long factorNonzeros() const override { return packed_.storedValues(); }
@@ -276,6 +284,7 @@ class CholmodCholesky final : public SparseCholesky {
   bool subtreeSolve_ = false;
   mutable cholmod_common common_{};
   PackedFactor packed_;
+  PackedFactor::Ranges reach_;  ///< of setSparseColumns (empty: not set)
   mutable std::vector<double> work_;
   LO n_ = 0;
 };

@@ -132,8 +132,5 @@ void SubdomainSolver::applyPseudoInverse(const double* x, double* y, int nrhs) c
   }
 }
 
-long long SubdomainSolver::pseudoInverseBytes() const {
-  return factor_->solveBytes() + 2 * static_cast<long long>(sizeof(double)) * 6 * n_;
-}
 
 }  // namespace tribos::feti

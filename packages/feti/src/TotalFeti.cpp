@@ -382,6 +382,7 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
     for (LO k = 0; k < L.n(); ++k) position[perm[k]] = k;
     L.factorDof.resize(L.block->dof.size());
     for (size_t k = 0; k < L.factorDof.size(); ++k) L.factorDof[k] = position[L.block->dof[k]];
+    L.solver.setSparseDofs(L.factorDof);
     if (settings_.dirichletPreconditioner || settings_.lumpedPreconditioner)
       buildPreconditionerBlocks(L, settings_.dirichletPreconditioner, settings_.factorization);
     if (settings_.explicitF) {
@@ -806,9 +807,11 @@ void TotalFeti::measureTraffic() {
     if (settings_.explicitF) {
       f += kDouble * rows * rows;  // the dense F_s
     } else {
-      // the factor (both substitutions) and R (either side); B_s^T and B_s (values, dofs,
-      // row pointers), its dofs in the factor's order
-      f += static_cast<double>(L->solver.pseudoInverseBytes()) + 2 * (entries * (kDouble + 2 * kIndex) + rows * kIndex);
+      // the factor (forward whole, backward the part B_s's dofs reach; P F P applies K^+, not
+      // K^dagger, so R is not read); B_s^T and B_s (values, dofs, row pointers), its dofs in
+      // the factor's order
+      f += static_cast<double>(L->solver.generalizedInverseBytesOnDofs()) +
+           2 * (entries * (kDouble + 2 * kIndex) + rows * kIndex);
     }
     f += rows * (2 * kIndex + 3 * kDouble);  // overlap indices in and out; x gathered, y added
     factorEntries += static_cast<double>(L->solver.factor().factorNonzeros());
@@ -1197,12 +1200,13 @@ void TotalFeti::applyF(const DualVector& x, DualVector& y, bool removeKernel) co
       }
       return;
     }
-    // Two triangular solves in the factor's order: B_s^T scatters into it, B_s gathers from it.
+    // Two triangular solves in the factor's order: B_s^T scatters into it, B_s gathers from it
+    // (K^+ alone: the backward one over the part of the factor that B_s's dofs reach).
     applyBlockTranspose(*L.block, L.rowOrder, L.factorDof, L.in.data(), L.x.data(), L.n());
     if (removeKernel)
       L.solver.applyPseudoInversePermuted(L.x.data());
     else
-      L.solver.applyGeneralizedInversePermuted(L.x.data());
+      L.solver.applyGeneralizedInverseOnDofs(L.x.data());
     applyBlock(*L.block, L.factorDof, L.x.data(), L.out.data());
   });
   profile_.fSeconds += watch.seconds();

@@ -175,6 +175,43 @@ TEST(SparseCholesky, subtreeSolvesGiveTheSameBitsOnAnyThreadCountAndSolveTheSyst
   unsetenv("TRIBOS_SUBTREE_SOLVE_FROM");
 }
 
+// setSparseColumns / solveInPlaceOnColumns, as F uses them (the dofs of B_s: a subdomain's
+// surface): for a right-hand side that vanishes off the surface of the m^3 grid, the solution
+// on the surface has the bits of the whole solve; "CHOLMOD" reads less of the factor for it
+// (its backward substitution skips what the surface does not reach: the interior's subtrees),
+// Tacho solves whole.
+TEST_P(SparseCholeskyTest, solvesOnColumnsGiveTheWholeSolvesBitsThere) {
+  for (int m : {8, 12}) {  // simplicial and supernodal CHOLMOD factors
+    const fem::CsrMatrix A = randomSpd(m, 0.1, 21u + m);
+    auto chol = feti::makeSparseCholesky(GetParam());
+    chol->factorize(A);
+    const auto& perm = chol->permutation();
+    std::vector<LO> position(perm.size());
+    for (size_t k = 0; k < perm.size(); ++k) position[perm[k]] = static_cast<LO>(k);
+    std::vector<LO> surface;
+    for (int k = 0; k < m; ++k)
+      for (int j = 0; j < m; ++j)
+        for (int i = 0; i < m; ++i) {
+          if (std::min({i, j, k}) > 0 && std::max({i, j, k}) < m - 1) continue;
+          for (int c = 0; c < 3; ++c) surface.push_back(position[3 * (i + m * (j + m * k)) + c]);
+        }
+    chol->setSparseColumns(surface);
+    const auto values = randomVector(surface.size(), 5u + m);
+    std::vector<double> whole(perm.size(), 0.0);
+    for (size_t q = 0; q < surface.size(); ++q) whole[surface[q]] = values[q];
+    std::vector<double> onColumns = whole;
+    chol->solveInPlace(whole.data());
+    chol->solveInPlaceOnColumns(onColumns.data());
+    for (LO column : surface) EXPECT_EQ(onColumns[column], whole[column]) << "m = " << m << ", column " << column;
+    if (GetParam() == "CHOLMOD") {
+      EXPECT_LT(chol->solveBytesOnColumns(), chol->solveBytes()) << "m = " << m;
+      EXPECT_GT(chol->solveBytesOnColumns(), chol->solveBytes() / 2) << "m = " << m;  // forward whole
+    } else {
+      EXPECT_EQ(chol->solveBytesOnColumns(), chol->solveBytes());
+    }
+  }
+}
+
 TEST_P(SparseCholeskyTest, factorizeConsumingGivesTheBitsOfFactorizeAndEmptiesTheMatrix) {
   // The replicated coarse matrices are handed over (factorizeConsuming) so that the matrix,
   // the factor and its packed copy are not all alive at once (CHOLMOD: the upper triangle

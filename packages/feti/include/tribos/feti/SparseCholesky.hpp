@@ -41,6 +41,17 @@ class SparseCholesky {
   virtual const std::vector<LO>& permutation() const = 0;
   /// v := A^{-1} v for one vector in the order of permutation(); no allocation.
   virtual void solveInPlace(double* v) const = 0;
+  /// For right-hand sides that vanish outside `columns` (in the order of permutation()) and
+  /// solutions read at `columns` only (F = B_s K^+ B_s^T: the dofs of B_s): the backward
+  /// substitution of solveInPlaceOnColumns then visits only the part of the factor they reach,
+  /// with the bits solveInPlace gives there ("CHOLMOD"; others solve whole). Set once, before
+  /// the solves.
+  virtual void setSparseColumns(const std::vector<LO>& columns) { (void)columns; }
+  /// v := A^{-1} v at the columns of setSparseColumns, for v zero elsewhere on entry; v is
+  /// not meaningful elsewhere on return. No allocation.
+  virtual void solveInPlaceOnColumns(double* v) const { solveInPlace(v); }
+  /// Bytes one solveInPlaceOnColumns reads from the factor.
+  virtual long long solveBytesOnColumns() const { return solveBytes(); }
   virtual LO size() const = 0;
   /// Stored entries of the factor (for memory reports).
   virtual long long factorNonzeros() const = 0;

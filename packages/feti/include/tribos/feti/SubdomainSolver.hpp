@@ -37,9 +37,15 @@ class SubdomainSolver {
   void applyPseudoInversePermuted(double* v) const;
   /// v := K^+ v (the factor alone, Lemma 1's generalised inverse) in the same order.
   void applyGeneralizedInversePermuted(double* v) const { factor_->solveInPlace(v); }
-  /// Bytes one applyPseudoInversePermuted reads: the factor (both substitutions) and R
-  /// (once on either side of the solve).
-  long long pseudoInverseBytes() const;
+  /// The same for v that vanishes outside `dofs` (in the order of permutation()), read there
+  /// only on return: F's B_s^T scatters into B_s's dofs and B_s gathers from them. The
+  /// backward substitution then skips what those dofs do not reach
+  /// (SparseCholesky::setSparseColumns).
+  void setSparseDofs(const std::vector<LO>& dofs) { factor_->setSparseColumns(dofs); }
+  void applyGeneralizedInverseOnDofs(double* v) const { factor_->solveInPlaceOnColumns(v); }
+  /// Bytes one applyGeneralizedInverseOnDofs reads (the factor's part it visits, both
+  /// substitutions).
+  long long generalizedInverseBytesOnDofs() const { return factor_->solveBytesOnColumns(); }
 
   LO size() const { return n_; }
   const std::vector<double>& kernel() const { return R_; }  ///< n x 6 column-major, orthonormal
