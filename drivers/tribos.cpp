@@ -312,8 +312,9 @@ int run(int argc, char** argv, int rank) {
   int numRanks = 1;
   MPI_Comm_size(MPI_COMM_WORLD, &numRanks);
   core::Stopwatch constraintWatch;
+  // Only this rank's blocks of B (its subdomains, its rows), never the whole of it.
   feti::ConstraintMatrix B =
-      feti::buildConstraintMatrix(scene.mesh, scene.decomposition, stack::constraintSpec(scene), numRanks);
+      feti::buildConstraintMatrix(scene.mesh, scene.decomposition, stack::constraintSpec(scene), numRanks, rank);
   // Before any solve: every rigid motion of every body must meet a row of B (exit 2 naming
   // the body and its free motions otherwise).
   {

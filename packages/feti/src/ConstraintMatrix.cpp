@@ -125,8 +125,10 @@ Prescribed prescribedComponents(const mesh::Mesh& mesh, const ConstraintSpec& sp
 }  // namespace
 
 ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decomposition& decomposition,
-                                       const ConstraintSpec& spec, int numRanks) {
+                                       const ConstraintSpec& spec, int numRanks, int keepForRank) {
   core::requireInput(numRanks >= 1, "buildConstraintMatrix: numRanks must be >= 1, got " + std::to_string(numRanks));
+  core::requireInput(keepForRank < numRanks, "buildConstraintMatrix: keepForRank " + std::to_string(keepForRank) +
+                                                 " is not a rank of " + std::to_string(numRanks));
   const int numSubdomains = decomposition.numSubdomains();
   const LO numNodes = mesh.numNodes();
 
@@ -323,6 +325,11 @@ ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decom
   B.firstRowOfRank.assign(numRanks + 1, 0);
   B.blocks.assign(numSubdomains, SubdomainBlock{});
   for (auto& blk : B.blocks) blk.rowPtr.push_back(0);
+  // keepForRank: a row's entries in a subdomain of another rank are kept only when the row is
+  // the rank's own (keepRankRows' rule).
+  const bool keepAll = keepForRank < 0;
+  const int firstKept = keepAll ? 0 : mesh::firstSubdomain(keepForRank, numSubdomains, numRanks);
+  const int endKept = keepAll ? numSubdomains : mesh::firstSubdomain(keepForRank + 1, numSubdomains, numRanks);
   for (size_t r = 0; r < order.size(); ++r) {
     Row& row = rows[order[r]];
     B.kind[r] = row.kind;
@@ -333,8 +340,13 @@ ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decom
     // by (subdomain, dof).
     std::sort(row.entries.begin(), row.entries.end(),
               [](const Entry& a, const Entry& b) { return std::tie(a.subdomain, a.dof) < std::tie(b.subdomain, b.dof); });
+    const bool ownRow = keepAll || row.owner == keepForRank;
     for (size_t e = 0; e < row.entries.size();) {
       const int s = row.entries[e].subdomain;
+      if (!ownRow && (s < firstKept || s >= endKept)) {
+        while (e < row.entries.size() && row.entries[e].subdomain == s) ++e;
+        continue;
+      }
       SubdomainBlock& blk = B.blocks[s];
       blk.rows.push_back(static_cast<GO>(r));
       for (; e < row.entries.size() && row.entries[e].subdomain == s; ++e) {

@@ -75,6 +75,41 @@ TEST(RankRows, aRankKeepsItsBlocksAndItsOwnedRowsWhole) {
   }
 }
 
+// buildConstraintMatrix(..., keepForRank) never holds the whole B: it must give what
+// keepRankRows leaves of the whole one, block by block and entry by entry, and every other
+// member unchanged (the row data, the contact nodes, the counts).
+TEST(RankRows, buildingForARankGivesWhatKeepRankRowsLeaves) {
+  const mesh::TwoBricksSpec spec{{4, 2, 2}, 3};  // 32 subdomains
+  const auto mesh = mesh::generateTwoBricks(spec);
+  const auto d = mesh::buildDecomposition(mesh, mesh::structuredPartition(mesh, spec));
+  const int S = d.numSubdomains();
+  for (int ranks : {1, 3, 4}) {
+    const auto full = feti::buildConstraintMatrix(mesh, d, paperSpec(), ranks);
+    for (int p = 0; p < ranks; ++p) {
+      SCOPED_TRACE(std::to_string(ranks) + " ranks, rank " + std::to_string(p));
+      auto cut = full;
+      feti::keepRankRows(cut, p, mesh::firstSubdomain(p, S, ranks), mesh::firstSubdomain(p + 1, S, ranks));
+      const auto built = feti::buildConstraintMatrix(mesh, d, paperSpec(), ranks, p);
+      ASSERT_EQ(built.blocks.size(), cut.blocks.size());
+      for (int s = 0; s < S; ++s) {
+        EXPECT_EQ(built.blocks[s].rows, cut.blocks[s].rows) << "subdomain " << s;
+        EXPECT_EQ(built.blocks[s].rowPtr, cut.blocks[s].rowPtr) << "subdomain " << s;
+        EXPECT_EQ(built.blocks[s].dof, cut.blocks[s].dof) << "subdomain " << s;
+        EXPECT_EQ(built.blocks[s].value, cut.blocks[s].value) << "subdomain " << s;
+      }
+      EXPECT_EQ(built.numRows, full.numRows);
+      EXPECT_EQ(built.kind, full.kind);
+      EXPECT_EQ(built.c, full.c);
+      EXPECT_EQ(built.rowId, full.rowId);
+      EXPECT_EQ(built.firstRowOfRank, full.firstRowOfRank);
+      EXPECT_EQ(built.contact.size(), full.contact.size());
+      EXPECT_EQ(built.removedRedundantRows, full.removedRedundantRows);
+      if (ranks > 1) EXPECT_LT(nonzeros(built), nonzeros(full));
+    }
+  }
+  EXPECT_THROW(feti::buildConstraintMatrix(mesh, d, paperSpec(), 2, 2), std::exception);
+}
+
 TEST(RankRows, theRowsARankHoldsShrinkWithTheRanks) {
   // The largest share of B's entries any rank keeps, for 1, 2 and 4 ranks: it must fall
   // about as 1/ranks (each entry is kept by the owner of its subdomain, plus the entries

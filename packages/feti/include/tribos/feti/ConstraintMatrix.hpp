@@ -20,7 +20,8 @@
 ///    sides clamped, or a direction fully prescribed, e.g. t2 = the axis of a plane-strain
 ///    slice) is removed and counted. Contact rows of different slave nodes that share
 ///    master vertices are not orthogonal (B B^T != I on those rows; doc/theory.md).
-/// B is built on every rank, then cut to what the rank needs for the solve (keepRankRows); each row is owned
+/// B is built on every rank, cut to what the rank needs for the solve (keepRankRows, or
+/// buildConstraintMatrix's keepForRank while it is built); each row is owned
 /// by one rank — the owner of the lowest subdomain it touches — and rows are numbered so
 /// that the rows of rank p are the contiguous range [firstRowOfRank[p], firstRowOfRank[p+1]).
 /// Within a rank: contact triples (N, T1, T2 consecutive per contact node), then gluing,
@@ -107,8 +108,13 @@ struct ConstraintMatrix {
 
 /// Builds B and c. Throws core::InputError naming the set / node on bad input (unknown
 /// set, a component prescribed twice with different values, folded contact surfaces).
+/// With `keepForRank` >= 0 the blocks hold only what that rank needs, as after keepRankRows
+/// (its own subdomains whole, of every other subdomain the rows it owns), without the whole
+/// B ever being held (issue 11: at 4 000 subdomains the whole blocks were the largest item of
+/// a rank's set-up); every other member is the same. Enough for requireRestrainedBodies with
+/// a communicator, TotalFeti, the contact solver and the result gathering on that rank.
 ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decomposition& decomposition,
-                                       const ConstraintSpec& spec, int numRanks);
+                                       const ConstraintSpec& spec, int numRanks, int keepForRank = -1);
 
 /// Keeps of B what rank `rank` needs during the solve (issue 11): the blocks of its own
 /// subdomains [firstOwned, endOwned) whole, and of every other subdomain only the rows this
