@@ -119,8 +119,9 @@ ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decom
 /// Keeps of B what rank `rank` needs during the solve (issue 11): the blocks of its own
 /// subdomains [firstOwned, endOwned) whole, and of every other subdomain only the rows this
 /// rank owns (the entries g_{s,r} of G on its owned rows need them, TotalFeti). The row data
-/// (kind, c, rowId, contact) stays. B is then fit for TotalFeti, the contact solver and the
-/// result gathering on `rank` only, and no longer for feti::requireRestrainedBodies.
+/// (kind, c, rowId, contact) stays. B is then fit for TotalFeti, the contact solver, the
+/// result gathering and feti::requireRestrainedBodies with a communicator (each rank checks the
+/// rows it owns) on `rank` only; not for requireRestrainedBodies without one (every row).
 void keepRankRows(ConstraintMatrix& B, int rank, int firstOwned, int endOwned);
 
 }  // namespace tribos::feti
