@@ -50,14 +50,38 @@ struct Entry {
 
 /// A row before numbering. `key` gives the documented order within a rank: contact triples
 /// by slave node (group 0), then gluing by (node, component, j) (group 1), then Dirichlet
-/// by (node, copy, component) (group 2).
+/// by (node, copy, component) (group 2). Its entries are [firstEntry, firstEntry +
+/// numEntries) of one array shared by all rows (RowList): a vector per row cost ~70 bytes of
+/// its own per row, 21 MB of every rank's set-up at 4 000 subdomains (doc/scalability.md).
 struct Row {
   RowKind kind = RowKind::Gluing;
-  std::vector<Entry> entries;
+  LO numEntries = 0;
+  size_t firstEntry = 0;
   double c = 0.0;
   int owner = 0;
   std::tuple<int, LO, int, int> key;
   int contact = -1;  ///< index into the contact nodes (N rows only)
+};
+
+/// The rows and their entries. A row is open from begin() until add() takes it: its entries
+/// are the ones appended in between (drop() discards them).
+struct RowList {
+  std::vector<Row> rows;
+  std::vector<Entry> entries;
+  Row begin() const {
+    Row row;
+    row.firstEntry = entries.size();
+    return row;
+  }
+  void append(const Entry& e) { entries.push_back(e); }
+  Entry* entriesOf(const Row& row) { return entries.data() + row.firstEntry; }
+  /// The open row's entries so far (before add).
+  size_t openCount(const Row& row) const { return entries.size() - row.firstEntry; }
+  void drop(const Row& row) { entries.resize(row.firstEntry); }
+  void add(Row row) {
+    row.numEntries = static_cast<LO>(entries.size() - row.firstEntry);
+    rows.push_back(row);
+  }
 };
 
 /// t1 = `direction` projected on the plane orthogonal to `normal`, normalised; when the
@@ -151,13 +175,14 @@ ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decom
   const Prescribed prescribed = prescribedComponents(mesh, spec);
 
   // A row belongs to the rank that owns the lowest subdomain it touches (header).
-  auto ownerOf = [&](const std::vector<Entry>& entries) {
+  auto ownerOf = [&](const Entry* entries, size_t count) {
     int lowest = numSubdomains;
-    for (const auto& e : entries) lowest = std::min(lowest, e.subdomain);
+    for (size_t e = 0; e < count; ++e) lowest = std::min(lowest, entries[e].subdomain);
     return mesh::ownerRank(lowest, numSubdomains, numRanks);
   };
 
-  std::vector<Row> rows;
+  RowList list;
+  std::vector<Row>& rows = list.rows;
   ConstraintMatrix B;
 
   // (2) Contact rows, node-to-surface: slave node minus the master displacement
@@ -204,10 +229,11 @@ ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decom
         sides.push_back({masterSide.masterNodes[v], -masterSide.weights[v]});
       const Vec3* directions[3] = {&node.normal, &node.t1, &node.t2};
       const int contactIndex = static_cast<int>(B.contact.size());
+      // The node's rows are added together, their entries consecutive in the list.
       std::vector<Row> nodeRows;
       for (int d = 0; d < numDirections; ++d) {
         const Vec3& dir = *directions[d];
-        Row row;
+        Row row = list.begin();
         row.kind = static_cast<RowKind>(d);
         // Prescribed components leave the row; their known part moves to the right side.
         // (The arithmetic repeats the node-to-node rows' exactly when nothing is prescribed.)
@@ -228,11 +254,12 @@ ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decom
           for (int c = 0; c < 3; ++c) {
             if (dir[c] == 0.0 || prescribed.fixed[3 * global + c]) continue;
             for (LO j = copyPtr[global]; j < copyPtr[global + 1]; ++j)
-              row.entries.push_back({copies[j].subdomain, 3 * copies[j].localNode + c, perCopy * dir[c]});
+              list.append({copies[j].subdomain, 3 * copies[j].localNode + c, perCopy * dir[c]});
           }
         }
         // A row (almost) entirely on prescribed components is redundant: removed, counted.
         if (!(free2 > 1e-16 * full2)) {
+          list.drop(row);
           if (d == 0) break;  // no normal row: the node cannot press, its tangential rows go too
           continue;
         }
@@ -244,27 +271,33 @@ ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decom
         // the Hertz half models: 24:1 semi-axes, 20 000 proportioning steps).
         // (A slave clamped in every component keeps its rows: the master slides on a fixed
         // point, and the friction acts on the master alone.)
-        if (d > 0 && !(slaveFree2 > 1e-12) && !prescribed.all(pair.slaveNode)) continue;
+        if (d > 0 && !(slaveFree2 > 1e-12) && !prescribed.all(pair.slaveNode)) {
+          list.drop(row);
+          continue;
+        }
         const double scale = 1.0 / std::sqrt(free2);
-        for (auto& e : row.entries) e.value *= scale;
+        Entry* entries = list.entriesOf(row);
+        const size_t count = list.openCount(row);
+        for (size_t e = 0; e < count; ++e) entries[e].value *= scale;
         // N u <= d: scale ((u_s - chi u_m) . nu) <= scale (d - known part).
         row.c = scale * ((d == 0 ? node.gap : 0.0) - known);
         row.key = {0, pair.slaveNode, d, 0};
         row.contact = d == 0 ? contactIndex : -1;
-        row.owner = ownerOf(row.entries);
+        row.owner = ownerOf(entries, count);
+        row.numEntries = static_cast<LO>(count);
         if (d == 0) node.rowScale = scale;
         else {
           node.hasTangential[d - 1] = true;
           node.tangentialScale[d - 1] = scale;
         }
-        nodeRows.push_back(std::move(row));
+        nodeRows.push_back(row);
       }
       B.removedRedundantRows += numDirections - static_cast<GO>(nodeRows.size());
       if (nodeRows.empty()) continue;
       // All rows of a node go to the owner of its normal row (they are consecutive there).
       for (auto& row : nodeRows) {
         row.owner = nodeRows.front().owner;
-        rows.push_back(std::move(row));
+        rows.push_back(row);
       }
       B.contact.push_back(node);
     }
@@ -283,32 +316,31 @@ ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decom
         // Dirichlet per component) and B stays orthonormal (ALGORITHMS.md 2).
         for (LO j = 0; j < k; ++j) {
           const Copy& cp = copies[copyPtr[n] + j];
-          Row row;
+          Row row = list.begin();
           row.kind = RowKind::Dirichlet;
-          row.entries.push_back({cp.subdomain, 3 * cp.localNode + c, 1.0});
+          list.append({cp.subdomain, 3 * cp.localNode + c, 1.0});
           row.c = prescribed.value[3 * n + c];
           row.key = {2, n, j, c};
           row.owner = mesh::ownerRank(cp.subdomain, numSubdomains, numRanks);
-          rows.push_back(std::move(row));
+          list.add(row);
         }
         continue;
       }
       for (LO j = 1; j < k; ++j) {
         // Row j: copy j+1 against the mean of copies 1..j, i.e. coefficients -1/j and +1,
         // normalised by 1/sqrt(1 + 1/j); orthonormal and orthogonal to the mean.
-        Row row;
+        Row row = list.begin();
         row.kind = RowKind::Gluing;
         const double scale = 1.0 / std::sqrt(1.0 + 1.0 / j);
-        row.entries.reserve(j + 1);
         for (LO i = 0; i < j; ++i) {
           const Copy& cp = copies[copyPtr[n] + i];
-          row.entries.push_back({cp.subdomain, 3 * cp.localNode + c, -scale / j});
+          list.append({cp.subdomain, 3 * cp.localNode + c, -scale / j});
         }
         const Copy& cp = copies[copyPtr[n] + j];
-        row.entries.push_back({cp.subdomain, 3 * cp.localNode + c, scale});
+        list.append({cp.subdomain, 3 * cp.localNode + c, scale});
         row.key = {1, n, c, j};
         row.owner = owner;
-        rows.push_back(std::move(row));
+        list.add(row);
       }
     }
   }
@@ -338,20 +370,22 @@ ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decom
     if (row.contact >= 0) B.contact[row.contact].normalRow = static_cast<GO>(r);
     // Scatter into the blocks: rows arrive in ascending order, entries of one row sorted
     // by (subdomain, dof).
-    std::sort(row.entries.begin(), row.entries.end(),
+    Entry* entries = list.entriesOf(row);
+    const size_t count = static_cast<size_t>(row.numEntries);
+    std::sort(entries, entries + count,
               [](const Entry& a, const Entry& b) { return std::tie(a.subdomain, a.dof) < std::tie(b.subdomain, b.dof); });
     const bool ownRow = keepAll || row.owner == keepForRank;
-    for (size_t e = 0; e < row.entries.size();) {
-      const int s = row.entries[e].subdomain;
+    for (size_t e = 0; e < count;) {
+      const int s = entries[e].subdomain;
       if (!ownRow && (s < firstKept || s >= endKept)) {
-        while (e < row.entries.size() && row.entries[e].subdomain == s) ++e;
+        while (e < count && entries[e].subdomain == s) ++e;
         continue;
       }
       SubdomainBlock& blk = B.blocks[s];
       blk.rows.push_back(static_cast<GO>(r));
-      for (; e < row.entries.size() && row.entries[e].subdomain == s; ++e) {
-        blk.dof.push_back(row.entries[e].dof);
-        blk.value.push_back(row.entries[e].value);
+      for (; e < count && entries[e].subdomain == s; ++e) {
+        blk.dof.push_back(entries[e].dof);
+        blk.value.push_back(entries[e].value);
       }
       blk.rowPtr.push_back(static_cast<LO>(blk.dof.size()));
     }
