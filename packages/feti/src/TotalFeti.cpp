@@ -60,6 +60,46 @@ void applyBlock(const SubdomainBlock& b, const std::vector<LO>& dof, const doubl
   }
 }
 
+// The explicit F_s (ALGORITHMS.md 3) as the lower triangle of (F + F^T)/2 packed by rows, rows
+// and columns in `order` (the block's rows by global id: the same matrix on every rank layout).
+// `full`: m x m, column-major, in the block's own row order.
+std::vector<double> packLowerInRowOrder(const std::vector<double>& full, const std::vector<LO>& order) {
+  const size_t m = order.size();
+  std::vector<double> packed;
+  packed.reserve(m * (m + 1) / 2);
+  for (size_t a = 0; a < m; ++a)
+    for (size_t b = 0; b <= a; ++b)
+      packed.push_back(0.5 * (full[order[a] * m + order[b]] + full[order[b] * m + order[a]]));
+  return packed;
+}
+
+// out = F_s in with F_s from packLowerInRowOrder: `in` gathered into `order` (t), row a of the
+// triangle read once for both its dot with t (entry a of F t) and its axpy into y (the upper
+// triangle's share, F_ba = F_ab), the dot in eight interleaved lanes: a fixed order of every
+// sum that the compiler may vectorise. One pass over m(m+1)/2 contiguous values.
+void applyPackedLower(const std::vector<double>& packed, const std::vector<LO>& order, const double* in,
+                      double* __restrict t, double* __restrict y, double* out) {
+  const LO m = static_cast<LO>(order.size());
+  for (LO a = 0; a < m; ++a) t[a] = in[order[a]], y[a] = 0.0;
+  const double* __restrict row = packed.data();
+  for (LO a = 0; a < m; row += a + 1, ++a) {
+    const double ta = t[a];
+    double lane[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+    LO b = 0;
+    for (; b + 8 <= a; b += 8)
+      for (int k = 0; k < 8; ++k) {
+        lane[k] += row[b + k] * t[b + k];
+        y[b + k] += row[b + k] * ta;
+      }
+    for (; b < a; ++b) {
+      lane[0] += row[b] * t[b];
+      y[b] += row[b] * ta;
+    }
+    y[a] += (((lane[0] + lane[1]) + (lane[2] + lane[3])) + ((lane[4] + lane[5]) + (lane[6] + lane[7]))) + row[a] * ta;
+  }
+  for (LO a = 0; a < m; ++a) out[order[a]] = y[a];
+}
+
 // Extracts K_ii (rows and columns `interior`, ascending) from K.
 fem::CsrMatrix principalSubmatrix(const fem::CsrMatrix& K, const std::vector<LO>& keep) {
   std::vector<LO> position(K.n, -1);
@@ -227,7 +267,7 @@ struct TotalFeti::Local {
   std::array<LO, 5> gGroupStart{};
   fem::SubdomainSystem system;
   SubdomainSolver solver;
-  std::vector<double> denseF;    ///< explicit F_s (m x m, column-major) when requested
+  std::vector<double> denseF;    ///< explicit F_s when requested (packLowerInRowOrder)
   DirichletBlocks dirichlet;     ///< the Dirichlet preconditioner's blocks of K (when requested)
   std::vector<double> in, out, x, y;
   LO m() const { return static_cast<LO>(block->rows.size()); }
@@ -361,8 +401,9 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
               [&](LO a, LO b) { return rowId(L->block->rows[a]) < rowId(L->block->rows[b]); });
     L->in.assign(L->m(), 0.0);
     L->out.assign(L->m(), 0.0);
-    L->x.assign(L->n(), 0.0);
-    L->y.assign(L->n(), 0.0);
+    // n for the solves, m for the explicit F's gathered input and sums (applyPackedLower)
+    L->x.assign(std::max(L->n(), L->m()), 0.0);
+    L->y.assign(std::max(L->n(), L->m()), 0.0);
     local_[i] = std::move(L);
   }
   gatherOverlapContributions();
@@ -393,8 +434,9 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
         for (LO k = L.block->rowPtr[r]; k < L.block->rowPtr[r + 1]; ++k)
           Bt[static_cast<size_t>(r) * n + L.block->dof[k]] = L.block->value[k];
       L.solver.applyPseudoInverse(Bt.data(), Y.data(), m);
-      L.denseF.assign(static_cast<size_t>(m) * m, 0.0);
-      for (LO c = 0; c < m; ++c) applyBlock(*L.block, &Y[static_cast<size_t>(c) * n], &L.denseF[static_cast<size_t>(c) * m]);
+      std::vector<double> full(static_cast<size_t>(m) * m);
+      for (LO c = 0; c < m; ++c) applyBlock(*L.block, &Y[static_cast<size_t>(c) * n], &full[static_cast<size_t>(c) * m]);
+      L.denseF = packLowerInRowOrder(full, L.rowOrder);
     }
   });
   double seconds = watch.seconds();
@@ -805,7 +847,7 @@ void TotalFeti::measureTraffic() {
   for (const auto& L : local_) {
     const double entries = static_cast<double>(L->block->value.size()), rows = L->m();
     if (settings_.explicitF) {
-      f += kDouble * rows * rows;  // the dense F_s
+      f += kDouble * rows * (rows + 1) / 2;  // F_s's lower triangle (packLowerInRowOrder)
     } else {
       // the factor (forward whole, backward the part B_s's dofs reach; P F P applies K^+, not
       // K^dagger, so R is not read); B_s^T and B_s (values, dofs, row pointers), its dofs in
@@ -1189,15 +1231,7 @@ void TotalFeti::applyF(const DualVector& x, DualVector& y, bool removeKernel) co
   core::Stopwatch watch;
   applyBlockwise(x, y, [this, removeKernel](Local& L, bool) {
     if (settings_.explicitF) {
-      // out = F_s in, column-major. A plain loop: Debian's serial OpenBLAS is not safe to
-      // call from several threads at once (doc/factorization.md).
-      const LO m = L.m();
-      std::fill(L.out.begin(), L.out.end(), 0.0);
-      for (LO c : L.rowOrder) {  // columns in the order of their global ids, as B_s^T sums
-        const double x = L.in[c];
-        const double* column = &L.denseF[static_cast<size_t>(c) * m];
-        for (LO r = 0; r < m; ++r) L.out[r] += column[r] * x;
-      }
+      applyPackedLower(L.denseF, L.rowOrder, L.in.data(), L.x.data(), L.y.data(), L.out.data());
       return;
     }
     // Two triangular solves in the factor's order: B_s^T scatters into it, B_s gathers from it
