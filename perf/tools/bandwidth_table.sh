@@ -6,6 +6,13 @@
 #                              F, the projections, the MPGP vector work)
 #   bound                    = bytes_per_f_application / triad bandwidth
 #   ratio                    = time / bound                 (issue 9's goal: <= 2 on 10x5x5/5)
+#   iteration bound          = every byte the run's operators must move, per PFP application:
+#                              the F applications (bytes_per_f_application, their two
+#                              projections' G passes included), the preconditioner
+#                              applications, the other projections' G passes and every coarse
+#                              solve (its factor's values, both substitutions), / triad
+#   iteration ratio          = time / iteration bound       (how near the whole iteration runs
+#                              to the bandwidth; MPGP's vector work is not counted)
 # The triad (build/bin/tribos_stream_triad, best of 20 sweeps over 400 MB arrays, with the same
 # number of threads) is measured before every cell, so that both figures see the same machine
 # state: on a shared machine the bandwidth moves by 2x within minutes.
@@ -23,7 +30,7 @@ trap 'rm -rf "$out"' EXIT
 triad() {
   build/bin/tribos_stream_triad 400 20 | awk -F, -v t="$OMP_NUM_THREADS" '$1 == t { print $3 }'
 }
-echo "subdomains,h_ratio,threads,pfp_applications,solve_s,total_s,factor_nonzeros,bytes_per_pfp_MB,triad_GB_s,ms_per_pfp,bound_ms,ratio"
+echo "subdomains,h_ratio,threads,pfp_applications,solve_s,total_s,factor_nonzeros,bytes_per_pfp_MB,triad_GB_s,ms_per_pfp,bound_ms,ratio,iteration_MB_per_pfp,iteration_bound_ms,iteration_ratio"
 for cell in "4 2x1x1" "32 4x2x2" "108 6x3x3" "256 8x4x4" "500 10x5x5"; do
   set -- $cell
   s=$1 grid=$2
@@ -40,9 +47,15 @@ h, gbs = sys.argv[2], float(sys.argv[3])
 t = j["times"]
 per = t["solve_s"] / j["pfp_applications"]
 bound = j["bytes_per_f_application"] / (gbs * 1e9)
+p = j["operator_profile"]
+other_projections = max(0, p["projections"] - p["projections_reused"] - 2 * p["f_applications"])
+total = (p["f_applications"] * j["bytes_per_f_application"] + p["preconditioner_applications"] * p["preconditioner_bytes"]
+         + other_projections * p["projection_bytes"] + p["coarse_solves"] * p["coarse_values_per_solve"] * 16.0)
+iteration = total / j["pfp_applications"]
+iteration_bound = iteration / (gbs * 1e9)
 print(f'{j["n_subdomains"]},{h},{j["n_threads"]},{j["pfp_applications"]},{t["solve_s"]:.2f},{t["total_s"]:.2f},'
       f'{j["factor_nonzeros"]},{j["bytes_per_f_application"] / 1e6:.1f},{gbs:.1f},{1e3 * per:.2f},{1e3 * bound:.2f},'
-      f'{per / bound:.2f}')
+      f'{per / bound:.2f},{iteration / 1e6:.1f},{1e3 * iteration_bound:.2f},{per / iteration_bound:.2f}')
 PY
   done
 done
