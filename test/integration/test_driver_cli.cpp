@@ -87,11 +87,13 @@ TEST(tribosCommandLine, aBadOptionExitsWith2AndShowsTheUsage) {
 
 TEST(tribosCommandLine, progressReachesARedirectedLogAsItHappens) {
   // A solve of many seconds with stdout to a file: the header must be in the file while the
-  // solve still runs (block buffering would hold it until the exit).
+  // solve still runs (block buffering would hold it until the exit). 8x4x4 / H/h 3 had become a
+  // 0.5 s run: a poll delayed by a loaded machine then found the header and the exit at once,
+  // and the test failed without a fault. 10x5x5 / H/h 4 runs for seconds after the header.
   const auto dir = scratch();
   const auto log = dir / "log.txt";
   const pid_t pid = startInBackground(kDriver + " --input " + quote(scene()) +
-                                          " --set 'Mesh/Subdomains Per Brick=8x4x4' --set 'Mesh/H Over h=3'",
+                                          " --set 'Mesh/Subdomains Per Brick=10x5x5' --set 'Mesh/H Over h=4'",
                                       log);
   ASSERT_GT(pid, 0);
   bool headerSeen = false, exited = false;
