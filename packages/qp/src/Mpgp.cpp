@@ -51,10 +51,31 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
     ++counters.preconditionerApplications;
     split(x, zFull, z, scratch);
   };
-  // After a step that is not a CG step: a fresh search direction.
-  auto restartDirection = [&]() {
+  // The search direction after a step is used only if the next step is a CG step, so it is
+  // made there (resolveDirection): a proportioning step, or the end of the inner solve, then
+  // costs no preconditioner application (with its two projections). It is made from the same
+  // phi at the same x as it would have been at once: the same bits.
+  enum class Direction { Current, Restart, Conjugate } direction = Direction::Current;
+  const Vector* conjugateProduct = &Ap;  // (A + H_c) p of the CG step that left Conjugate
+  double conjugateCurvature = 0.0;       // its p^T (A + H_c) p
+  // After a step that is not a CG step: a fresh search direction, p = z.
+  auto restartDirection = [&]() { direction = Direction::Restart; };
+  // After a CG step: p = z - gamma p, gamma = z^T (A + H_c) p / p^T (A + H_c) p.
+  auto conjugateDirection = [&](const Vector& product, double curvature) {
+    direction = Direction::Conjugate;
+    conjugateProduct = &product;
+    conjugateCurvature = curvature;
+  };
+  auto resolveDirection = [&]() {
+    if (direction == Direction::Current) return;
     preconditionedFreeGradient();
-    p.assign(z);
+    if (direction == Direction::Restart) {
+      p.assign(z);
+    } else {
+      const double gammaCg = dot(z, *conjugateProduct) / conjugateCurvature;
+      p.update(1.0, z, -gammaCg);
+    }
+    direction = Direction::Current;
   };
   // Saved iterate and gradient, to undo a step that did not decrease f.
   Vector previousX(map), previousG(map);
@@ -168,9 +189,7 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
       }
     }
     split(x, g, phi, beta);
-    preconditionedFreeGradient();
-    const double gammaCg = dot(z, trialGradient) / pAp;  // trialGradient: (A + H_c) p
-    p.update(1.0, z, -gammaCg);
+    conjugateDirection(trialGradient, pAp);  // trialGradient: (A + H_c) p
     ++counters.cgSteps;
     return true;
   };
@@ -209,6 +228,7 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
     const double proportion = settings_.gamma * settings_.gamma * reducedPhi;
     if (betaNorm2 <= proportion) {
       proportioningRun = 0;
+      resolveDirection();
       A.apply(p, Ap);
       ++counters.operatorApplications;
       // Tangent CG: the Hessian on the curved face adds the boundary's curvature term.
@@ -233,9 +253,7 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
         if (settings_.cgStep) settings_.cgStep(alphaCg, p);
         g.update(-alphaCg, Ap, 1.0);
         split(x, g, phi, beta);
-        preconditionedFreeGradient();
-        const double gammaCg = dot(z, Ap) / pAp;
-        p.update(1.0, z, -gammaCg);
+        conjugateDirection(Ap, pAp);
         ++counters.cgSteps;
       } else {
         // Expansion: to the boundary, then a projected step with the free gradient.

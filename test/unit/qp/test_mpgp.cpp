@@ -97,6 +97,51 @@ TEST(Mpgp, matchesActiveSetEnumerationOnBoundConstrainedQps) {
   EXPECT_GT(activeBounds, 20);
 }
 
+TEST(Mpgp, appliesThePreconditionerOnlyWhereACgStepUsesIt) {
+  // The search direction z = chi_F M^-1 phi is made when the next step needs it (a CG step or
+  // an expansion, both of which start from a product with p); a proportioning step and the end
+  // of the solve do not use it, so no application is made for them. The solution and every
+  // other count are those of the eager direction (MPGP's bits do not change).
+  int proportioning = 0;
+  for (unsigned seed = 1; seed <= 30; ++seed) {
+    const int n = 8 + seed % 7;
+    const Dense A = test::randomSpd(n, 300.0, seed);
+    std::mt19937 gen(seed);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    std::vector<double> b(n), lower;
+    for (double& v : b) v = u(gen);
+    std::vector<int> bounded;
+    for (int i = 0; i < n; ++i)
+      if (u(gen) < 0.6) bounded.push_back(i);
+    for (size_t k = 0; k < bounded.size(); ++k) lower.push_back(0.2 * u(gen));
+    const auto exact = test::enumerateActiveSets(A, b, bounded, lower);
+    auto map = test::makeMap(n, test::selfComm());
+    test::BlockSet blocks;
+    blocks.boundIndex = bounded;
+    blocks.lower = lower;
+    const auto omega = blocks.build(*map);
+    test::DenseOperator op(A);
+    Dense jacobi(n, std::vector<double>(n, 0.0));
+    for (int i = 0; i < n; ++i) jacobi[i][i] = 1.0 / A[i][i];
+    test::DenseOperator preconditioner(jacobi);
+    qp::MpgpSettings settings;
+    settings.preconditioner = &preconditioner;
+    qp::Vector bv(map), x(map), g(map);
+    test::scatter(b, bv);
+    const double tol = 1e-12 * test::norm2(b);
+    const auto c = qp::Mpgp(settings).solve(op, bv, omega, 1.01 * qp::powerMethod(op, *map, 200, 1e-12, nullptr), x,
+                                            g, [&](double gp, const qp::Vector&) { return gp <= tol; });
+    EXPECT_TRUE(c.converged);
+    EXPECT_LE(test::maxDifference(test::gather(x), exact), 1e-8) << "seed " << seed;
+    // Bounds only (no tangent CG, A positive definite): every step of the CG branch is a CG or
+    // an expansion step and takes exactly one direction; the proportioning steps take none.
+    EXPECT_EQ(c.preconditionerApplications, c.cgSteps + c.expansionSteps) << "seed " << seed;
+    EXPECT_EQ(preconditioner.applications, c.preconditionerApplications);
+    proportioning += static_cast<int>(c.proportioningSteps);
+  }
+  EXPECT_GT(proportioning, 10);  // the saving was exercised
+}
+
 namespace {
 struct MixedRun {
   test::KktResult kkt;
