@@ -51,10 +51,12 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
     ++counters.preconditionerApplications;
     split(x, zFull, z, scratch);
   };
-  // The search direction after a step is used only if the next step is a CG step, so it is
-  // made there (resolveDirection): a proportioning step, or the end of the inner solve, then
-  // costs no preconditioner application (with its two projections). It is made from the same
-  // phi at the same x as it would have been at once: the same bits.
+  // The search direction after a step is used only if the next step starts from it (a CG step
+  // or an expansion, both from the product A p), so it is made there (resolveDirection): a
+  // proportioning step, or the end of the inner solve, then costs no preconditioner
+  // application (with its two projections). It is made from the same phi at the same x as it
+  // would have been at once: the same bits. Nothing writes Ap or trialGradient between a CG
+  // step and the next step's start, so the product the conjugation needs is still there.
   enum class Direction { Current, Restart, Conjugate } direction = Direction::Current;
   const Vector* conjugateProduct = &Ap;  // (A + H_c) p of the CG step that left Conjugate
   double conjugateCurvature = 0.0;       // its p^T (A + H_c) p
