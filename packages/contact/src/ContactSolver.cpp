@@ -330,8 +330,12 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
       result.message = "the Coulomb fixed point reached its iteration limit";
       double previous = std::numeric_limits<double>::infinity();
       int growing = 0;
+      // ||A|| is estimated by the first Tresca solve only: A does not change with the slip
+      // bound, and the estimate is deterministic (the same bits again).
+      double normA = 0.0;
       for (int it = 0; it < friction.maxFixedPointIterations; ++it) {
-        accumulate(smalse.solve(A, Q, *c, omega, *mu));
+        accumulate(smalse.solve(A, Q, *c, omega, *mu, nullptr, normA));
+        normA = result.counters.normA;
         if (!result.counters.converged) {
           result.message = "SMALSE-M did not converge on a Tresca problem of the fixed point";
           break;
@@ -343,7 +347,7 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
         ++result.fixedPointIterations;
         result.fixedPointChange = change;
         if (change <= eps) {
-          accumulate(smalse.solve(A, Q, *c, omega, *mu));  // final Tresca solve with the converged g
+          accumulate(smalse.solve(A, Q, *c, omega, *mu, nullptr, normA));  // final Tresca solve with the converged g
           result.converged = result.counters.converged;
           result.message = result.converged ? "converged" : "SMALSE-M did not converge on the last Tresca problem";
           break;

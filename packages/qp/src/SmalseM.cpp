@@ -88,7 +88,7 @@ double rhoFactor(const SmalseSettings& s, double r, bool equalityMet) {
 }  // namespace
 
 SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjector& rawQ, const Vector& c,
-                              SeparableSet& omega, Vector& mu, const OuterHook& hook) const {
+                              SeparableSet& omega, Vector& mu, const OuterHook& hook, double knownNormA) const {
   const SmalseSettings& s = settings_;
   SmalseCounters counters;
   // The time of the whole solve, and of it what A, M^-1, Q and the hook take (the operators'
@@ -103,7 +103,9 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
   };
   const auto map = mu.getMap();
   // Scale-free parameters: rho and M relative to ||A||, eta relative to ||c|| (= ||P h||).
-  counters.normA = lanczosNorm(TimedOperator(A, inside), *map, s.normEstimateSteps, 1e-4, &counters.operatorApplications);
+  counters.normA = knownNormA > 0.0 ? knownNormA
+                                    : lanczosNorm(TimedOperator(A, inside), *map, s.normEstimateSteps, 1e-4,
+                                                  &counters.operatorApplications);
   double normC = norm2(c);
   if (!std::isfinite(counters.normA) || !std::isfinite(normC)) {
     counters.nonFinite = true;  // a NaN / Inf in A or c: nothing to iterate on

@@ -14,6 +14,7 @@
 
 #include "DenseQp.hpp"
 #include "tribos/core/Errors.hpp"
+#include "tribos/qp/Mpgp.hpp"
 #include "tribos/qp/SmalseM.hpp"
 
 using namespace tribos;
@@ -170,6 +171,43 @@ TEST(SmalseM, relaxedMultiplierStepKeepsTheSolutionAndNeedsFewerOuterIterations)
   const int fixedOuter = outerIterationsOverSeeds(slowRhoSettings()), relaxedOuter = outerIterationsOverSeeds(relaxed);
   EXPECT_LT(relaxedOuter, 0.9 * fixedOuter);  // measured 418 against 494: omega <= 5/3 where r0 > 0.8
   std::printf("outer iterations over 16 seeds: rho 0.2, Fixed step %d, Relaxed step %d\n", fixedOuter, relaxedOuter);
+}
+
+// A known ||A|| (SmalseM::solve's knownNormA, from an earlier solve with the same A: the exact
+// Coulomb fixed point) replaces the Lanczos estimate: the same bits of the solution, and exactly
+// the estimate's products fewer.
+TEST(SmalseM, aKnownNormGivesTheSameSolutionWithoutTheEstimatesProducts) {
+  for (unsigned seed = 1; seed <= 8; ++seed) {
+    const auto [qp, blocks, exact] = boundedQpWithEquality(seed);
+    const int n = static_cast<int>(qp.b.size());
+    auto map = test::makeMap(n, test::selfComm());
+    test::DenseOperator op(qp.A);
+    test::DenseProjector projector(qp.Q);
+    qp::Vector cv(map);
+    test::scatter(qp.c, cv);
+    const qp::SmalseM smalse(tunedSettings());
+    auto solve = [&](double knownNormA, long long& products, qp::SmalseCounters& counters) {
+      auto omega = blocks.build(*map);
+      qp::Vector mu(map);
+      const long long before = op.applications;
+      counters = smalse.solve(op, projector, cv, omega, mu, nullptr, knownNormA);
+      products = op.applications - before;
+      return test::gather(mu);
+    };
+    long long estimated = 0, known = 0;
+    qp::SmalseCounters first, second;
+    const auto x1 = solve(0.0, estimated, first);
+    const auto x2 = solve(first.normA, known, second);
+    EXPECT_TRUE(first.converged && second.converged);
+    EXPECT_EQ(x1, x2) << "seed " << seed;  // bit for bit
+    EXPECT_EQ(second.normA, first.normA);
+    long long lanczos = 0;
+    qp::lanczosNorm(op, *map, tunedSettings().normEstimateSteps, 1e-4, &lanczos);
+    EXPECT_GT(lanczos, 0);
+    EXPECT_EQ(estimated - known, lanczos) << "seed " << seed;
+    EXPECT_EQ(second.operatorApplications, known);
+    EXPECT_LE(test::maxDifference(x2, exact), 1e-8) << "seed " << seed;
+  }
 }
 
 TEST(SmalseM, satisfiesKktAndMatchesAdmmWithBoundsEllipsesAndEquality) {

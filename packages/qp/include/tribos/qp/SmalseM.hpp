@@ -105,9 +105,12 @@ class SmalseM {
   /// solve starts from mu projected onto the new Omega. Scale-free parameters: rho and M_0
   /// are relative to ||A|| (power method, its products counted), eta and epsilon to ||c||
   /// (when c = 0, ||A|| ||P_Omega(0)|| is the scale, and mu = 0 is returned at once if 0 is in
-  /// Omega). A = 0 returns converged = false unless c = 0.
+  /// Omega). A = 0 returns converged = false unless c = 0. `knownNormA` > 0: ||A|| as an
+  /// earlier solve with the same A estimated it (its counters.normA), used instead of a new
+  /// estimate, which would repeat the same products to the same bits (the exact Coulomb fixed
+  /// point solves one Tresca problem after another with the same A).
   SmalseCounters solve(const SymmetricOperator& A, const EqualityProjector& Q, const Vector& c, SeparableSet& omega,
-                       Vector& mu, const OuterHook& hook = nullptr) const;
+                       Vector& mu, const OuterHook& hook = nullptr, double knownNormA = 0.0) const;
 
   /// The valid parameters (STYLE.md 3), a list shaped like the scene's "Solver":
   /// "Tolerance", "Max Outer Iterations", sublist "SMALSE-M" (eta, rho, initial M, beta,
