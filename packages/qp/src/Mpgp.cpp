@@ -11,7 +11,8 @@
 namespace tribos::qp {
 
 MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const SeparableSet& omega, double normA,
-                         Vector& x, Vector& g, const std::function<bool(double, const Vector&)>& stop) const {
+                         Vector& x, Vector& g, const std::function<bool(double, const Vector&)>& stop,
+                         bool gradientGiven) const {
   MpgpCounters counters;
   const auto map = x.getMap();
   Vector phi(map), beta(map), p(map), Ap(map), reduced(map), gradientProjected(map), trial(map), trialGradient(map);
@@ -203,8 +204,17 @@ MpgpCounters Mpgp::solve(const SymmetricOperator& A, const Vector& b, const Sepa
     return dots(gradientProjected, gradientProjected, beta, beta, reduced, phi);
   };
 
-  omega.project(x);
-  gradient();
+  if (gradientGiven) {
+    // g = A x - b for this x: kept unless the projection moves x (one reduction decides it
+    // on every rank alike).
+    previousX.assign(x);
+    omega.project(x);
+    trial.update(1.0, x, -1.0, previousX, 0.0);
+    if (trial.normInf() != 0.0) gradient();
+  } else {
+    omega.project(x);
+    gradient();
+  }
   split(x, g, phi, beta);
   restartDirection();
   for (;;) {

@@ -165,7 +165,11 @@ void SeparableSet::project(Vector& x) const {
   for (size_t k = 0; k < boundIndex_.size(); ++k) v(boundIndex_[k], 0) = std::max(v(boundIndex_[k], 0), lower_[k]);
   for (size_t k = 0; k < ellipseIndex_.size(); ++k) {
     const auto [i, j] = ellipseIndex_[k];
-    const auto y = projectOntoEllipse({at(v, i) - center_[k][0], at(v, j) - center_[k][1]}, effectiveAxes(k));
+    const std::array<double, 2> d{at(v, i) - center_[k][0], at(v, j) - center_[k][1]};
+    const auto y = projectOntoEllipse(d, effectiveAxes(k));
+    // A point inside stays as it is: centre + (x - centre) would round it in its last bit, so a
+    // feasible x would not be a fixed point of the projection (Mpgp's gradientGiven).
+    if (y == d) continue;
     if (i >= 0) v(i, 0) = center_[k][0] + y[0];
     if (j >= 0) v(j, 0) = center_[k][1] + y[1];
   }

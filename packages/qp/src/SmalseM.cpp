@@ -137,6 +137,9 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
   const double eta = s.eta * normC, eps = s.tolerance * normC;
   PenalisedOperator Arho(A, rawQ, rho, map, inside);
   Vector betaT(map), b(map), g(map), Qmu(map), previousQmu(map);  // betaT = G^T beta (the multiplier as a dual vector)
+  Vector previousB(map);
+  // g = A_rho mu - b holds for the mu and b of the last inner solve; true until rho changes.
+  bool gradientHolds = false;
   betaT.putScalar(0.0);
   double previousL = 0.0, previousGmu = 0.0;
   MultiplierRelaxation relaxation;
@@ -187,7 +190,11 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
   for (int k = 0; k < s.maxOuterIterations; ++k) {
     // Step 1: mu^k ~ argmin L_rho(mu, beta^k) over Omega with ||g^P|| <= min(M_k ||G mu||, eta)
     // (or the final accuracy reached).
+    // b = c - G^T beta moved with beta: g follows it without a product (g = A_rho mu - b), and
+    // MPGP keeps that g when the projection onto Omega (changed by the hook) leaves mu in place.
+    if (gradientHolds) previousB.assign(b);
     b.update(1.0, c, -1.0, betaT, 0.0);
+    if (gradientHolds) g.update(1.0, previousB, -1.0, b, 1.0);
     outer = k + 1;
     innerEquality.restart();
     // The inner bound never drops below a tenth of the final accuracy: M_k may shrink
@@ -197,7 +204,8 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
       innerGmu = innerEquality.norm(x, Qmu);  // every inner iteration: EqualityNorm.hpp
       innerBound = std::max(std::min(M * innerGmu, eta), s.innerFloor * eps);
       return gp <= innerBound || smalseConverged(gp, innerGmu, x) || (s.stopRequested && s.stopRequested());
-    });
+    }, gradientHolds);
+    gradientHolds = true;
     counters.outerIterations = k + 1;
     counters.innerIterations += inner.iterations;
     if (inner.nonFinite || !std::isfinite(equalityNorm(mu))) {
@@ -240,6 +248,7 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
     // Optional penalty growth when ||G mu|| decreased by less than the target ratio.
     const double factor = k > 0 && s.rhoGrowth > 1.0 ? rhoFactor(s, ratio, equalityMet(gmu, mu)) : 1.0;
     if (factor > 1.0) {
+      gradientHolds = false;  // A_rho changes
       rho *= factor;
       normArho = 1.02 * std::max(counters.normA, rho);
       Arho.setRho(rho);

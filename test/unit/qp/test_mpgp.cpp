@@ -142,6 +142,49 @@ TEST(Mpgp, appliesThePreconditionerOnlyWhereACgStepUsesIt) {
   EXPECT_GT(proportioning, 10);  // the saving was exercised
 }
 
+TEST(Mpgp, aGivenGradientIsKeptOnlyWhereTheProjectionLeavesTheIterate) {
+  // SMALSE-M's next outer iteration passes g = A x - b for its x (gradientGiven): no product
+  // when x is feasible, a fresh gradient when the projection moves x (the slip bound shrank).
+  const int n = 12;
+  const Dense A = test::randomSpd(n, 100.0, 7);
+  std::mt19937 gen(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<double> b(n);
+  for (double& v : b) v = u(gen);
+  test::BlockSet blocks;
+  for (int i = 0; i < n; i += 2) {
+    blocks.boundIndex.push_back(i);
+    blocks.lower.push_back(0.1 * u(gen));
+  }
+  auto map = test::makeMap(n, test::selfComm());
+  const auto omega = blocks.build(*map);
+  test::DenseOperator op(A);
+  qp::Vector bv(map), x(map), g(map);
+  test::scatter(b, bv);
+  const double normA = 1.01 * qp::powerMethod(op, *map, 200, 1e-12, nullptr);
+  const double tol = 1e-12 * test::norm2(b);
+  auto stop = [&](double gp, const qp::Vector&) { return gp <= tol; };
+  ASSERT_TRUE(qp::Mpgp().solve(op, bv, omega, normA, x, g, stop).converged);
+  // Solved, feasible, g current: converged at the start without a product.
+  const auto kept = qp::Mpgp().solve(op, bv, omega, normA, x, g, stop, true);
+  EXPECT_TRUE(kept.converged);
+  EXPECT_EQ(kept.operatorApplications, 0);
+  EXPECT_EQ(qp::Mpgp().solve(op, bv, omega, normA, x, g, stop).operatorApplications, 1);
+  // Moved below a bound with g left as it was: the projection moves x back, so the gradient
+  // is computed again and the solve still ends at the solution with g = A x - b.
+  const auto solution = test::gather(x);
+  auto moved = solution;
+  moved[0] = blocks.lower[0] - 1.0;
+  test::scatter(moved, x);
+  const auto again = qp::Mpgp().solve(op, bv, omega, normA, x, g, stop, true);
+  EXPECT_TRUE(again.converged);
+  EXPECT_GE(again.operatorApplications, 1);
+  EXPECT_LE(test::maxDifference(test::gather(x), solution), 1e-10);
+  auto r = test::matVec(A, test::gather(x));
+  for (int i = 0; i < n; ++i) r[i] -= b[i];
+  EXPECT_LE(test::maxDifference(test::gather(g), r), 1e-12);
+}
+
 namespace {
 struct MixedRun {
   test::KktResult kkt;

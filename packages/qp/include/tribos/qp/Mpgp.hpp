@@ -73,8 +73,12 @@ class Mpgp {
   /// false). `normA` >= ||A|| (the power method's estimate, slightly enlarged);
   /// alpha_bar = stepScale / normA. On return x is the iterate and g = A x - b. Every
   /// product with A is counted; iterations = cgSteps + expansionSteps + proportioningSteps.
+  /// `gradientGiven`: g already holds A x - b for the x passed in (SMALSE-M's next outer
+  /// iteration: the same x, b moved by a known vector); it is used as it stands when the
+  /// projection onto Omega leaves x in place (bit for bit on every rank), which saves a product.
   MpgpCounters solve(const SymmetricOperator& A, const Vector& b, const SeparableSet& omega, double normA,
-                     Vector& x, Vector& g, const std::function<bool(double, const Vector&)>& stop) const;
+                     Vector& x, Vector& g, const std::function<bool(double, const Vector&)>& stop,
+                     bool gradientGiven = false) const;
 
  private:
   MpgpSettings settings_;
