@@ -44,20 +44,36 @@ void applyBlock(const SubdomainBlock& b, const double* y, double* out) {
   }
 }
 
-// The same two products with the dofs of B_s renumbered (`dof[k]` for entry k): F works in
-// the factor's order (SubdomainSolver::permutation).
-void applyBlockTranspose(const SubdomainBlock& b, const std::vector<LO>& order, const std::vector<LO>& dof,
-                         const double* lambda, double* x, LO n) {
-  std::fill(x, x + n, 0.0);
+/// One term of B_s: its row (index into the block's rows), its dof (renumbered) and value.
+/// A subdomain keeps its terms in the order applyBlockTranspose adds them (rows in `order`,
+/// each row's terms in B's order), one array that F and the preconditioners stream through
+/// instead of four (row order, row pointers, values and renumbered dofs:
+/// doc/performance.md, "B_s in one stream").
+struct BlockTerm {
+  LO row, dof;
+  double value;
+};
+static_assert(sizeof(BlockTerm) == 16, "one term of B_s in 16 bytes");
+
+std::vector<BlockTerm> blockTerms(const SubdomainBlock& b, const std::vector<LO>& order, const std::vector<LO>& dof) {
+  std::vector<BlockTerm> terms;
+  terms.reserve(b.value.size());
   for (LO i : order)
-    for (LO k = b.rowPtr[i]; k < b.rowPtr[i + 1]; ++k) x[dof[k]] += b.value[k] * lambda[i];
+    for (LO k = b.rowPtr[i]; k < b.rowPtr[i + 1]; ++k) terms.push_back({i, dof[k], b.value[k]});
+  return terms;
 }
-void applyBlock(const SubdomainBlock& b, const std::vector<LO>& dof, const double* y, double* out) {
-  for (size_t i = 0; i + 1 < b.rowPtr.size(); ++i) {
-    double s = 0.0;
-    for (LO k = b.rowPtr[i]; k < b.rowPtr[i + 1]; ++k) s += b.value[k] * y[dof[k]];
-    out[i] = s;
-  }
+
+// x = B_s^T lambda_s from the terms: the bits of applyBlockTranspose (same terms, same order).
+void scatterTerms(const std::vector<BlockTerm>& terms, const double* lambda, double* x, LO n) {
+  std::fill(x, x + n, 0.0);
+  for (const BlockTerm& t : terms) x[t.dof] += t.value * lambda[t.row];
+}
+
+// out = B_s y from the terms: each row's sum takes its terms in B's order from zero, the bits
+// of applyBlock (the rows are visited in another order, each sum by itself).
+void gatherTerms(const std::vector<BlockTerm>& terms, const double* y, double* out, LO m) {
+  std::fill(out, out + m, 0.0);
+  for (const BlockTerm& t : terms) out[t.row] += t.value * y[t.dof];
 }
 
 // The explicit F_s (ALGORITHMS.md 3) as the lower triangle of (F + F^T)/2 packed by rows, rows
@@ -233,7 +249,7 @@ struct KBlock {
 /// is kept as its upper triangle: half the bytes, the product exactly symmetric (K's own
 /// entries K_ij and K_ji can differ in the last bit, as the element matrices do). Work vectors.
 struct DirichletBlocks {
-  std::vector<LO> boundaryDof;  ///< per entry of B_s: the position of its dof among b
+  std::vector<BlockTerm> terms;  ///< B_s with the dofs numbered among b (blockTerms)
   KBlock Kbb;                   ///< upper triangle, diagonal first in each row
   KBlock Kib;                   ///< rows of i in the factor's order (Dirichlet only)
   std::unique_ptr<SparseCholesky> interiorFactor;  ///< K_ii (none when i is empty)
@@ -258,13 +274,8 @@ struct TotalFeti::Local {
   int subdomain = 0;
   const SubdomainBlock* block = nullptr;
   std::vector<LO> overlapIndex;  ///< local index in the overlap map of each block row
-  std::vector<LO> factorDof;     ///< per entry of the block: its dof in the factor's order
+  std::vector<BlockTerm> factorTerms;  ///< B_s with the dofs in the factor's order (blockTerms)
   std::vector<LO> rowOrder;      ///< the block's rows by ascending global id (B.rowId)
-  /// G x's terms (index: x's index on the overlap), from this subdomain's own block: every
-  /// row of it, whichever rank owns the row; by kind (component d = 0, 1, 2 of one-term rows,
-  /// then the full entries: gGroupStart), in rowOrder within a kind.
-  std::vector<CoarseTerm> gTerms;
-  std::array<LO, 5> gGroupStart{};
   fem::SubdomainSystem system;
   SubdomainSolver solver;
   std::vector<double> denseF;    ///< explicit F_s when requested (packLowerInRowOrder)
@@ -322,7 +333,9 @@ void buildPreconditionerBlocks(TotalFeti::Local& L, bool interiorToo, const std:
   for (LO d = 0; d < L.n(); ++d) (touched[d] ? boundary : interior).push_back(d);
   std::vector<LO> boundaryPosition(L.n(), -1);
   for (size_t k = 0; k < boundary.size(); ++k) boundaryPosition[boundary[k]] = static_cast<LO>(k);
-  for (LO d : L.block->dof) D.boundaryDof.push_back(boundaryPosition[d]);
+  std::vector<LO> boundaryDof;  // per entry of B_s: the position of its dof among b
+  for (LO d : L.block->dof) boundaryDof.push_back(boundaryPosition[d]);
+  D.terms = blockTerms(*L.block, L.rowOrder, boundaryDof);
   D.Kbb = extractBlock(L.system.K, boundary, boundaryPosition, /*upper=*/true);
   D.xb.assign(boundary.size(), 0.0);
   D.yb.assign(boundary.size(), 0.0);
@@ -421,9 +434,10 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
     std::vector<LO> position(L.n());
     const std::vector<LO>& perm = L.solver.permutation();
     for (LO k = 0; k < L.n(); ++k) position[perm[k]] = k;
-    L.factorDof.resize(L.block->dof.size());
-    for (size_t k = 0; k < L.factorDof.size(); ++k) L.factorDof[k] = position[L.block->dof[k]];
-    L.solver.setSparseDofs(L.factorDof);
+    std::vector<LO> factorDof(L.block->dof.size());  // per entry of the block: its dof in the factor's order
+    for (size_t k = 0; k < factorDof.size(); ++k) factorDof[k] = position[L.block->dof[k]];
+    L.solver.setSparseDofs(factorDof);
+    L.factorTerms = blockTerms(*L.block, L.rowOrder, factorDof);
     if (settings_.dirichletPreconditioner || settings_.lumpedPreconditioner)
       buildPreconditionerBlocks(L, settings_.dirichletPreconditioner, settings_.factorization);
     if (settings_.explicitF) {
@@ -490,7 +504,7 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
 /// subdomain ("runs"), then by kind (one loop without branches per kind), then by row, so
 /// that G^T a adds each entry's g_{s,r} . a_s into its row's sum in a chunk-sized buffer,
 /// runs in ascending subdomain order: every row sums its entries in ascending subdomain
-/// order (the rows of one run are distinct, so there is no chain of dependent updates). G x is summed by subdomain instead (Local::gTerms,
+/// order (the rows of one run are distinct, so there is no chain of dependent updates). G x is summed by subdomain instead (CoarseRows::ownedTerm,
 /// applyGOwnedSubdomains): a subdomain's rows are owned by different ranks on different
 /// layouts, its owner has them all (its own block) and reads the same coordinate slots.
 /// The by-row view (rowStart, rowSubdomain, rowEntry) serves the set-up (G G^T).
@@ -510,6 +524,14 @@ struct TotalFeti::CoarseRows {
   std::vector<int> runSubdomain;  ///< per run
   std::vector<int> chunkRunStart;  ///< per chunk + 1: its runs
   mutable std::vector<double> rowSum;  ///< numRows: G^T a's sums, each chunk its own rows
+  /// G x's terms of the owned subdomains (index: x's index on the overlap; every row of the
+  /// subdomain's own block, whichever rank owns the row), one subdomain after the other in
+  /// one array, and per owned subdomain its id and where its kinds start
+  /// (ownedStart[6 i .. 6 i + 4] into ownedTerm, ownedStart[6 i + 5] = s): G x streams
+  /// through two arrays instead of starting a new allocation at every subdomain
+  /// (doc/performance.md, "G x in one stream").
+  std::vector<CoarseTerm> ownedTerm;
+  std::vector<LO> ownedStart;
   int numChunks() const { return static_cast<int>(chunkRunStart.size()) - 1; }
   const double* M(int s) const { return &basis[36 * static_cast<size_t>(s)]; }
   /// g'_{s,r} of a term (the geometric basis).
@@ -802,22 +824,26 @@ void TotalFeti::buildCoarseRows(const mesh::Mesh& mesh, const mesh::Decompositio
       G->runGroupStart[4 * j + kind] = e;
     }
   G->rowSum.assign(G->numRows, 0.0);
-  // G x of the owned subdomains: their own blocks, every row (the same slots where shared).
+  // G x of the owned subdomains: their own blocks, every row (the same slots where shared);
+  // by kind (component d = 0, 1, 2 of one-term rows, then the full entries), in rowOrder
+  // within a kind.
+  G->ownedTerm.clear();
+  G->ownedStart.clear();
   for (int i = 0; i < numOwnedSubdomains(); ++i) {
-    Local* L = local_[i].get();
-    L->gTerms.clear();
-    L->gTerms.reserve(L->m());
+    const Local& L = *local_[i];
     for (int kind = 0; kind < 4; ++kind) {
-      L->gGroupStart[kind] = static_cast<LO>(L->gTerms.size());
-      for (LO r : L->rowOrder) {
-        if (termKind(*L->block, r) != kind) continue;
+      G->ownedStart.push_back(static_cast<LO>(G->ownedTerm.size()));
+      for (LO r : L.rowOrder) {
+        if (termKind(*L.block, r) != kind) continue;
         dataOf(sourceData, firstSource[i] + r, data);
-        L->gTerms.push_back(termOf(L->subdomain, *L->block, r, data));
-        L->gTerms.back().index = L->overlapIndex[r];
+        G->ownedTerm.push_back(termOf(L.subdomain, *L.block, r, data));
+        G->ownedTerm.back().index = L.overlapIndex[r];
       }
     }
-    L->gGroupStart[4] = static_cast<LO>(L->gTerms.size());
+    G->ownedStart.push_back(static_cast<LO>(G->ownedTerm.size()));
+    G->ownedStart.push_back(L.subdomain);
   }
+  G->ownedTerm.shrink_to_fit();
   G->basis.resize(36 * static_cast<size_t>(S));
   for (GO s = 0; s < S; ++s)
     std::copy(frames.data() + kFrame * s + 4, frames.data() + kFrame * (s + 1), G->basis.data() + 36 * s);
@@ -850,25 +876,22 @@ void TotalFeti::measureTraffic() {
       f += kDouble * rows * (rows + 1) / 2;  // F_s's lower triangle (packLowerInRowOrder)
     } else {
       // the factor (forward whole, backward the part B_s's dofs reach; P F P applies K^+, not
-      // K^dagger, so R is not read); B_s^T and B_s (values, dofs, row pointers), its dofs in
-      // the factor's order
-      f += static_cast<double>(L->solver.generalizedInverseBytesOnDofs()) +
-           2 * (entries * (kDouble + 2 * kIndex) + rows * kIndex);
+      // K^dagger, so R is not read); B_s^T and B_s (its terms, twice)
+      f += static_cast<double>(L->solver.generalizedInverseBytesOnDofs()) + 2 * entries * sizeof(BlockTerm);
     }
     f += rows * (2 * kIndex + 3 * kDouble);  // overlap indices in and out; x gathered, y added
     factorEntries += static_cast<double>(L->solver.factor().factorNonzeros());
   }
   // The preconditioner: K_bb's upper triangle (lumped), with the Dirichlet one K_ib twice (K_ib
-  // and K_bi = K_ib^T) and the K_ii factor (both substitutions); B_s^T and B_s (values, dofs,
-  // row pointers), the dual entries.
+  // and K_bi = K_ib^T) and the K_ii factor (both substitutions); B_s^T and B_s (its terms,
+  // twice), the dual entries.
   const bool preconditioner = settings_.dirichletPreconditioner || settings_.lumpedPreconditioner;
   double dirichlet = 0.0;
   for (const auto& L : local_) {
     if (!preconditioner) break;
     const DirichletBlocks& D = L->dirichlet;
     const double entries = static_cast<double>(L->block->value.size()), rows = L->m();
-    dirichlet += D.Kbb.bytes() + 2 * (entries * (kDouble + 2 * kIndex) + rows * kIndex) +
-                 rows * (2 * kIndex + 3 * kDouble);
+    dirichlet += D.Kbb.bytes() + 2 * entries * sizeof(BlockTerm) + rows * (2 * kIndex + 3 * kDouble);
     if (!settings_.dirichletPreconditioner) continue;
     dirichlet += 2 * D.Kib.bytes();
     if (D.interiorFactor) dirichlet += static_cast<double>(D.interiorFactor->solveBytes());
@@ -879,8 +902,7 @@ void TotalFeti::measureTraffic() {
   // the owned subdomains, G^T a's of the owned rows) and the coordinate and full slots (the
   // run table and M_s are small); x read twice, y written. The memo's copies of x and P x
   // are not counted.
-  double gxTerms = 0.0;
-  for (const auto& L : local_) gxTerms += static_cast<double>(L->gTerms.size());
+  const double gxTerms = static_cast<double>(G_->ownedTerm.size());
   const double slots = static_cast<double>(G_->coords.size() + G_->full.size());
   const double projection = (gxTerms + gEntries) * sizeof(CoarseTerm) + 2 * slots * kDouble + owned * (kIndex + 3 * kDouble);
   if (preconditioner) dirichlet += owned * kDouble;
@@ -1236,12 +1258,12 @@ void TotalFeti::applyF(const DualVector& x, DualVector& y, bool removeKernel) co
     }
     // Two triangular solves in the factor's order: B_s^T scatters into it, B_s gathers from it
     // (K^+ alone: the backward one over the part of the factor that B_s's dofs reach).
-    applyBlockTranspose(*L.block, L.rowOrder, L.factorDof, L.in.data(), L.x.data(), L.n());
+    scatterTerms(L.factorTerms, L.in.data(), L.x.data(), L.n());
     if (removeKernel)
       L.solver.applyPseudoInversePermuted(L.x.data());
     else
       L.solver.applyGeneralizedInverseOnDofs(L.x.data());
-    applyBlock(*L.block, L.factorDof, L.x.data(), L.out.data());
+    gatherTerms(L.factorTerms, L.x.data(), L.out.data(), L.m());
   });
   profile_.fSeconds += watch.seconds();
 }
@@ -1256,9 +1278,9 @@ void TotalFeti::applyLumped(const DualVector& x, DualVector& y) const {
     // adds its terms in K's column order less the ones that multiply those zeros, with K_ji
     // for K_ij below the diagonal (the stored triangle): B_s K B_s^T to rounding.
     DirichletBlocks& D = L.dirichlet;
-    applyBlockTranspose(*L.block, L.rowOrder, D.boundaryDof, L.in.data(), D.xb.data(), static_cast<LO>(D.xb.size()));
+    scatterTerms(D.terms, L.in.data(), D.xb.data(), static_cast<LO>(D.xb.size()));
     D.Kbb.applySymmetric(D.xb.data(), D.yb.data());
-    applyBlock(*L.block, D.boundaryDof, D.yb.data(), L.out.data());
+    gatherTerms(D.terms, D.yb.data(), L.out.data(), L.m());
   });
   ++profile_.preconditionerApplications;
   profile_.preconditionerSeconds += watch.seconds();
@@ -1273,14 +1295,14 @@ void TotalFeti::applyDirichlet(const DualVector& x, DualVector& y) const {
     // x_b = B_s^T in; y_b = K_bb x_b - K_ib^T K_ii^{-1} K_ib x_b; out = B_s y_b. Per subdomain,
     // in one fixed order: the same bits on every rank and thread layout.
     DirichletBlocks& D = L.dirichlet;
-    applyBlockTranspose(*L.block, L.rowOrder, D.boundaryDof, L.in.data(), D.xb.data(), static_cast<LO>(D.xb.size()));
+    scatterTerms(D.terms, L.in.data(), D.xb.data(), static_cast<LO>(D.xb.size()));
     D.Kbb.applySymmetric(D.xb.data(), D.yb.data());
     if (D.interiorFactor) {
       D.Kib.apply(D.xb.data(), D.t.data());
       D.interiorFactor->solveInPlace(D.t.data());
       D.Kib.subtractTransposed(D.t.data(), D.yb.data());
     }
-    applyBlock(*L.block, D.boundaryDof, D.yb.data(), L.out.data());
+    gatherTerms(D.terms, D.yb.data(), L.out.data(), L.m());
   });
   ++profile_.preconditionerApplications;
   profile_.preconditionerSeconds += watch.seconds();
@@ -1325,10 +1347,11 @@ void sumComponent(const CoarseTerm* __restrict t, const CoarseTerm* end, const d
   sum[2] = s2 + u2;
 }
 
-// (G x)_s of one owned subdomain into gx[6 s, 6 s + 6) (applyGOwnedSubdomains).
-void sumOwnedSubdomain(const TotalFeti::CoarseRows& G, const TotalFeti::Local& L, const double* xOverlap, double* gx) {
-  const CoarseTerm* t = L.gTerms.data();
-  const auto& start = L.gGroupStart;
+// (G x)_s of the i-th owned subdomain into gx[6 s, 6 s + 6) (applyGOwnedSubdomains).
+void sumOwnedSubdomain(const TotalFeti::CoarseRows& G, int i, const double* xOverlap, double* gx) {
+  const CoarseTerm* t = G.ownedTerm.data();
+  const LO* start = &G.ownedStart[6 * static_cast<size_t>(i)];
+  const int subdomain = start[5];
   double s0[3], s1[3], s2[3], full[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
   sumComponent<0>(t + start[0], t + start[1], xOverlap, G.coords.data(), s0);
   sumComponent<1>(t + start[1], t + start[2], xOverlap, G.coords.data(), s1);
@@ -1347,13 +1370,13 @@ void sumOwnedSubdomain(const TotalFeti::CoarseRows& G, const TotalFeti::Local& L
                          (s2[2] - s1[2]) + full[3],
                          (s0[2] - s2[1]) + full[4],
                          (s1[1] - s0[1]) + full[5]};
-  transposedProduct(G.M(L.subdomain), geo, gx + 6 * L.subdomain);
+  transposedProduct(G.M(subdomain), geo, gx + 6 * subdomain);
 }
 }  // namespace
 
 void TotalFeti::applyGOwnedSubdomains(const double* xOverlap, double* gx) const {
   // (G x)_s = M_s^T sum over the rows r of B_s of g'_{s,r} x_r, by the owner of s (threads
-  // over the owned subdomains), in a fixed order of its terms (Local::gTerms): the same sum in
+  // over the owned subdomains), in a fixed order of its terms (CoarseRows::ownedTerm): the same sum in
   // the same order on every layout. The other entries stay zero, so the all-reduce adds one
   // term and zeros (exact). A one-term row of component d adds w = c x_r times
   // [e_d; (e_k x p~)_d]: the sums of w and w p~ per component, combined at the end.
@@ -1367,7 +1390,7 @@ void TotalFeti::applyGOwnedSubdomains(const double* xOverlap, double* gx) const 
   const int group = std::max(1, std::min(kGxSubdomains, numOwned / (8 * core::numThreads())));
   core::forEachSubdomain((numOwned + group - 1) / group, [&](int task) {
     const int end = std::min(numOwned, (task + 1) * group);
-    for (int i = task * group; i < end; ++i) sumOwnedSubdomain(G, *local_[i], xOverlap, gx);
+    for (int i = task * group; i < end; ++i) sumOwnedSubdomain(G, i, xOverlap, gx);
   });
 }
 

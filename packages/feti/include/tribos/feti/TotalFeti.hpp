@@ -224,7 +224,7 @@ class TotalFeti {
   /// coarseBlockStart_[s + 1]), block column coarseNeighbours_[k] (ascending within a row).
   std::vector<LO> coarseBlockStart_;
   std::vector<int> coarseNeighbours_;
-  /// G on the owned rows and Local::gTerms in the compact geometric form (CoarseRows), from
+  /// G on the owned rows and of the owned subdomains in the compact geometric form (CoarseRows), from
   /// the frames of the subdomains (one all-reduce at set-up) and the mesh's coordinates.
   void buildCoarseRows(const mesh::Mesh& mesh, const mesh::Decomposition& decomposition);
   class CoarseTermBuilder;  ///< set-up helper of buildCoarseRows (TotalFeti.cpp)
