@@ -48,7 +48,7 @@ void applyBlock(const SubdomainBlock& b, const double* y, double* out) {
 /// A subdomain keeps its terms in the order applyBlockTranspose adds them (rows in `order`,
 /// each row's terms in B's order), one array that F and the preconditioners stream through
 /// instead of four (row order, row pointers, values and renumbered dofs:
-/// doc/performance.md, "B_s in one stream").
+/// doc/performance.md, "G x and B_s each in one stream").
 struct BlockTerm {
   LO row, dof;
   double value;
@@ -504,9 +504,10 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
 /// subdomain ("runs"), then by kind (one loop without branches per kind), then by row, so
 /// that G^T a adds each entry's g_{s,r} . a_s into its row's sum in a chunk-sized buffer,
 /// runs in ascending subdomain order: every row sums its entries in ascending subdomain
-/// order (the rows of one run are distinct, so there is no chain of dependent updates). G x is summed by subdomain instead (CoarseRows::ownedTerm,
-/// applyGOwnedSubdomains): a subdomain's rows are owned by different ranks on different
-/// layouts, its owner has them all (its own block) and reads the same coordinate slots.
+/// order (the rows of one run are distinct, so there is no chain of dependent updates). G x
+/// is summed by subdomain instead (ownedTerm, applyGOwnedSubdomains): a subdomain's rows are
+/// owned by different ranks on different layouts, its owner has them all (its own block) and
+/// reads the same coordinate slots.
 /// The by-row view (rowStart, rowSubdomain, rowEntry) serves the set-up (G G^T).
 struct TotalFeti::CoarseRows {
   GO firstRow = 0;
@@ -529,7 +530,7 @@ struct TotalFeti::CoarseRows {
   /// one array, and per owned subdomain its id and where its kinds start
   /// (ownedStart[6 i .. 6 i + 4] into ownedTerm, ownedStart[6 i + 5] = s): G x streams
   /// through two arrays instead of starting a new allocation at every subdomain
-  /// (doc/performance.md, "G x in one stream").
+  /// (doc/performance.md, "G x and B_s each in one stream").
   std::vector<CoarseTerm> ownedTerm;
   std::vector<LO> ownedStart;
   int numChunks() const { return static_cast<int>(chunkRunStart.size()) - 1; }
