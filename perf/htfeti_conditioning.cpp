@@ -1,0 +1,455 @@
+// Prototype (issue 11, doc/coarse_problem.md "Hybrid T-FETI"): the conditioning of hybrid
+// T-FETI against T-FETI on the bonded bricks, one rank. Subdomains are grouped into clusters of
+// c x c x c (structured bricks only); inside a cluster every pair of face neighbours is glued by
+// the averages of the six rigid motions over their shared face (the "kernel" rows B0); every row
+// of B stays. The cluster's generalised inverse solves the local saddle point
+//     [F0  -G0^T] [mu   ]   [B0 K^+ f]
+//     [G0   0   ] [alpha] = [R^T f   ]      (F0 = B0 K^+ B0^T, G0^T = B0 R)
+// with the first subdomain's alpha fixed to zero (the cluster's own rigid motions), densely.
+// The coarse space is the cluster's six rigid motions. Both methods run the same projected,
+// Dirichlet-preconditioned CG from zero on the same random right-hand side in Ker G; the CG
+// Lanczos coefficients give kappa.
+//
+// Usage: build/bin/tribos_htfeti_conditioning [grid (4x2x2)] [H/h (3)] [cluster edge (2)]
+// Not a test and not part of the solver: a measurement for the design note.
+#include <mpi.h>
+
+#include <Teuchos_DefaultMpiComm.hpp>
+#include <Teuchos_LAPACK.hpp>
+#include <Tpetra_Core.hpp>
+#include <Tpetra_Vector.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "tribos/core/Parallel.hpp"
+#include "tribos/core/Parameters.hpp"
+#include "tribos/feti/ConstraintMatrix.hpp"
+#include "tribos/feti/ProjectedCg.hpp"
+#include "tribos/feti/SubdomainSolver.hpp"
+#include "tribos/feti/TotalFeti.hpp"
+#include "tribos/stack/LinearFetiSolve.hpp"
+#include "tribos/stack/Scene.hpp"
+#include "tribos/stack/SceneParameters.hpp"
+#include "tribos/stack/SubdomainSetup.hpp"
+
+using namespace tribos;
+using Vec = std::vector<double>;
+
+namespace {
+double dot(const Vec& a, const Vec& b) {
+  double s = 0.0;
+  for (size_t i = 0; i < a.size(); ++i) s += a[i] * b[i];
+  return s;
+}
+
+// Row d of the six geometric rigid modes at the scaled point p: translations, then e_k x p.
+void modeRow(int d, const double* p, double* v) {
+  for (int j = 0; j < 3; ++j) v[j] = j == d ? 1.0 : 0.0;
+  const double rotation[3][3] = {{0.0, p[2], -p[1]}, {-p[2], 0.0, p[0]}, {p[1], -p[0], 0.0}};
+  for (int k = 0; k < 3; ++k) v[3 + k] = rotation[d][k];
+}
+
+struct Sparse {  // one row of B0 restricted to one subdomain: (local dof, value)
+  std::vector<std::pair<LO, double>> terms;
+};
+
+struct Cluster {
+  std::vector<int> subdomains;
+  std::array<double, 3> centre{};
+  double scale = 1.0;
+  int rows = 0;                                  // B0 rows
+  std::map<int, std::vector<Sparse>> b0;         // per subdomain: its part of every B0 row (rows x)
+  std::map<int, std::vector<Vec>> z;             // per subdomain: K^+ B0_s^T, one vector per B0 row
+  std::vector<double> saddle;                    // LU of the reduced saddle matrix
+  std::vector<int> pivots;
+  int size = 0;
+};
+
+struct Result {
+  int iterations = 0;
+  double kappa = 0.0, lo = 0.0, hi = 0.0;
+};
+
+// Projected preconditioned CG from zero for A x = b (b in Ker G); A, M and P given.
+Result projectedCg(const std::function<void(const Vec&, Vec&)>& A, const std::function<void(const Vec&, Vec&)>& M,
+                   const std::function<void(Vec&)>& P, const Vec& b, double tolerance) {
+  Vec x(b.size(), 0.0), w = b, z(b.size()), p, q(b.size());
+  const double normB = std::sqrt(dot(w, w));
+  M(w, z);
+  P(z);
+  p = z;
+  double wz = dot(w, z);
+  std::vector<double> alphas, betas;
+  Result r;
+  for (; r.iterations < 2000; ++r.iterations) {
+    A(p, q);
+    P(q);
+    const double pq = dot(p, q), alpha = wz / pq;
+    for (size_t i = 0; i < x.size(); ++i) x[i] += alpha * p[i], w[i] -= alpha * q[i];
+    M(w, z);
+    P(z);
+    const double wzNew = dot(w, z), beta = wzNew / wz;
+    wz = wzNew;
+    alphas.push_back(alpha);
+    betas.push_back(beta);
+    for (size_t i = 0; i < p.size(); ++i) p[i] = z[i] + beta * p[i];
+    if (std::sqrt(dot(w, w)) <= tolerance * normB) {
+      ++r.iterations;
+      break;
+    }
+  }
+  betas.pop_back();
+  const auto [lo, hi] = feti::lanczosExtremes(alphas, betas);
+  r.lo = lo;
+  r.hi = hi;
+  r.kappa = hi / lo;
+  return r;
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  MPI_Init(&argc, &argv);
+  {
+    Tpetra::ScopeGuard tpetra(&argc, &argv);
+    core::warmUpKokkosForThreads();
+    const std::string grid = argc > 1 ? argv[1] : "4x2x2", h = argc > 2 ? argv[2] : "3";
+    const int edge = argc > 3 ? std::atoi(argv[3]) : 2;
+    int gridDims[3] = {0, 0, 0};
+    std::sscanf(grid.c_str(), "%dx%dx%d", &gridDims[0], &gridDims[1], &gridDims[2]);
+
+    Teuchos::ParameterList params("Tribos");
+    const auto valid = stack::sceneValidParameters();
+    for (const std::string o : {"Mesh/Subdomains Per Brick=" + grid, "Mesh/H Over h=" + h,
+                                std::string("Contact/Slave Side Set=contact_aluminium"),
+                                std::string("Contact/Master Side Set=contact_steel"),
+                                std::string("Contact/Friction Model=Bonded")})
+      core::applyOverride(params, *valid, o);
+    core::validateAndSetDefaults(params, *valid, "htfeti");
+    const auto scene = stack::buildScene(params, "htfeti");
+    std::vector<fem::SubdomainSystem> systems, copies;
+    stack::assembleOwnedSubdomains(scene, MPI_COMM_WORLD, systems);
+    copies = systems;
+    const auto B = feti::buildConstraintMatrix(scene.mesh, scene.decomposition, stack::constraintSpec(scene), 1);
+    feti::TotalFetiSettings settings;
+    settings.dirichletPreconditioner = true;
+    const feti::TotalFeti feti(scene.mesh, scene.decomposition, std::move(copies), B,
+                               Teuchos::rcp(new Teuchos::MpiComm<int>(MPI_COMM_WORLD)), settings);
+    const auto& D = scene.decomposition;
+    const auto& coords = scene.mesh.coords;
+    const int S = D.numSubdomains();
+    const LO nd = static_cast<LO>(B.numRows);
+    auto toDual = [&](const Vec& v) {
+      auto d = feti.createDualVector();
+      auto view = d->getLocalViewHost(Tpetra::Access::OverwriteAll);
+      for (LO i = 0; i < nd; ++i) view(i, 0) = v[i];
+      return d;
+    };
+    auto fromDual = [&](const feti::DualVector& d, Vec& v) {
+      auto view = d.getLocalViewHost(Tpetra::Access::ReadOnly);
+      v.resize(nd);
+      for (LO i = 0; i < nd; ++i) v[i] = view(i, 0);
+    };
+
+    // Subdomain solvers (K^+: the regularised factor, a generalised inverse).
+    std::vector<feti::SubdomainSolver> solvers(S);
+    for (int s = 0; s < S; ++s) {
+      std::vector<std::array<double, 3>> xs;
+      for (LO node : D.subdomains[s].nodes) xs.push_back(coords[node]);
+      solvers[s].compute(systems[s], xs, "CHOLMOD");
+    }
+    // Clusters: subdomain grid index from the centroid within its body's bounding box.
+    std::map<int, std::array<double, 6>> box;  // body -> lo, hi
+    for (int s = 0; s < S; ++s) {
+      auto& b = box.try_emplace(D.subdomains[s].body, std::array<double, 6>{1e300, 1e300, 1e300, -1e300, -1e300, -1e300})
+                    .first->second;
+      for (LO node : D.subdomains[s].nodes)
+        for (int j = 0; j < 3; ++j) b[j] = std::min(b[j], coords[node][j]), b[3 + j] = std::max(b[3 + j], coords[node][j]);
+    }
+    std::map<std::array<int, 4>, int> clusterId;
+    std::vector<int> clusterOf(S);
+    std::vector<Cluster> clusters;
+    for (int s = 0; s < S; ++s) {
+      std::array<double, 3> c{0, 0, 0};
+      for (LO node : D.subdomains[s].nodes)
+        for (int j = 0; j < 3; ++j) c[j] += coords[node][j] / D.subdomains[s].numNodes();
+      const auto& b = box[D.subdomains[s].body];
+      std::array<int, 4> key{D.subdomains[s].body, 0, 0, 0};
+      for (int j = 0; j < 3; ++j)
+        key[1 + j] = static_cast<int>(std::floor((c[j] - b[j]) / ((b[3 + j] - b[j]) / gridDims[j]))) / edge;
+      auto [it, fresh] = clusterId.try_emplace(key, static_cast<int>(clusters.size()));
+      if (fresh) clusters.emplace_back();
+      clusterOf[s] = it->second;
+      clusters[it->second].subdomains.push_back(s);
+    }
+    for (Cluster& C : clusters) {  // centre and rms radius of the cluster's nodes
+      std::map<LO, int> nodes;
+      for (int s : C.subdomains)
+        for (LO node : D.subdomains[s].nodes) nodes[node] = 1;
+      for (auto& [node, one] : nodes)
+        for (int j = 0; j < 3; ++j) C.centre[j] += coords[node][j] / nodes.size();
+      double r2 = 0.0;
+      for (auto& [node, one] : nodes)
+        for (int j = 0; j < 3; ++j) r2 += std::pow(coords[node][j] - C.centre[j], 2) / nodes.size();
+      C.scale = std::sqrt(r2);
+    }
+    auto scaled = [&](const Cluster& C, LO node, double* p) {
+      for (int j = 0; j < 3; ++j) p[j] = (coords[node][j] - C.centre[j]) / C.scale;
+    };
+
+    // B0: six face-average rows per pair of face neighbours in a cluster.
+    for (Cluster& C : clusters) {
+      for (size_t a = 0; a < C.subdomains.size(); ++a)
+        for (size_t b = a + 1; b < C.subdomains.size(); ++b) {
+          const int s = C.subdomains[a], t = C.subdomains[b];
+          const auto& ns = D.subdomains[s].nodes;
+          const auto& nt = D.subdomains[t].nodes;
+          std::vector<LO> shared;
+          std::set_intersection(ns.begin(), ns.end(), nt.begin(), nt.end(), std::back_inserter(shared));
+          if (shared.size() < 3) continue;
+          // Collinear (an edge): the largest triangle area from the first node is ~0.
+          double area = 0.0;
+          const auto& x0 = coords[shared[0]];
+          for (size_t i = 1; i < shared.size(); ++i)
+            for (size_t j = i + 1; j < shared.size(); ++j) {
+              double u[3], v[3];
+              for (int k = 0; k < 3; ++k) u[k] = coords[shared[i]][k] - x0[k], v[k] = coords[shared[j]][k] - x0[k];
+              const double cx = u[1] * v[2] - u[2] * v[1], cy = u[2] * v[0] - u[0] * v[2], cz = u[0] * v[1] - u[1] * v[0];
+              area = std::max(area, std::sqrt(cx * cx + cy * cy + cz * cz));
+            }
+          if (area < 1e-10 * C.scale * C.scale) continue;
+          auto localOf = [&](const std::vector<LO>& nodes, LO node) {
+            return static_cast<LO>(std::lower_bound(nodes.begin(), nodes.end(), node) - nodes.begin());
+          };
+          // Row m: the average over the shared nodes of rigid mode m's component of u_s - u_t.
+          const double w = 1.0 / std::sqrt(static_cast<double>(shared.size()));
+          for (int m = 0; m < 6; ++m) {
+            for (int other : C.subdomains) C.b0[other].emplace_back();
+            for (LO node : shared) {
+              double p[3], row[6];
+              scaled(C, node, p);
+              for (int d = 0; d < 3; ++d) {
+                modeRow(d, p, row);
+                if (row[m] == 0.0) continue;
+                C.b0[s].back().terms.push_back({3 * localOf(ns, node) + d, w * row[m]});
+                C.b0[t].back().terms.push_back({3 * localOf(nt, node) + d, -w * row[m]});
+              }
+            }
+            ++C.rows;
+          }
+        }
+    }
+
+    // Per cluster: Z_s = K_s^+ B0_s^T, F0, G0^T and the LU of the reduced saddle matrix.
+    Teuchos::LAPACK<int, double> lapack;
+    for (Cluster& C : clusters) {
+      const int m0 = C.rows, ns = static_cast<int>(C.subdomains.size());
+      for (int s : C.subdomains) {
+        const LO n = D.subdomains[s].numDofs();
+        auto& z = C.z[s];
+        z.assign(m0, Vec(n, 0.0));
+        for (int r = 0; r < m0; ++r) {
+          if (C.b0[s][r].terms.empty()) continue;
+          Vec rhs(n, 0.0);
+          for (auto [dof, v] : C.b0[s][r].terms) rhs[dof] += v;
+          solvers[s].applyGeneralizedInverse(rhs.data(), z[r].data(), 1);
+        }
+      }
+      C.size = m0 + 6 * (ns - 1);
+      std::vector<double> A(static_cast<size_t>(C.size) * C.size, 0.0);  // column-major
+      auto at = [&](int i, int j) -> double& { return A[static_cast<size_t>(j) * C.size + i]; };
+      for (int s : C.subdomains)
+        for (int i = 0; i < m0; ++i)
+          for (int j = 0; j < m0; ++j) {
+            double v = 0.0;
+            for (auto [dof, b] : C.b0[s][i].terms) v += b * C.z[s][j][dof];
+            at(i, j) += v;
+          }
+      for (int k = 1; k < ns; ++k) {
+        const int s = C.subdomains[k];
+        const LO n = D.subdomains[s].numDofs();
+        for (int i = 0; i < m0; ++i)
+          for (int mode = 0; mode < 6; ++mode) {
+            double v = 0.0;  // (B0_s R_s)_{i, mode}
+            for (auto [dof, b] : C.b0[s][i].terms) v += b * systems[s].R[static_cast<size_t>(mode) * n + dof];
+            at(i, m0 + 6 * (k - 1) + mode) = -v;
+            at(m0 + 6 * (k - 1) + mode, i) = v;
+          }
+      }
+      C.saddle = A;
+      C.pivots.assign(C.size, 0);
+      int info = 0;
+      lapack.GETRF(C.size, C.size, C.saddle.data(), C.size, C.pivots.data(), &info);
+      if (info != 0) std::printf("cluster LU failed: info %d (size %d)\n", info, C.size);
+    }
+
+    // u = K_c^+ f on one cluster (f and u per subdomain, local dofs).
+    auto clusterSolve = [&](const Cluster& C, std::map<int, Vec>& f) {
+      const int m0 = C.rows, ns = static_cast<int>(C.subdomains.size());
+      std::map<int, Vec> w;
+      std::vector<double> rhs(C.size, 0.0);
+      for (int k = 0; k < ns; ++k) {
+        const int s = C.subdomains[k];
+        const LO n = D.subdomains[s].numDofs();
+        w[s].assign(n, 0.0);
+        solvers[s].applyGeneralizedInverse(f[s].data(), w[s].data(), 1);
+        for (int i = 0; i < m0; ++i)
+          for (auto [dof, b] : C.b0.at(s)[i].terms) rhs[i] += b * w[s][dof];
+        if (k > 0)
+          for (int mode = 0; mode < 6; ++mode) {
+            double v = 0.0;
+            for (LO dof = 0; dof < n; ++dof) v += systems[s].R[static_cast<size_t>(mode) * n + dof] * f[s][dof];
+            rhs[m0 + 6 * (k - 1) + mode] = v;
+          }
+      }
+      int info = 0;
+      lapack.GETRS('N', C.size, 1, C.saddle.data(), C.size, C.pivots.data(), rhs.data(), C.size, &info);
+      for (int k = 0; k < ns; ++k) {
+        const int s = C.subdomains[k];
+        const LO n = D.subdomains[s].numDofs();
+        Vec& u = f[s];
+        u = w[s];
+        for (int i = 0; i < m0; ++i)
+          if (!C.b0.at(s)[i].terms.empty())
+            for (LO dof = 0; dof < n; ++dof) u[dof] -= C.z.at(s)[i][dof] * rhs[i];
+        if (k > 0)
+          for (int mode = 0; mode < 6; ++mode)
+            for (LO dof = 0; dof < n; ++dof)
+              u[dof] += systems[s].R[static_cast<size_t>(mode) * n + dof] * rhs[m0 + 6 * (k - 1) + mode];
+      }
+    };
+    // F_H x = B K_c^+ B^T x.
+    auto applyFH = [&](const Vec& x, Vec& y) {
+      y.assign(nd, 0.0);
+      for (const Cluster& C : clusters) {
+        std::map<int, Vec> f;
+        for (int s : C.subdomains) {
+          const auto& blk = B.blocks[s];
+          Vec& fs = f[s];
+          fs.assign(D.subdomains[s].numDofs(), 0.0);
+          for (size_t r = 0; r < blk.rows.size(); ++r)
+            for (LO k = blk.rowPtr[r]; k < blk.rowPtr[r + 1]; ++k) fs[blk.dof[k]] += blk.value[k] * x[blk.rows[r]];
+        }
+        clusterSolve(C, f);
+        for (int s : C.subdomains) {
+          const auto& blk = B.blocks[s];
+          for (size_t r = 0; r < blk.rows.size(); ++r)
+            for (LO k = blk.rowPtr[r]; k < blk.rowPtr[r + 1]; ++k) y[blk.rows[r]] += blk.value[k] * f[s][blk.dof[k]];
+        }
+      }
+    };
+    // G_H = R_c^T B^T (6 per cluster) and its projector.
+    const int l = 6 * static_cast<int>(clusters.size());
+    std::vector<Vec> GH(l, Vec(nd, 0.0));
+    for (int s = 0; s < S; ++s) {
+      const Cluster& C = clusters[clusterOf[s]];
+      const auto& blk = B.blocks[s];
+      for (size_t r = 0; r < blk.rows.size(); ++r)
+        for (LO k = blk.rowPtr[r]; k < blk.rowPtr[r + 1]; ++k) {
+          const LO dof = blk.dof[k];
+          double p[3], row[6];
+          scaled(C, D.subdomains[s].nodes[dof / 3], p);
+          modeRow(dof % 3, p, row);
+          for (int m = 0; m < 6; ++m) GH[6 * clusterOf[s] + m][blk.rows[r]] += blk.value[k] * row[m];
+        }
+    }
+    std::vector<double> GGt(static_cast<size_t>(l) * l);
+    for (int i = 0; i < l; ++i)
+      for (int j = 0; j < l; ++j) GGt[static_cast<size_t>(j) * l + i] = dot(GH[i], GH[j]);
+    int info = 0;
+    lapack.POTRF('L', l, GGt.data(), l, &info);
+    if (info != 0) std::printf("G_H G_H^T not positive definite: info %d\n", info);
+    auto projectH = [&](Vec& x) {
+      Vec a(l);
+      for (int i = 0; i < l; ++i) a[i] = dot(GH[i], x);
+      int inf = 0;
+      lapack.POTRS('L', l, 1, GGt.data(), l, a.data(), l, &inf);
+      for (int i = 0; i < l; ++i)
+        for (LO r = 0; r < nd; ++r) x[r] -= GH[i][r] * a[i];
+    };
+    auto dirichlet = [&](const Vec& x, Vec& y) {
+      auto in = toDual(x), out = feti.createDualVector();
+      feti.applyDirichlet(*in, *out);
+      fromDual(*out, y);
+    };
+    // T-FETI's operators, through the same CG.
+    auto applyFT = [&](const Vec& x, Vec& y) {
+      auto in = toDual(x), out = feti.createDualVector();
+      feti.applyPF(*in, *out);
+      fromDual(*out, y);
+    };
+    auto projectT = [&](Vec& x) {
+      auto in = toDual(x);
+      feti.project(*in, *in);
+      fromDual(*in, x);
+    };
+    Vec b(nd);
+    for (LO r = 0; r < nd; ++r) b[r] = std::sin(0.37 * r + 0.1) + 0.3 * std::cos(1.3 * r);
+    // Right-hand sides in the range of P F P: F_H vanishes on the multipliers of B's rows inside
+    // a cluster whose forces B0^T takes up (six per kernel face), so a random vector would not
+    // be consistent; the dual problem's own right-hand side is.
+    Vec bT = b, bH = b, tmp;
+    projectT(bT);
+    applyFT(bT, tmp);
+    bT = tmp;
+    projectT(bT);
+    projectH(bH);
+    applyFH(bH, tmp);
+    bH = tmp;
+    projectH(bH);
+    {  // Checks: P F_H P symmetric and positive on two vectors of Ker G_H; on cluster 0, B0 u = 0
+       // for u = K_c^+ B^T x, and R_c^T B^T x = 0 (x in Ker G_H).
+      Vec x(nd), y(nd), fx, fy;
+      for (LO r = 0; r < nd; ++r) x[r] = std::cos(0.71 * r), y[r] = std::sin(1.13 * r + 0.4);
+      projectH(x);
+      projectH(y);
+      applyFH(x, fx);
+      projectH(fx);
+      applyFH(y, fy);
+      projectH(fy);
+      std::printf("check: x.PFy %.6e y.PFx %.6e x.PFx %.6e y.PFy %.6e\n", dot(x, fy), dot(y, fx), dot(x, fx), dot(y, fy));
+      const Cluster& C = clusters[0];
+      std::map<int, Vec> f;
+      for (int s : C.subdomains) {
+        const auto& blk = B.blocks[s];
+        Vec& fs = f[s];
+        fs.assign(D.subdomains[s].numDofs(), 0.0);
+        for (size_t r = 0; r < blk.rows.size(); ++r)
+          for (LO k = blk.rowPtr[r]; k < blk.rowPtr[r + 1]; ++k) fs[blk.dof[k]] += blk.value[k] * x[blk.rows[r]];
+      }
+      std::map<int, Vec> u = f;
+      clusterSolve(C, u);
+      double b0u = 0.0, b0scale = 0.0;
+      for (int i = 0; i < C.rows; ++i) {
+        double v = 0.0;
+        for (int s : C.subdomains)
+          for (auto [dof, b] : C.b0.at(s)[i].terms) v += b * u[s][dof], b0scale = std::max(b0scale, std::abs(b * u[s][dof]));
+        b0u = std::max(b0u, std::abs(v));
+      }
+      double rc[6] = {0, 0, 0, 0, 0, 0};
+      for (int s : C.subdomains)
+        for (LO dof = 0; dof < D.subdomains[s].numDofs(); ++dof) {
+          double p[3], row[6];
+          scaled(C, D.subdomains[s].nodes[dof / 3], p);
+          modeRow(dof % 3, p, row);
+          for (int m = 0; m < 6; ++m) rc[m] += row[m] * f[s][dof];
+        }
+      std::printf("check: |B0 u| %.3e (terms %.3e), R_c^T f %.3e %.3e %.3e\n", b0u, b0scale, rc[0], rc[3], rc[5]);
+    }
+    int faces = 0;
+    for (const Cluster& C : clusters) faces += C.rows / 6;
+    const Result t = projectedCg(applyFT, dirichlet, projectT, bT, 1e-10);
+    const Result hy = projectedCg(applyFH, dirichlet, projectH, bH, 1e-10);
+    std::printf("grid,h,subdomains,clusters,kernel_faces,l_tfeti,l_htfeti,tfeti_its,tfeti_kappa,htfeti_its,htfeti_kappa\n");
+    std::printf("%s,%s,%d,%zu,%d,%d,%d,%d,%.3g,%d,%.3g\n", grid.c_str(), h.c_str(), S, clusters.size(), faces, 6 * S, l,
+                t.iterations, t.kappa, hy.iterations, hy.kappa);
+  }
+  MPI_Finalize();
+  return 0;
+}
