@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -66,7 +67,8 @@ struct Cluster {
   double scale = 1.0;
   int rows = 0;                                  // B0 rows
   std::map<int, std::vector<Sparse>> b0;         // per subdomain: its part of every B0 row (rows x)
-  std::map<int, std::vector<Vec>> z;             // per subdomain: K^+ B0_s^T, one vector per B0 row
+  std::map<int, std::vector<int>> rowsOf;        // per subdomain: the B0 rows that touch it
+  std::map<int, Vec> z;                          // per subdomain: K^+ B0_s^T on rowsOf, n x |rowsOf|
   std::vector<double> saddle;                    // LU of the reduced saddle matrix
   std::vector<int> pivots;
   int size = 0;
@@ -252,25 +254,30 @@ int main(int argc, char** argv) {
       const int m0 = C.rows, ns = static_cast<int>(C.subdomains.size());
       for (int s : C.subdomains) {
         const LO n = D.subdomains[s].numDofs();
+        auto& rows = C.rowsOf[s];
+        for (int r = 0; r < m0; ++r)
+          if (!C.b0[s][r].terms.empty()) rows.push_back(r);
         auto& z = C.z[s];
-        z.assign(m0, Vec(n, 0.0));
-        for (int r = 0; r < m0; ++r) {
-          if (C.b0[s][r].terms.empty()) continue;
+        z.assign(static_cast<size_t>(n) * rows.size(), 0.0);
+        for (size_t j = 0; j < rows.size(); ++j) {
           Vec rhs(n, 0.0);
-          for (auto [dof, v] : C.b0[s][r].terms) rhs[dof] += v;
-          solvers[s].applyGeneralizedInverse(rhs.data(), z[r].data(), 1);
+          for (auto [dof, v] : C.b0[s][rows[j]].terms) rhs[dof] += v;
+          solvers[s].applyGeneralizedInverse(rhs.data(), &z[j * n], 1);
         }
       }
       C.size = m0 + 6 * (ns - 1);
       std::vector<double> A(static_cast<size_t>(C.size) * C.size, 0.0);  // column-major
       auto at = [&](int i, int j) -> double& { return A[static_cast<size_t>(j) * C.size + i]; };
-      for (int s : C.subdomains)
-        for (int i = 0; i < m0; ++i)
-          for (int j = 0; j < m0; ++j) {
+      for (int s : C.subdomains) {
+        const LO n = D.subdomains[s].numDofs();
+        const auto& rows = C.rowsOf[s];
+        for (size_t a = 0; a < rows.size(); ++a)
+          for (size_t b = 0; b < rows.size(); ++b) {
             double v = 0.0;
-            for (auto [dof, b] : C.b0[s][i].terms) v += b * C.z[s][j][dof];
-            at(i, j) += v;
+            for (auto [dof, c] : C.b0[s][rows[a]].terms) v += c * C.z[s][b * n + dof];
+            at(rows[a], rows[b]) += v;
           }
+      }
       for (int k = 1; k < ns; ++k) {
         const int s = C.subdomains[k];
         const LO n = D.subdomains[s].numDofs();
@@ -289,18 +296,18 @@ int main(int argc, char** argv) {
       if (info != 0) std::printf("cluster LU failed: info %d (size %d)\n", info, C.size);
     }
 
-    // u = K_c^+ f on one cluster (f and u per subdomain, local dofs).
-    auto clusterSolve = [&](const Cluster& C, std::map<int, Vec>& f) {
+    // u = K_c^+ f on one cluster: f[s] in, u[s] out (local dofs); w and rhs: scratch.
+    std::vector<Vec> f(S), w(S);
+    for (int s = 0; s < S; ++s) f[s].assign(D.subdomains[s].numDofs(), 0.0), w[s] = f[s];
+    auto clusterSolve = [&](const Cluster& C) {
       const int m0 = C.rows, ns = static_cast<int>(C.subdomains.size());
-      std::map<int, Vec> w;
       std::vector<double> rhs(C.size, 0.0);
       for (int k = 0; k < ns; ++k) {
         const int s = C.subdomains[k];
         const LO n = D.subdomains[s].numDofs();
-        w[s].assign(n, 0.0);
         solvers[s].applyGeneralizedInverse(f[s].data(), w[s].data(), 1);
-        for (int i = 0; i < m0; ++i)
-          for (auto [dof, b] : C.b0.at(s)[i].terms) rhs[i] += b * w[s][dof];
+        for (int r : C.rowsOf.at(s))
+          for (auto [dof, b] : C.b0.at(s)[r].terms) rhs[r] += b * w[s][dof];
         if (k > 0)
           for (int mode = 0; mode < 6; ++mode) {
             double v = 0.0;
@@ -315,9 +322,12 @@ int main(int argc, char** argv) {
         const LO n = D.subdomains[s].numDofs();
         Vec& u = f[s];
         u = w[s];
-        for (int i = 0; i < m0; ++i)
-          if (!C.b0.at(s)[i].terms.empty())
-            for (LO dof = 0; dof < n; ++dof) u[dof] -= C.z.at(s)[i][dof] * rhs[i];
+        const auto& rows = C.rowsOf.at(s);
+        const Vec& z = C.z.at(s);
+        for (size_t j = 0; j < rows.size(); ++j) {
+          const double mu = rhs[rows[j]];
+          for (LO dof = 0; dof < n; ++dof) u[dof] -= z[j * n + dof] * mu;
+        }
         if (k > 0)
           for (int mode = 0; mode < 6; ++mode)
             for (LO dof = 0; dof < n; ++dof)
@@ -325,28 +335,32 @@ int main(int argc, char** argv) {
       }
     };
     // F_H x = B K_c^+ B^T x.
+    double fhSeconds = 0.0;
+    int fhCalls = 0;
     auto applyFH = [&](const Vec& x, Vec& y) {
+      const auto start = std::chrono::steady_clock::now();
       y.assign(nd, 0.0);
       for (const Cluster& C : clusters) {
-        std::map<int, Vec> f;
         for (int s : C.subdomains) {
           const auto& blk = B.blocks[s];
           Vec& fs = f[s];
-          fs.assign(D.subdomains[s].numDofs(), 0.0);
+          std::fill(fs.begin(), fs.end(), 0.0);
           for (size_t r = 0; r < blk.rows.size(); ++r)
             for (LO k = blk.rowPtr[r]; k < blk.rowPtr[r + 1]; ++k) fs[blk.dof[k]] += blk.value[k] * x[blk.rows[r]];
         }
-        clusterSolve(C, f);
+        clusterSolve(C);
         for (int s : C.subdomains) {
           const auto& blk = B.blocks[s];
           for (size_t r = 0; r < blk.rows.size(); ++r)
             for (LO k = blk.rowPtr[r]; k < blk.rowPtr[r + 1]; ++k) y[blk.rows[r]] += blk.value[k] * f[s][blk.dof[k]];
         }
       }
+      fhSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      ++fhCalls;
     };
-    // G_H = R_c^T B^T (6 per cluster) and its projector.
+    // G_H = R_c^T B^T (6 per cluster), by rows of B, and its projector (dense G_H G_H^T).
     const int l = 6 * static_cast<int>(clusters.size());
-    std::vector<Vec> GH(l, Vec(nd, 0.0));
+    std::vector<std::map<int, double>> GH(nd);  // row r: coarse index -> value
     for (int s = 0; s < S; ++s) {
       const Cluster& C = clusters[clusterOf[s]];
       const auto& blk = B.blocks[s];
@@ -356,22 +370,24 @@ int main(int argc, char** argv) {
           double p[3], row[6];
           scaled(C, D.subdomains[s].nodes[dof / 3], p);
           modeRow(dof % 3, p, row);
-          for (int m = 0; m < 6; ++m) GH[6 * clusterOf[s] + m][blk.rows[r]] += blk.value[k] * row[m];
+          for (int m = 0; m < 6; ++m) GH[blk.rows[r]][6 * clusterOf[s] + m] += blk.value[k] * row[m];
         }
     }
-    std::vector<double> GGt(static_cast<size_t>(l) * l);
-    for (int i = 0; i < l; ++i)
-      for (int j = 0; j < l; ++j) GGt[static_cast<size_t>(j) * l + i] = dot(GH[i], GH[j]);
+    std::vector<double> GGt(static_cast<size_t>(l) * l, 0.0);
+    for (LO r = 0; r < nd; ++r)
+      for (auto [i, a] : GH[r])
+        for (auto [j, b] : GH[r]) GGt[static_cast<size_t>(j) * l + i] += a * b;
     int info = 0;
     lapack.POTRF('L', l, GGt.data(), l, &info);
     if (info != 0) std::printf("G_H G_H^T not positive definite: info %d\n", info);
     auto projectH = [&](Vec& x) {
-      Vec a(l);
-      for (int i = 0; i < l; ++i) a[i] = dot(GH[i], x);
+      Vec a(l, 0.0);
+      for (LO r = 0; r < nd; ++r)
+        for (auto [i, g] : GH[r]) a[i] += g * x[r];
       int inf = 0;
       lapack.POTRS('L', l, 1, GGt.data(), l, a.data(), l, &inf);
-      for (int i = 0; i < l; ++i)
-        for (LO r = 0; r < nd; ++r) x[r] -= GH[i][r] * a[i];
+      for (LO r = 0; r < nd; ++r)
+        for (auto [i, g] : GH[r]) x[r] -= g * a[i];
     };
     auto dirichlet = [&](const Vec& x, Vec& y) {
       auto in = toDual(x), out = feti.createDualVector();
@@ -379,9 +395,14 @@ int main(int argc, char** argv) {
       fromDual(*out, y);
     };
     // T-FETI's operators, through the same CG.
+    double ftSeconds = 0.0;
+    int ftCalls = 0;
     auto applyFT = [&](const Vec& x, Vec& y) {
       auto in = toDual(x), out = feti.createDualVector();
+      const auto start = std::chrono::steady_clock::now();
       feti.applyPF(*in, *out);
+      ftSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      ++ftCalls;
       fromDual(*out, y);
     };
     auto projectT = [&](Vec& x) {
@@ -415,16 +436,16 @@ int main(int argc, char** argv) {
       projectH(fy);
       std::printf("check: x.PFy %.6e y.PFx %.6e x.PFx %.6e y.PFy %.6e\n", dot(x, fy), dot(y, fx), dot(x, fx), dot(y, fy));
       const Cluster& C = clusters[0];
-      std::map<int, Vec> f;
       for (int s : C.subdomains) {
         const auto& blk = B.blocks[s];
-        Vec& fs = f[s];
-        fs.assign(D.subdomains[s].numDofs(), 0.0);
+        std::fill(f[s].begin(), f[s].end(), 0.0);
         for (size_t r = 0; r < blk.rows.size(); ++r)
-          for (LO k = blk.rowPtr[r]; k < blk.rowPtr[r + 1]; ++k) fs[blk.dof[k]] += blk.value[k] * x[blk.rows[r]];
+          for (LO k = blk.rowPtr[r]; k < blk.rowPtr[r + 1]; ++k) f[s][blk.dof[k]] += blk.value[k] * x[blk.rows[r]];
       }
-      std::map<int, Vec> u = f;
-      clusterSolve(C, u);
+      std::map<int, Vec> load;
+      for (int s : C.subdomains) load[s] = f[s];
+      clusterSolve(C);
+      const std::vector<Vec>& u = f;
       double b0u = 0.0, b0scale = 0.0;
       for (int i = 0; i < C.rows; ++i) {
         double v = 0.0;
@@ -438,7 +459,7 @@ int main(int argc, char** argv) {
           double p[3], row[6];
           scaled(C, D.subdomains[s].nodes[dof / 3], p);
           modeRow(dof % 3, p, row);
-          for (int m = 0; m < 6; ++m) rc[m] += row[m] * f[s][dof];
+          for (int m = 0; m < 6; ++m) rc[m] += row[m] * load[s][dof];
         }
       std::printf("check: |B0 u| %.3e (terms %.3e), R_c^T f %.3e %.3e %.3e\n", b0u, b0scale, rc[0], rc[3], rc[5]);
     }
@@ -446,9 +467,22 @@ int main(int argc, char** argv) {
     for (const Cluster& C : clusters) faces += C.rows / 6;
     const Result t = projectedCg(applyFT, dirichlet, projectT, bT, 1e-10);
     const Result hy = projectedCg(applyFH, dirichlet, projectH, bH, 1e-10);
-    std::printf("grid,h,subdomains,clusters,kernel_faces,l_tfeti,l_htfeti,tfeti_its,tfeti_kappa,htfeti_its,htfeti_kappa\n");
-    std::printf("%s,%s,%d,%zu,%d,%d,%d,%d,%.3g,%d,%.3g\n", grid.c_str(), h.c_str(), S, clusters.size(), faces, 6 * S, l,
-                t.iterations, t.kappa, hy.iterations, hy.kappa);
+    // applyPF = F x then P: the projection's own time (no memo hit: a new vector each time) off.
+    double pSeconds = 0.0;
+    for (int k = 0; k < 10; ++k) {
+      Vec v(nd);
+      for (LO r = 0; r < nd; ++r) v[r] = std::sin(0.1 * k + 0.37 * r);
+      auto d = toDual(v);
+      const auto start = std::chrono::steady_clock::now();
+      feti.project(*d, *d);
+      pSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / 10;
+    }
+    ftSeconds -= ftCalls * pSeconds;
+    std::printf("grid,h,subdomains,clusters,kernel_faces,l_tfeti,l_htfeti,tfeti_its,tfeti_kappa,htfeti_its,htfeti_kappa,"
+                "tfeti_F_ms,htfeti_F_ms\n");
+    std::printf("%s,%s,%d,%zu,%d,%d,%d,%d,%.3g,%d,%.3g,%.3f,%.3f\n", grid.c_str(), h.c_str(), S, clusters.size(), faces,
+                6 * S, l, t.iterations, t.kappa, hy.iterations, hy.kappa, 1e3 * ftSeconds / ftCalls,
+                1e3 * fhSeconds / fhCalls);
   }
   MPI_Finalize();
   return 0;
