@@ -11,7 +11,11 @@
 // Lanczos coefficients give kappa.
 //
 // Usage: build/bin/tribos_htfeti_conditioning [grid (4x2x2)] [H/h (3)] [cluster edge (2)]
+//          [grid | metis | metis-recursive]
+//        build/bin/tribos_htfeti_conditioning SCENE.xml [cluster size (8)] [metis | metis-recursive]
+//          [Path=value overrides...]
 // Not a test and not part of the solver: a measurement for the design note.
+#include <metis.h>
 #include <mpi.h>
 
 #include <Teuchos_DefaultMpiComm.hpp>
@@ -24,6 +28,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <sstream>
 #include <functional>
 #include <map>
 #include <string>
@@ -31,6 +37,7 @@
 
 #include "tribos/core/Parallel.hpp"
 #include "tribos/core/Parameters.hpp"
+#include "tribos/core/XmlParameters.hpp"
 #include "tribos/feti/ConstraintMatrix.hpp"
 #include "tribos/feti/ProjectedCg.hpp"
 #include "tribos/feti/SubdomainSolver.hpp"
@@ -55,6 +62,64 @@ void modeRow(int d, const double* p, double* v) {
   for (int j = 0; j < 3; ++j) v[j] = j == d ? 1.0 : 0.0;
   const double rotation[3][3] = {{0.0, p[2], -p[1]}, {-p[2], 0.0, p[0]}, {p[1], -p[0], 0.0}};
   for (int k = 0; k < 3; ++k) v[3 + k] = rotation[d][k];
+}
+
+// The nodes subdomains s and t share, when they are face neighbours (at least three shared
+// nodes, not all on a line); empty otherwise (edge and corner neighbours, or none).
+std::vector<LO> sharedFace(const mesh::Decomposition& D, const std::vector<std::array<double, 3>>& coords, int s,
+                           int t) {
+  const auto& ns = D.subdomains[s].nodes;
+  const auto& nt = D.subdomains[t].nodes;
+  std::vector<LO> shared;
+  std::set_intersection(ns.begin(), ns.end(), nt.begin(), nt.end(), std::back_inserter(shared));
+  if (shared.size() < 3) return {};
+  double area = 0.0, size = 0.0;  // the largest triangle from the first node, against its edges
+  const auto& x0 = coords[shared[0]];
+  for (size_t i = 1; i < shared.size(); ++i) {
+    double u[3];
+    for (int k = 0; k < 3; ++k) u[k] = coords[shared[i]][k] - x0[k];
+    size = std::max(size, u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    for (size_t j = i + 1; j < shared.size(); ++j) {
+      double v[3];
+      for (int k = 0; k < 3; ++k) v[k] = coords[shared[j]][k] - x0[k];
+      const double cx = u[1] * v[2] - u[2] * v[1], cy = u[2] * v[0] - u[0] * v[2], cz = u[0] * v[1] - u[1] * v[0];
+      area = std::max(area, std::sqrt(cx * cx + cy * cy + cz * cz));
+    }
+  }
+  return area > 1e-8 * size ? shared : std::vector<LO>{};
+}
+
+// Clusters of about `size` subdomains: METIS (k-way with contiguous parts, or recursive
+// bisection) on the face-neighbour graph of each body's subdomains.
+std::vector<int> metisClusters(const mesh::Decomposition& D, const std::vector<std::array<double, 3>>& coords,
+                               int size, bool recursive) {
+  const int S = D.numSubdomains();
+  std::vector<int> cluster(S, -1);
+  std::map<int, std::vector<int>> bodies;
+  for (int s = 0; s < S; ++s) bodies[D.subdomains[s].body].push_back(s);
+  int next = 0;
+  for (auto& [body, members] : bodies) {
+    idx_t n = static_cast<idx_t>(members.size()), parts = std::max<idx_t>(1, (n + size / 2) / size), ncon = 1;
+    if (parts == 1) {
+      for (int s : members) cluster[s] = next;
+      ++next;
+      continue;
+    }
+    std::vector<idx_t> xadj{0}, adjncy, part(n);
+    for (idx_t a = 0; a < n; ++a) {
+      for (idx_t b = 0; b < n; ++b)
+        if (a != b && !sharedFace(D, coords, members[a], members[b]).empty()) adjncy.push_back(b);
+      xadj.push_back(static_cast<idx_t>(adjncy.size()));
+    }
+    idx_t options[METIS_NOPTIONS], cut = 0;
+    METIS_SetDefaultOptions(options);
+    options[METIS_OPTION_CONTIG] = 1;
+    (recursive ? METIS_PartGraphRecursive : METIS_PartGraphKway)(&n, &ncon, xadj.data(), adjncy.data(), nullptr, nullptr, nullptr, &parts, nullptr, nullptr,
+                        options, &cut, part.data());
+    for (idx_t a = 0; a < n; ++a) cluster[members[a]] = next + static_cast<int>(part[a]);
+    next += static_cast<int>(parts);
+  }
+  return cluster;
 }
 
 struct Sparse {  // one row of B0 restricted to one subdomain: (local dof, value)
@@ -121,20 +186,37 @@ int main(int argc, char** argv) {
   {
     Tpetra::ScopeGuard tpetra(&argc, &argv);
     core::warmUpKokkosForThreads();
-    const std::string grid = argc > 1 ? argv[1] : "4x2x2", h = argc > 2 ? argv[2] : "3";
-    const int edge = argc > 3 ? std::atoi(argv[3]) : 2;
+    // GRID H/h EDGE [grid | metis | metis-recursive]: the bricks, clusters of EDGE^3 subdomains
+    // (EDGE^3 blocks of the grid, or METIS on the face-neighbour graph);
+    // FILE.xml SIZE [metis | metis-recursive] [Path=value...]: any scene, METIS clusters of about SIZE.
+    const std::string first = argc > 1 ? argv[1] : "4x2x2";
+    const bool fromFile = first.size() > 4 && first.substr(first.size() - 4) == ".xml";
+    const std::string grid = fromFile ? "-" : first, h = fromFile ? "-" : (argc > 2 ? argv[2] : "3");
+    const int edge = fromFile ? 0 : (argc > 3 ? std::atoi(argv[3]) : 2);
+    const std::string how = fromFile ? (argc > 3 ? argv[3] : "metis") : (argc > 4 ? argv[4] : "grid");
+    const bool recursive = how == "metis-recursive";
+    const int metisSize = fromFile ? (argc > 2 ? std::atoi(argv[2]) : 8)
+                                   : (how == "metis" || recursive ? edge * edge * edge : 0);
     int gridDims[3] = {0, 0, 0};
-    std::sscanf(grid.c_str(), "%dx%dx%d", &gridDims[0], &gridDims[1], &gridDims[2]);
+    if (!fromFile) std::sscanf(grid.c_str(), "%dx%dx%d", &gridDims[0], &gridDims[1], &gridDims[2]);
 
     Teuchos::ParameterList params("Tribos");
     const auto valid = stack::sceneValidParameters();
-    for (const std::string o : {"Mesh/Subdomains Per Brick=" + grid, "Mesh/H Over h=" + h,
-                                std::string("Contact/Slave Side Set=contact_aluminium"),
-                                std::string("Contact/Master Side Set=contact_steel"),
-                                std::string("Contact/Friction Model=Bonded")})
-      core::applyOverride(params, *valid, o);
+    std::vector<std::string> overrides;
+    if (fromFile) {
+      std::ifstream in(first);
+      std::stringstream text;
+      text << in.rdbuf();
+      params = *core::parameterListFromXml(text.str(), first);
+      for (int a = 4; a < argc; ++a) overrides.push_back(argv[a]);
+    } else {
+      overrides = {"Mesh/Subdomains Per Brick=" + grid, "Mesh/H Over h=" + h,
+                   "Contact/Slave Side Set=contact_aluminium", "Contact/Master Side Set=contact_steel"};
+    }
+    overrides.push_back("Contact/Friction Model=Bonded");
+    for (const std::string& o : overrides) core::applyOverride(params, *valid, o);
     core::validateAndSetDefaults(params, *valid, "htfeti");
-    const auto scene = stack::buildScene(params, "htfeti");
+    const auto scene = stack::buildScene(params, fromFile ? first : std::string("htfeti"));
     std::vector<fem::SubdomainSystem> systems, copies;
     stack::assembleOwnedSubdomains(scene, MPI_COMM_WORLD, systems);
     copies = systems;
@@ -177,7 +259,12 @@ int main(int argc, char** argv) {
     std::map<std::array<int, 4>, int> clusterId;
     std::vector<int> clusterOf(S);
     std::vector<Cluster> clusters;
-    for (int s = 0; s < S; ++s) {
+    if (metisSize > 0) {
+      clusterOf = metisClusters(D, coords, metisSize, recursive);
+      clusters.resize(*std::max_element(clusterOf.begin(), clusterOf.end()) + 1);
+      for (int s = 0; s < S; ++s) clusters[clusterOf[s]].subdomains.push_back(s);
+    }
+    for (int s = 0; s < S && metisSize == 0; ++s) {
       std::array<double, 3> c{0, 0, 0};
       for (LO node : D.subdomains[s].nodes)
         for (int j = 0; j < 3; ++j) c[j] += coords[node][j] / D.subdomains[s].numNodes();
@@ -189,6 +276,21 @@ int main(int argc, char** argv) {
       if (fresh) clusters.emplace_back();
       clusterOf[s] = it->second;
       clusters[it->second].subdomains.push_back(s);
+    }
+    {  // clusters whose subdomains are not face-connected have more than six rigid motions
+      int disconnected = 0;
+      for (const Cluster& C : clusters) {
+        std::vector<int> seen(C.subdomains.size(), 0), stack{0};
+        seen[0] = 1;
+        while (!stack.empty()) {
+          const int a = stack.back();
+          stack.pop_back();
+          for (size_t b = 0; b < C.subdomains.size(); ++b)
+            if (!seen[b] && !sharedFace(D, coords, C.subdomains[a], C.subdomains[b]).empty()) seen[b] = 1, stack.push_back(static_cast<int>(b));
+        }
+        disconnected += std::count(seen.begin(), seen.end(), 0) > 0;
+      }
+      std::printf("clusters: %zu, not face-connected: %d\n", clusters.size(), disconnected);
     }
     for (Cluster& C : clusters) {  // centre and rms radius of the cluster's nodes
       std::map<LO, int> nodes;
@@ -212,20 +314,8 @@ int main(int argc, char** argv) {
           const int s = C.subdomains[a], t = C.subdomains[b];
           const auto& ns = D.subdomains[s].nodes;
           const auto& nt = D.subdomains[t].nodes;
-          std::vector<LO> shared;
-          std::set_intersection(ns.begin(), ns.end(), nt.begin(), nt.end(), std::back_inserter(shared));
-          if (shared.size() < 3) continue;
-          // Collinear (an edge): the largest triangle area from the first node is ~0.
-          double area = 0.0;
-          const auto& x0 = coords[shared[0]];
-          for (size_t i = 1; i < shared.size(); ++i)
-            for (size_t j = i + 1; j < shared.size(); ++j) {
-              double u[3], v[3];
-              for (int k = 0; k < 3; ++k) u[k] = coords[shared[i]][k] - x0[k], v[k] = coords[shared[j]][k] - x0[k];
-              const double cx = u[1] * v[2] - u[2] * v[1], cy = u[2] * v[0] - u[0] * v[2], cz = u[0] * v[1] - u[1] * v[0];
-              area = std::max(area, std::sqrt(cx * cx + cy * cy + cz * cz));
-            }
-          if (area < 1e-10 * C.scale * C.scale) continue;
+          const std::vector<LO> shared = sharedFace(D, coords, s, t);
+          if (shared.empty()) continue;
           auto localOf = [&](const std::vector<LO>& nodes, LO node) {
             return static_cast<LO>(std::lower_bound(nodes.begin(), nodes.end(), node) - nodes.begin());
           };
