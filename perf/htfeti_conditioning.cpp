@@ -11,8 +11,8 @@
 // Lanczos coefficients give kappa.
 //
 // Usage: build/bin/tribos_htfeti_conditioning [grid (4x2x2)] [H/h (3)] [cluster edge (2)]
-//          [grid | metis | metis-recursive | greedy]
-//        build/bin/tribos_htfeti_conditioning SCENE.xml [cluster size (8)] [metis | metis-recursive | greedy]
+//          [grid | metis | metis-recursive | greedy | bisection]
+//        build/bin/tribos_htfeti_conditioning SCENE.xml [cluster size (8)] [metis | metis-recursive | greedy | bisection]
 //          [Path=value overrides...]
 // Not a test and not part of the solver: a measurement for the design note.
 #include <metis.h>
@@ -181,6 +181,82 @@ std::vector<int> greedyClusters(const mesh::Decomposition& D, const std::vector<
   return cluster;
 }
 
+// Clusters by recursive coordinate bisection of the subdomains' centroids (each split halves a
+// set across its longest extent, ties by the other axes), body by body, until a set has at most
+// `size` subdomains; a set that is not face-connected is then split into its face-connected
+// pieces, and pieces of fewer than size / 2 subdomains join the neighbouring cluster they share
+// the most faces with.
+std::vector<int> bisectionClusters(const mesh::Decomposition& D, const std::vector<std::array<double, 3>>& coords,
+                                   int size) {
+  const int S = D.numSubdomains();
+  std::vector<std::array<double, 3>> centroid(S, {0.0, 0.0, 0.0});
+  for (int s = 0; s < S; ++s)
+    for (LO node : D.subdomains[s].nodes)
+      for (int j = 0; j < 3; ++j) centroid[s][j] += coords[node][j] / D.subdomains[s].numNodes();
+  std::vector<std::vector<int>> neighbours(S);
+  for (int s = 0; s < S; ++s)
+    for (int t = s + 1; t < S; ++t)
+      if (D.subdomains[s].body == D.subdomains[t].body && !sharedFace(D, coords, s, t).empty())
+        neighbours[s].push_back(t), neighbours[t].push_back(s);
+  std::vector<int> cluster(S, -1);
+  int next = 0;
+  std::function<void(std::vector<int>)> split = [&](std::vector<int> set) {
+    if (static_cast<int>(set.size()) <= size) {
+      for (int s : set) cluster[s] = -2;  // mark the set, then label its connected pieces
+      for (int s : set) {
+        if (cluster[s] != -2) continue;
+        std::vector<int> stack{s};
+        cluster[s] = next;
+        while (!stack.empty()) {
+          const int a = stack.back();
+          stack.pop_back();
+          for (int b : neighbours[a])
+            if (cluster[b] == -2) cluster[b] = next, stack.push_back(b);
+        }
+        ++next;
+      }
+      return;
+    }
+    int axis = 0;
+    double extent = -1.0;
+    for (int j = 0; j < 3; ++j) {
+      double lo = 1e300, hi = -1e300;
+      for (int s : set) lo = std::min(lo, centroid[s][j]), hi = std::max(hi, centroid[s][j]);
+      if (hi - lo > extent) extent = hi - lo, axis = j;
+    }
+    std::sort(set.begin(), set.end(), [&](int a, int b) {
+      for (int k = 0; k < 3; ++k) {
+        const int j = (axis + k) % 3;
+        if (std::abs(centroid[a][j] - centroid[b][j]) > 1e-9 * (1.0 + std::abs(centroid[a][j])))
+          return centroid[a][j] < centroid[b][j];
+      }
+      return a < b;
+    });
+    const size_t half = set.size() / 2;
+    split(std::vector<int>(set.begin(), set.begin() + half));
+    split(std::vector<int>(set.begin() + half, set.end()));
+  };
+  std::map<int, std::vector<int>> bodies;
+  for (int s = 0; s < S; ++s) bodies[D.subdomains[s].body].push_back(s);
+  for (auto& [body, members] : bodies) split(members);
+  std::vector<std::vector<int>> members(next);
+  for (int s = 0; s < S; ++s) members[cluster[s]].push_back(s);
+  for (int id = 0; id < next; ++id) {
+    if (members[id].empty() || static_cast<int>(members[id].size()) >= size / 2) continue;
+    std::map<int, int> faces;
+    for (int m : members[id])
+      for (int t : neighbours[m])
+        if (cluster[t] != id) ++faces[cluster[t]];
+    if (faces.empty()) continue;
+    const int into = std::max_element(faces.begin(), faces.end(), [](auto a, auto b) { return a.second < b.second; })->first;
+    for (int m : members[id]) cluster[m] = into, members[into].push_back(m);
+    members[id].clear();
+  }
+  std::map<int, int> renumber;
+  for (int s = 0; s < S; ++s) cluster[s] = renumber.try_emplace(cluster[s], static_cast<int>(renumber.size())).first->second;
+  return cluster;
+}
+
 struct Sparse {  // one row of B0 restricted to one subdomain: (local dof, value)
   std::vector<std::pair<LO, double>> terms;
 };
@@ -245,9 +321,10 @@ int main(int argc, char** argv) {
   {
     Tpetra::ScopeGuard tpetra(&argc, &argv);
     core::warmUpKokkosForThreads();
-    // GRID H/h EDGE [grid | metis | metis-recursive | greedy]: the bricks, clusters of EDGE^3
-    // subdomains (EDGE^3 blocks of the grid, METIS on the face-neighbour graph, or greedyClusters);
-    // FILE.xml SIZE [metis | metis-recursive | greedy] [Path=value...]: any scene, clusters of
+    // GRID H/h EDGE [grid | metis | metis-recursive | greedy | bisection]: the bricks, clusters of EDGE^3
+    // subdomains (EDGE^3 blocks of the grid, METIS on the face-neighbour graph, greedyClusters or
+    // bisectionClusters);
+    // FILE.xml SIZE [metis | metis-recursive | greedy | bisection] [Path=value...]: any scene, clusters of
     // about SIZE.
     const std::string first = argc > 1 ? argv[1] : "4x2x2";
     const bool fromFile = first.size() > 4 && first.substr(first.size() - 4) == ".xml";
@@ -256,7 +333,7 @@ int main(int argc, char** argv) {
     const std::string how = fromFile ? (argc > 3 ? argv[3] : "metis") : (argc > 4 ? argv[4] : "grid");
     const bool recursive = how == "metis-recursive";
     const int metisSize = fromFile ? (argc > 2 ? std::atoi(argv[2]) : 8)
-                                   : (how == "metis" || recursive || how == "greedy" ? edge * edge * edge : 0);
+                                   : (how == "grid" ? 0 : edge * edge * edge);
     int gridDims[3] = {0, 0, 0};
     if (!fromFile) std::sscanf(grid.c_str(), "%dx%dx%d", &gridDims[0], &gridDims[1], &gridDims[2]);
 
@@ -320,7 +397,9 @@ int main(int argc, char** argv) {
     std::vector<int> clusterOf(S);
     std::vector<Cluster> clusters;
     if (metisSize > 0) {
-      clusterOf = how == "greedy" ? greedyClusters(D, coords, metisSize) : metisClusters(D, coords, metisSize, recursive);
+      clusterOf = how == "greedy"      ? greedyClusters(D, coords, metisSize)
+                  : how == "bisection" ? bisectionClusters(D, coords, metisSize)
+                                       : metisClusters(D, coords, metisSize, recursive);
       clusters.resize(*std::max_element(clusterOf.begin(), clusterOf.end()) + 1);
       for (int s = 0; s < S; ++s) clusters[clusterOf[s]].subdomains.push_back(s);
     }
