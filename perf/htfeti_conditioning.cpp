@@ -32,6 +32,8 @@
 #include <sstream>
 #include <functional>
 #include <map>
+#include <numeric>
+#include <tuple>
 #include <string>
 #include <vector>
 
@@ -87,6 +89,15 @@ std::vector<LO> sharedFace(const mesh::Decomposition& D, const std::vector<std::
     }
   }
   return area > 1e-8 * size ? shared : std::vector<LO>{};
+}
+
+// The nodes subdomains s and t share (sorted).
+std::vector<LO> sharedNodes(const mesh::Decomposition& D, int s, int t) {
+  const auto& ns = D.subdomains[s].nodes;
+  const auto& nt = D.subdomains[t].nodes;
+  std::vector<LO> shared;
+  std::set_intersection(ns.begin(), ns.end(), nt.begin(), nt.end(), std::back_inserter(shared));
+  return shared;
 }
 
 // Clusters of about `size` subdomains: METIS (k-way with contiguous parts, or recursive
@@ -181,6 +192,60 @@ std::vector<int> greedyClusters(const mesh::Decomposition& D, const std::vector<
   return cluster;
 }
 
+// The mean of each subdomain's node coordinates.
+std::vector<std::array<double, 3>> subdomainCentroids(const mesh::Decomposition& D,
+                                                      const std::vector<std::array<double, 3>>& coords) {
+  std::vector<std::array<double, 3>> centroid(D.numSubdomains(), {0.0, 0.0, 0.0});
+  for (int s = 0; s < D.numSubdomains(); ++s)
+    for (LO node : D.subdomains[s].nodes)
+      for (int j = 0; j < 3; ++j) centroid[s][j] += coords[node][j] / D.subdomains[s].numNodes();
+  return centroid;
+}
+
+// Each cluster split into its face-connected pieces, then pieces of fewer than size / 2
+// subdomains joined to the neighbouring cluster they share the most faces with; ids made
+// contiguous. A cluster that is not face-connected has more than six rigid motions.
+std::vector<int> splitAndMergeClusters(const mesh::Decomposition& D, const std::vector<std::array<double, 3>>& coords,
+                                       std::vector<int> cluster, int size) {
+  const int S = D.numSubdomains();
+  std::vector<std::vector<int>> neighbours(S);
+  for (int s = 0; s < S; ++s)
+    for (int t = s + 1; t < S; ++t)
+      if (D.subdomains[s].body == D.subdomains[t].body && !sharedFace(D, coords, s, t).empty())
+        neighbours[s].push_back(t), neighbours[t].push_back(s);
+  std::vector<int> piece(S, -1);
+  int next = 0;
+  for (int s = 0; s < S; ++s) {
+    if (piece[s] >= 0) continue;
+    std::vector<int> stack{s};
+    piece[s] = next;
+    while (!stack.empty()) {
+      const int a = stack.back();
+      stack.pop_back();
+      for (int b : neighbours[a])
+        if (piece[b] < 0 && cluster[b] == cluster[a]) piece[b] = next, stack.push_back(b);
+    }
+    ++next;
+  }
+  cluster = piece;
+  std::vector<std::vector<int>> members(next);
+  for (int s = 0; s < S; ++s) members[cluster[s]].push_back(s);
+  for (int id = 0; id < next; ++id) {
+    if (members[id].empty() || static_cast<int>(members[id].size()) >= size / 2) continue;
+    std::map<int, int> faces;
+    for (int m : members[id])
+      for (int t : neighbours[m])
+        if (cluster[t] != id) ++faces[cluster[t]];
+    if (faces.empty()) continue;
+    const int into = std::max_element(faces.begin(), faces.end(), [](auto a, auto b) { return a.second < b.second; })->first;
+    for (int m : members[id]) cluster[m] = into, members[into].push_back(m);
+    members[id].clear();
+  }
+  std::map<int, int> renumber;
+  for (int s = 0; s < S; ++s) cluster[s] = renumber.try_emplace(cluster[s], static_cast<int>(renumber.size())).first->second;
+  return cluster;
+}
+
 // Clusters by recursive coordinate bisection of the subdomains' centroids (each split halves a
 // set across its longest extent, ties by the other axes), body by body, until a set has at most
 // `size` subdomains; a set that is not face-connected is then split into its face-connected
@@ -189,32 +254,13 @@ std::vector<int> greedyClusters(const mesh::Decomposition& D, const std::vector<
 std::vector<int> bisectionClusters(const mesh::Decomposition& D, const std::vector<std::array<double, 3>>& coords,
                                    int size) {
   const int S = D.numSubdomains();
-  std::vector<std::array<double, 3>> centroid(S, {0.0, 0.0, 0.0});
-  for (int s = 0; s < S; ++s)
-    for (LO node : D.subdomains[s].nodes)
-      for (int j = 0; j < 3; ++j) centroid[s][j] += coords[node][j] / D.subdomains[s].numNodes();
-  std::vector<std::vector<int>> neighbours(S);
-  for (int s = 0; s < S; ++s)
-    for (int t = s + 1; t < S; ++t)
-      if (D.subdomains[s].body == D.subdomains[t].body && !sharedFace(D, coords, s, t).empty())
-        neighbours[s].push_back(t), neighbours[t].push_back(s);
+  const std::vector<std::array<double, 3>> centroid = subdomainCentroids(D, coords);
   std::vector<int> cluster(S, -1);
   int next = 0;
   std::function<void(std::vector<int>)> split = [&](std::vector<int> set) {
     if (static_cast<int>(set.size()) <= size) {
-      for (int s : set) cluster[s] = -2;  // mark the set, then label its connected pieces
-      for (int s : set) {
-        if (cluster[s] != -2) continue;
-        std::vector<int> stack{s};
-        cluster[s] = next;
-        while (!stack.empty()) {
-          const int a = stack.back();
-          stack.pop_back();
-          for (int b : neighbours[a])
-            if (cluster[b] == -2) cluster[b] = next, stack.push_back(b);
-        }
-        ++next;
-      }
+      for (int s : set) cluster[s] = next;
+      ++next;
       return;
     }
     int axis = 0;
@@ -239,21 +285,122 @@ std::vector<int> bisectionClusters(const mesh::Decomposition& D, const std::vect
   std::map<int, std::vector<int>> bodies;
   for (int s = 0; s < S; ++s) bodies[D.subdomains[s].body].push_back(s);
   for (auto& [body, members] : bodies) split(members);
-  std::vector<std::vector<int>> members(next);
-  for (int s = 0; s < S; ++s) members[cluster[s]].push_back(s);
-  for (int id = 0; id < next; ++id) {
-    if (members[id].empty() || static_cast<int>(members[id].size()) >= size / 2) continue;
-    std::map<int, int> faces;
-    for (int m : members[id])
-      for (int t : neighbours[m])
-        if (cluster[t] != id) ++faces[cluster[t]];
-    if (faces.empty()) continue;
-    const int into = std::max_element(faces.begin(), faces.end(), [](auto a, auto b) { return a.second < b.second; })->first;
-    for (int m : members[id]) cluster[m] = into, members[into].push_back(m);
-    members[id].clear();
+  return splitAndMergeClusters(D, coords, cluster, size);
+}
+
+// Clusters by Lloyd's k-means on the subdomains' centroids, body by body: round(n / size)
+// centres seeded by farthest points, 50 rounds of "each subdomain to its nearest centre, each
+// centre to its members' mean"; then, as in bisectionClusters, pieces that are not face-connected
+// are split off and pieces under size / 2 join the neighbour cluster they share the most faces
+// with. Voronoi cells of evenly spread centres are compact, which is what the conditioning asks
+// for (the aspect ratio, not the connectivity: doc/coarse_problem.md).
+std::vector<int> kmeansClusters(const mesh::Decomposition& D, const std::vector<std::array<double, 3>>& coords,
+                                int size, bool balanced) {
+  const int S = D.numSubdomains();
+  const std::vector<std::array<double, 3>> centroid = subdomainCentroids(D, coords);
+  auto distance2 = [](const std::array<double, 3>& a, const std::array<double, 3>& b) {
+    return (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]);
+  };
+  std::vector<int> cluster(S, -1);
+  std::map<int, std::vector<int>> bodies;
+  for (int s = 0; s < S; ++s) bodies[D.subdomains[s].body].push_back(s);
+  int next = 0;
+  for (auto& [body, members] : bodies) {
+    const int k = std::max<int>(1, static_cast<int>(std::lround(static_cast<double>(members.size()) / size)));
+    std::vector<std::array<double, 3>> centre{centroid[members[0]]};
+    while (static_cast<int>(centre.size()) < k) {  // farthest point from the centres so far
+      int far = members[0];
+      double best = -1.0;
+      for (int s : members) {
+        double d = 1e300;
+        for (const auto& c : centre) d = std::min(d, distance2(centroid[s], c));
+        if (d > best) best = d, far = s;
+      }
+      centre.push_back(centroid[far]);
+    }
+    for (int round = 0; round < 50; ++round) {
+      if (balanced) {  // nearest pairs first, each centre up to ceil(n / k) subdomains
+        std::vector<std::tuple<double, int, int>> pairs;
+        for (int s : members)
+          for (int c = 0; c < k; ++c) pairs.emplace_back(distance2(centroid[s], centre[c]), s, c);
+        std::sort(pairs.begin(), pairs.end());
+        const int capacity = (static_cast<int>(members.size()) + k - 1) / k;
+        std::vector<int> taken(k, 0);
+        for (int s : members) cluster[s] = -1;
+        for (auto [d, s, c] : pairs)
+          if (cluster[s] < 0 && taken[c] < capacity) cluster[s] = next + c, ++taken[c];
+      } else {
+        for (int s : members) {
+          int nearest = 0;
+          for (int c = 1; c < k; ++c)
+            if (distance2(centroid[s], centre[c]) < distance2(centroid[s], centre[nearest])) nearest = c;
+          cluster[s] = next + nearest;
+        }
+      }
+      std::vector<std::array<double, 3>> sum(k, {0.0, 0.0, 0.0});
+      std::vector<int> count(k, 0);
+      for (int s : members) {
+        ++count[cluster[s] - next];
+        for (int j = 0; j < 3; ++j) sum[cluster[s] - next][j] += centroid[s][j];
+      }
+      for (int c = 0; c < k; ++c)
+        if (count[c] > 0)
+          for (int j = 0; j < 3; ++j) centre[c][j] = sum[c][j] / count[c];
+    }
+    next += k;
   }
-  std::map<int, int> renumber;
-  for (int s = 0; s < S; ++s) cluster[s] = renumber.try_emplace(cluster[s], static_cast<int>(renumber.size())).first->second;
+  return splitAndMergeClusters(D, coords, cluster, size);
+}
+
+// Subdomains held by one face inside their cluster moved, where they can be, to the neighbouring
+// cluster they share the most (at least two) faces with: the cluster they leave keeps at least
+// size / 2 subdomains and stays face-connected, the one they join stays under 3 size / 2. Sweeps
+// until nothing moves (at most 20).
+std::vector<int> moveDanglingSubdomains(const mesh::Decomposition& D, const std::vector<std::array<double, 3>>& coords,
+                                        std::vector<int> cluster, int size) {
+  const int S = D.numSubdomains();
+  std::vector<std::vector<int>> neighbours(S);
+  for (int s = 0; s < S; ++s)
+    for (int t = s + 1; t < S; ++t)
+      if (D.subdomains[s].body == D.subdomains[t].body && !sharedFace(D, coords, s, t).empty())
+        neighbours[s].push_back(t), neighbours[t].push_back(s);
+  std::map<int, int> count;
+  for (int c : cluster) ++count[c];
+  auto connectedWithout = [&](int c, int removed) {
+    int start = -1, members = 0;
+    for (int s = 0; s < S; ++s)
+      if (cluster[s] == c && s != removed) start = s, ++members;
+    if (start < 0) return true;
+    std::vector<char> seen(S, 0);
+    std::vector<int> stack{start};
+    seen[start] = 1;
+    int reached = 1;
+    while (!stack.empty()) {
+      const int a = stack.back();
+      stack.pop_back();
+      for (int b : neighbours[a])
+        if (!seen[b] && b != removed && cluster[b] == c) seen[b] = 1, ++reached, stack.push_back(b);
+    }
+    return reached == members;
+  };
+  for (int sweep = 0; sweep < 20; ++sweep) {
+    int moved = 0;
+    for (int s = 0; s < S; ++s) {
+      std::map<int, int> faces;
+      for (int t : neighbours[s]) ++faces[cluster[t]];
+      const int own = faces[cluster[s]];
+      if (own > 1 || 2 * (count[cluster[s]] - 1) < size) continue;
+      int best = -1;
+      for (auto [c, k] : faces)
+        if (c != cluster[s] && k >= 2 && k > own && 2 * (count[c] + 1) <= 3 * size && (best < 0 || k > faces[best])) best = c;
+      if (best < 0 || !connectedWithout(cluster[s], s)) continue;
+      --count[cluster[s]];
+      ++count[best];
+      cluster[s] = best;
+      ++moved;
+    }
+    if (moved == 0) break;
+  }
   return cluster;
 }
 
@@ -329,7 +476,12 @@ int main(int argc, char** argv) {
     const std::string first = argc > 1 ? argv[1] : "4x2x2";
     const bool fromFile = first.size() > 4 && first.substr(first.size() - 4) == ".xml";
     const std::string grid = fromFile ? "-" : first, h = fromFile ? "-" : (argc > 2 ? argv[2] : "3");
-    const int edge = fromFile ? 0 : (argc > 3 ? std::atoi(argv[3]) : 2);
+    // EDGE: c (blocks of c x c x c) or AxBxC (blocks of A x B x C subdomains).
+    const std::string edgeText = fromFile ? "0" : (argc > 3 ? argv[3] : "2");
+    int edgeDims[3] = {0, 0, 0};
+    if (std::sscanf(edgeText.c_str(), "%dx%dx%d", &edgeDims[0], &edgeDims[1], &edgeDims[2]) != 3)
+      edgeDims[0] = edgeDims[1] = edgeDims[2] = std::atoi(edgeText.c_str());
+    const int edge = edgeDims[0];
     const std::string how = fromFile ? (argc > 3 ? argv[3] : "metis") : (argc > 4 ? argv[4] : "grid");
     const bool recursive = how == "metis-recursive";
     const int metisSize = fromFile ? (argc > 2 ? std::atoi(argv[2]) : 8)
@@ -398,19 +550,22 @@ int main(int argc, char** argv) {
     std::vector<Cluster> clusters;
     if (metisSize > 0) {
       clusterOf = how == "greedy"      ? greedyClusters(D, coords, metisSize)
+                  : how == "kmeans"    ? kmeansClusters(D, coords, metisSize, false)
+                  : how == "kmeans-moved" ? moveDanglingSubdomains(D, coords, kmeansClusters(D, coords, metisSize, false), metisSize)
+                  : how == "kmeans-balanced" ? kmeansClusters(D, coords, metisSize, true)
+                  : how == "metis-moved" ? moveDanglingSubdomains(D, coords, metisClusters(D, coords, metisSize, false), metisSize)
                   : how == "bisection" ? bisectionClusters(D, coords, metisSize)
                                        : metisClusters(D, coords, metisSize, recursive);
       clusters.resize(*std::max_element(clusterOf.begin(), clusterOf.end()) + 1);
       for (int s = 0; s < S; ++s) clusters[clusterOf[s]].subdomains.push_back(s);
     }
+    const std::vector<std::array<double, 3>> centroids = subdomainCentroids(D, coords);
     for (int s = 0; s < S && metisSize == 0; ++s) {
-      std::array<double, 3> c{0, 0, 0};
-      for (LO node : D.subdomains[s].nodes)
-        for (int j = 0; j < 3; ++j) c[j] += coords[node][j] / D.subdomains[s].numNodes();
+      const std::array<double, 3>& c = centroids[s];
       const auto& b = box[D.subdomains[s].body];
       std::array<int, 4> key{D.subdomains[s].body, 0, 0, 0};
       for (int j = 0; j < 3; ++j)
-        key[1 + j] = static_cast<int>(std::floor((c[j] - b[j]) / ((b[3 + j] - b[j]) / gridDims[j]))) / edge;
+        key[1 + j] = static_cast<int>(std::floor((c[j] - b[j]) / ((b[3 + j] - b[j]) / gridDims[j]))) / edgeDims[j];
       auto [it, fresh] = clusterId.try_emplace(key, static_cast<int>(clusters.size()));
       if (fresh) clusters.emplace_back();
       clusterOf[s] = it->second;
@@ -441,6 +596,44 @@ int main(int argc, char** argv) {
         }
       std::printf("clusters: %zu, not face-connected: %d, kernel faces per subdomain %.2f, held by one face: %d\n",
                   clusters.size(), disconnected, faces / S, oneFace);
+      // Pairs of a cluster that share nodes but no face and have no common face neighbour in the
+      // cluster (no face path of length two): FETI-DP's "acceptable face path" fails for them.
+      int edgePairs = 0, cornerPairs = 0;
+      for (const Cluster& C : clusters)
+        for (int s : C.subdomains)
+          for (int t : C.subdomains) {
+            if (t <= s || !sharedFace(D, coords, s, t).empty()) continue;
+            const size_t n = sharedNodes(D, s, t).size();
+            if (n == 0) continue;
+            bool path = false;
+            for (int u : C.subdomains)
+              path = path || (u != s && u != t && !sharedFace(D, coords, s, u).empty() && !sharedFace(D, coords, u, t).empty());
+            if (path) continue;
+            (n > 1 ? edgePairs : cornerPairs) += 1;
+          }
+      std::printf("pairs without a face path of length 2: %d sharing an edge, %d sharing a corner\n", edgePairs, cornerPairs);
+      // Aspect ratio of each cluster: sqrt of the largest over the smallest eigenvalue of the
+      // covariance of its nodes' coordinates (1 for a cube, 4 for a 4 x 1 x 1 bar).
+      double maxAspect = 0.0, meanAspect = 0.0;
+      for (const Cluster& C : clusters) {
+        std::vector<LO> nodes;
+        for (int s : C.subdomains) nodes.insert(nodes.end(), D.subdomains[s].nodes.begin(), D.subdomains[s].nodes.end());
+        std::sort(nodes.begin(), nodes.end());
+        nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+        double mean[3] = {0, 0, 0}, cov[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+        for (LO n : nodes)
+          for (int j = 0; j < 3; ++j) mean[j] += coords[n][j] / nodes.size();
+        for (LO n : nodes)
+          for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) cov[3 * i + j] += (coords[n][i] - mean[i]) * (coords[n][j] - mean[j]) / nodes.size();
+        double eig[3], work[9];
+        int info = 0;
+        Teuchos::LAPACK<int, double>().SYEV('N', 'U', 3, cov, 3, eig, work, 9, &info);
+        const double aspect = std::sqrt(eig[2] / eig[0]);
+        maxAspect = std::max(maxAspect, aspect);
+        meanAspect += aspect / clusters.size();
+      }
+      std::printf("cluster aspect ratio: max %.2f, mean %.2f\n", maxAspect, meanAspect);
     }
     for (Cluster& C : clusters) {  // centre and rms radius of the cluster's nodes
       std::map<LO, int> nodes;
@@ -707,6 +900,31 @@ int main(int argc, char** argv) {
     for (const Cluster& C : clusters) faces += C.rows / 6;
     const Result t = projectedCg(applyFT, dirichlet, projectT, bT, 1e-10);
     const Result hy = projectedCg(applyFH, dirichlet, projectH, bH, 1e-10);
+    if (std::getenv("HTFETI_WHERE")) {  // where the top eigenvector of P M P F_H lies, by cluster
+      Vec v(nd), fv, mv;
+      for (LO r = 0; r < nd; ++r) v[r] = std::sin(0.61 * r + 0.2);
+      projectH(v);
+      for (int it = 0; it < 200; ++it) {
+        applyFH(v, fv);
+        projectH(fv);
+        dirichlet(fv, mv);
+        projectH(mv);
+        const double n = std::sqrt(dot(mv, mv));
+        for (LO r = 0; r < nd; ++r) v[r] = mv[r] / n;
+      }
+      std::vector<double> share(clusters.size(), 0.0);
+      for (int s = 0; s < S; ++s)
+        for (LO row : B.blocks[s].rows) share[clusterOf[s]] += v[row] * v[row];
+      std::vector<int> order(clusters.size());
+      std::iota(order.begin(), order.end(), 0);
+      std::sort(order.begin(), order.end(), [&](int a, int b) { return share[a] > share[b]; });
+      const auto cen = subdomainCentroids(D, coords);
+      for (int k = 0; k < 3; ++k) {
+        std::printf("cluster %d: share %.3f, subdomain centroids:", order[k], share[order[k]]);
+        for (int s : clusters[order[k]].subdomains) std::printf(" (%.2f %.2f %.2f)", cen[s][0], cen[s][1], cen[s][2]);
+        std::printf("\n");
+      }
+    }
     // applyPF = F x then P: the projection's own time (no memo hit: a new vector each time) off.
     double pSeconds = 0.0;
     for (int k = 0; k < 10; ++k) {
