@@ -10,10 +10,12 @@
 // Dirichlet-preconditioned CG from zero on the same random right-hand side in Ker G; the CG
 // Lanczos coefficients give kappa.
 //
-// Usage: build/bin/tribos_htfeti_conditioning [grid (4x2x2)] [H/h (3)] [cluster edge (2)]
-//          [grid | metis | metis-recursive | greedy | bisection]
-//        build/bin/tribos_htfeti_conditioning SCENE.xml [cluster size (8)] [metis | metis-recursive | greedy | bisection]
+// Usage: build/bin/tribos_htfeti_conditioning [grid (4x2x2)] [H/h (3)] [cluster edge c or AxBxC (2)]
+//          [grid | metis | metis-recursive | metis-moved | greedy | bisection | kmeans | kmeans-moved
+//           | kmeans-balanced]
+//        build/bin/tribos_htfeti_conditioning SCENE.xml [cluster size (8)] [method as above, not grid]
 //          [Path=value overrides...]
+//        HTFETI_WHERE=1 also prints the clusters that hold most of the top eigenvector of P M P F_H.
 // Not a test and not part of the solver: a measurement for the design note.
 #include <metis.h>
 #include <mpi.h>
