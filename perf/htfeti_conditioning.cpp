@@ -11,8 +11,8 @@
 // Lanczos coefficients give kappa.
 //
 // Usage: build/bin/tribos_htfeti_conditioning [grid (4x2x2)] [H/h (3)] [cluster edge c or AxBxC (2)]
-//          [grid | metis | metis-recursive | metis-moved | greedy | bisection | kmeans | kmeans-moved
-//           | kmeans-balanced]
+//          [grid | metis | metis-recursive | metis-moved | greedy | bisection | kmeans | kmeans-moved]
+//          (kmeans: mesh::compactClusters, the builder doc/coarse_problem.md recommends)
 //        build/bin/tribos_htfeti_conditioning SCENE.xml [cluster size (8)] [method as above, not grid]
 //          [Path=value overrides...]
 //        HTFETI_WHERE=1 also prints the clusters that hold most of the top eigenvector of P M P F_H.
@@ -35,7 +35,6 @@
 #include <functional>
 #include <map>
 #include <numeric>
-#include <tuple>
 #include <string>
 #include <vector>
 
@@ -46,6 +45,7 @@
 #include "tribos/feti/ProjectedCg.hpp"
 #include "tribos/feti/SubdomainSolver.hpp"
 #include "tribos/feti/TotalFeti.hpp"
+#include "tribos/mesh/SubdomainClusters.hpp"
 #include "tribos/stack/LinearFetiSolve.hpp"
 #include "tribos/stack/Scene.hpp"
 #include "tribos/stack/SceneParameters.hpp"
@@ -68,31 +68,6 @@ void modeRow(int d, const double* p, double* v) {
   for (int k = 0; k < 3; ++k) v[3 + k] = rotation[d][k];
 }
 
-// The nodes subdomains s and t share, when they are face neighbours (at least three shared
-// nodes, not all on a line); empty otherwise (edge and corner neighbours, or none).
-std::vector<LO> sharedFace(const mesh::Decomposition& D, const std::vector<std::array<double, 3>>& coords, int s,
-                           int t) {
-  const auto& ns = D.subdomains[s].nodes;
-  const auto& nt = D.subdomains[t].nodes;
-  std::vector<LO> shared;
-  std::set_intersection(ns.begin(), ns.end(), nt.begin(), nt.end(), std::back_inserter(shared));
-  if (shared.size() < 3) return {};
-  double area = 0.0, size = 0.0;  // the largest triangle from the first node, against its edges
-  const auto& x0 = coords[shared[0]];
-  for (size_t i = 1; i < shared.size(); ++i) {
-    double u[3];
-    for (int k = 0; k < 3; ++k) u[k] = coords[shared[i]][k] - x0[k];
-    size = std::max(size, u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
-    for (size_t j = i + 1; j < shared.size(); ++j) {
-      double v[3];
-      for (int k = 0; k < 3; ++k) v[k] = coords[shared[j]][k] - x0[k];
-      const double cx = u[1] * v[2] - u[2] * v[1], cy = u[2] * v[0] - u[0] * v[2], cz = u[0] * v[1] - u[1] * v[0];
-      area = std::max(area, std::sqrt(cx * cx + cy * cy + cz * cz));
-    }
-  }
-  return area > 1e-8 * size ? shared : std::vector<LO>{};
-}
-
 // The nodes subdomains s and t share (sorted).
 std::vector<LO> sharedNodes(const mesh::Decomposition& D, int s, int t) {
   const auto& ns = D.subdomains[s].nodes;
@@ -104,7 +79,7 @@ std::vector<LO> sharedNodes(const mesh::Decomposition& D, int s, int t) {
 
 // Clusters of about `size` subdomains: METIS (k-way with contiguous parts, or recursive
 // bisection) on the face-neighbour graph of each body's subdomains.
-std::vector<int> metisClusters(const mesh::Decomposition& D, const std::vector<std::array<double, 3>>& coords,
+std::vector<int> metisClusters(const mesh::Mesh& M, const mesh::Decomposition& D,
                                int size, bool recursive) {
   const int S = D.numSubdomains();
   std::vector<int> cluster(S, -1);
@@ -121,7 +96,7 @@ std::vector<int> metisClusters(const mesh::Decomposition& D, const std::vector<s
     std::vector<idx_t> xadj{0}, adjncy, part(n);
     for (idx_t a = 0; a < n; ++a) {
       for (idx_t b = 0; b < n; ++b)
-        if (a != b && !sharedFace(D, coords, members[a], members[b]).empty()) adjncy.push_back(b);
+        if (a != b && !mesh::sharedFaceNodes(M, D, members[a], members[b]).empty()) adjncy.push_back(b);
       xadj.push_back(static_cast<idx_t>(adjncy.size()));
     }
     idx_t options[METIS_NOPTIONS], cut = 0;
@@ -140,14 +115,10 @@ std::vector<int> metisClusters(const mesh::Decomposition& D, const std::vector<s
 // what is left) and takes, one at a time, the unassigned neighbour that shares the most faces
 // with it (ties: the fewest unassigned neighbours, then the lowest index). A cluster left with
 // fewer than size / 2 subdomains joins the neighbouring cluster it shares the most faces with.
-std::vector<int> greedyClusters(const mesh::Decomposition& D, const std::vector<std::array<double, 3>>& coords,
+std::vector<int> greedyClusters(const mesh::Mesh& M, const mesh::Decomposition& D,
                                 int size) {
   const int S = D.numSubdomains();
-  std::vector<std::vector<int>> neighbours(S);
-  for (int s = 0; s < S; ++s)
-    for (int t = s + 1; t < S; ++t)
-      if (D.subdomains[s].body == D.subdomains[t].body && !sharedFace(D, coords, s, t).empty())
-        neighbours[s].push_back(t), neighbours[t].push_back(s);
+  const std::vector<std::vector<int>> neighbours = mesh::faceNeighbours(M, D);
   std::vector<int> cluster(S, -1);
   auto freeNeighbours = [&](int s) {
     return static_cast<int>(std::count_if(neighbours[s].begin(), neighbours[s].end(), [&](int t) { return cluster[t] < 0; }));
@@ -177,75 +148,7 @@ std::vector<int> greedyClusters(const mesh::Decomposition& D, const std::vector<
       cluster[best] = id;
     }
   }
-  // Small leftovers join a neighbour cluster; then the ids are made contiguous.
-  for (size_t id = 0; id < members.size(); ++id) {
-    if (members[id].empty() || static_cast<int>(members[id].size()) >= size / 2) continue;
-    std::map<int, int> faces;
-    for (int m : members[id])
-      for (int t : neighbours[m])
-        if (cluster[t] != static_cast<int>(id)) ++faces[cluster[t]];
-    if (faces.empty()) continue;
-    const int into = std::max_element(faces.begin(), faces.end(), [](auto a, auto b) { return a.second < b.second; })->first;
-    for (int m : members[id]) cluster[m] = into, members[into].push_back(m);
-    members[id].clear();
-  }
-  std::map<int, int> renumber;
-  for (int s = 0; s < S; ++s) cluster[s] = renumber.try_emplace(cluster[s], static_cast<int>(renumber.size())).first->second;
-  return cluster;
-}
-
-// The mean of each subdomain's node coordinates.
-std::vector<std::array<double, 3>> subdomainCentroids(const mesh::Decomposition& D,
-                                                      const std::vector<std::array<double, 3>>& coords) {
-  std::vector<std::array<double, 3>> centroid(D.numSubdomains(), {0.0, 0.0, 0.0});
-  for (int s = 0; s < D.numSubdomains(); ++s)
-    for (LO node : D.subdomains[s].nodes)
-      for (int j = 0; j < 3; ++j) centroid[s][j] += coords[node][j] / D.subdomains[s].numNodes();
-  return centroid;
-}
-
-// Each cluster split into its face-connected pieces, then pieces of fewer than size / 2
-// subdomains joined to the neighbouring cluster they share the most faces with; ids made
-// contiguous. A cluster that is not face-connected has more than six rigid motions.
-std::vector<int> splitAndMergeClusters(const mesh::Decomposition& D, const std::vector<std::array<double, 3>>& coords,
-                                       std::vector<int> cluster, int size) {
-  const int S = D.numSubdomains();
-  std::vector<std::vector<int>> neighbours(S);
-  for (int s = 0; s < S; ++s)
-    for (int t = s + 1; t < S; ++t)
-      if (D.subdomains[s].body == D.subdomains[t].body && !sharedFace(D, coords, s, t).empty())
-        neighbours[s].push_back(t), neighbours[t].push_back(s);
-  std::vector<int> piece(S, -1);
-  int next = 0;
-  for (int s = 0; s < S; ++s) {
-    if (piece[s] >= 0) continue;
-    std::vector<int> stack{s};
-    piece[s] = next;
-    while (!stack.empty()) {
-      const int a = stack.back();
-      stack.pop_back();
-      for (int b : neighbours[a])
-        if (piece[b] < 0 && cluster[b] == cluster[a]) piece[b] = next, stack.push_back(b);
-    }
-    ++next;
-  }
-  cluster = piece;
-  std::vector<std::vector<int>> members(next);
-  for (int s = 0; s < S; ++s) members[cluster[s]].push_back(s);
-  for (int id = 0; id < next; ++id) {
-    if (members[id].empty() || static_cast<int>(members[id].size()) >= size / 2) continue;
-    std::map<int, int> faces;
-    for (int m : members[id])
-      for (int t : neighbours[m])
-        if (cluster[t] != id) ++faces[cluster[t]];
-    if (faces.empty()) continue;
-    const int into = std::max_element(faces.begin(), faces.end(), [](auto a, auto b) { return a.second < b.second; })->first;
-    for (int m : members[id]) cluster[m] = into, members[into].push_back(m);
-    members[id].clear();
-  }
-  std::map<int, int> renumber;
-  for (int s = 0; s < S; ++s) cluster[s] = renumber.try_emplace(cluster[s], static_cast<int>(renumber.size())).first->second;
-  return cluster;
+  return mesh::repairClusters(M, D, cluster, size);  // small leftovers join a neighbour cluster
 }
 
 // Clusters by recursive coordinate bisection of the subdomains' centroids (each split halves a
@@ -253,10 +156,10 @@ std::vector<int> splitAndMergeClusters(const mesh::Decomposition& D, const std::
 // `size` subdomains; a set that is not face-connected is then split into its face-connected
 // pieces, and pieces of fewer than size / 2 subdomains join the neighbouring cluster they share
 // the most faces with.
-std::vector<int> bisectionClusters(const mesh::Decomposition& D, const std::vector<std::array<double, 3>>& coords,
+std::vector<int> bisectionClusters(const mesh::Mesh& M, const mesh::Decomposition& D,
                                    int size) {
   const int S = D.numSubdomains();
-  const std::vector<std::array<double, 3>> centroid = subdomainCentroids(D, coords);
+  const std::vector<std::array<double, 3>> centroid = mesh::subdomainCentroids(M, D);
   std::vector<int> cluster(S, -1);
   int next = 0;
   std::function<void(std::vector<int>)> split = [&](std::vector<int> set) {
@@ -287,85 +190,17 @@ std::vector<int> bisectionClusters(const mesh::Decomposition& D, const std::vect
   std::map<int, std::vector<int>> bodies;
   for (int s = 0; s < S; ++s) bodies[D.subdomains[s].body].push_back(s);
   for (auto& [body, members] : bodies) split(members);
-  return splitAndMergeClusters(D, coords, cluster, size);
-}
-
-// Clusters by Lloyd's k-means on the subdomains' centroids, body by body: round(n / size)
-// centres seeded by farthest points, 50 rounds of "each subdomain to its nearest centre, each
-// centre to its members' mean"; then, as in bisectionClusters, pieces that are not face-connected
-// are split off and pieces under size / 2 join the neighbour cluster they share the most faces
-// with. Voronoi cells of evenly spread centres are compact, which is what the conditioning asks
-// for (the aspect ratio, not the connectivity: doc/coarse_problem.md).
-std::vector<int> kmeansClusters(const mesh::Decomposition& D, const std::vector<std::array<double, 3>>& coords,
-                                int size, bool balanced) {
-  const int S = D.numSubdomains();
-  const std::vector<std::array<double, 3>> centroid = subdomainCentroids(D, coords);
-  auto distance2 = [](const std::array<double, 3>& a, const std::array<double, 3>& b) {
-    return (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]);
-  };
-  std::vector<int> cluster(S, -1);
-  std::map<int, std::vector<int>> bodies;
-  for (int s = 0; s < S; ++s) bodies[D.subdomains[s].body].push_back(s);
-  int next = 0;
-  for (auto& [body, members] : bodies) {
-    const int k = std::max<int>(1, static_cast<int>(std::lround(static_cast<double>(members.size()) / size)));
-    std::vector<std::array<double, 3>> centre{centroid[members[0]]};
-    while (static_cast<int>(centre.size()) < k) {  // farthest point from the centres so far
-      int far = members[0];
-      double best = -1.0;
-      for (int s : members) {
-        double d = 1e300;
-        for (const auto& c : centre) d = std::min(d, distance2(centroid[s], c));
-        if (d > best) best = d, far = s;
-      }
-      centre.push_back(centroid[far]);
-    }
-    for (int round = 0; round < 50; ++round) {
-      if (balanced) {  // nearest pairs first, each centre up to ceil(n / k) subdomains
-        std::vector<std::tuple<double, int, int>> pairs;
-        for (int s : members)
-          for (int c = 0; c < k; ++c) pairs.emplace_back(distance2(centroid[s], centre[c]), s, c);
-        std::sort(pairs.begin(), pairs.end());
-        const int capacity = (static_cast<int>(members.size()) + k - 1) / k;
-        std::vector<int> taken(k, 0);
-        for (int s : members) cluster[s] = -1;
-        for (auto [d, s, c] : pairs)
-          if (cluster[s] < 0 && taken[c] < capacity) cluster[s] = next + c, ++taken[c];
-      } else {
-        for (int s : members) {
-          int nearest = 0;
-          for (int c = 1; c < k; ++c)
-            if (distance2(centroid[s], centre[c]) < distance2(centroid[s], centre[nearest])) nearest = c;
-          cluster[s] = next + nearest;
-        }
-      }
-      std::vector<std::array<double, 3>> sum(k, {0.0, 0.0, 0.0});
-      std::vector<int> count(k, 0);
-      for (int s : members) {
-        ++count[cluster[s] - next];
-        for (int j = 0; j < 3; ++j) sum[cluster[s] - next][j] += centroid[s][j];
-      }
-      for (int c = 0; c < k; ++c)
-        if (count[c] > 0)
-          for (int j = 0; j < 3; ++j) centre[c][j] = sum[c][j] / count[c];
-    }
-    next += k;
-  }
-  return splitAndMergeClusters(D, coords, cluster, size);
+  return mesh::repairClusters(M, D, cluster, size);
 }
 
 // Subdomains held by one face inside their cluster moved, where they can be, to the neighbouring
 // cluster they share the most (at least two) faces with: the cluster they leave keeps at least
 // size / 2 subdomains and stays face-connected, the one they join stays under 3 size / 2. Sweeps
 // until nothing moves (at most 20).
-std::vector<int> moveDanglingSubdomains(const mesh::Decomposition& D, const std::vector<std::array<double, 3>>& coords,
+std::vector<int> moveDanglingSubdomains(const mesh::Mesh& M, const mesh::Decomposition& D,
                                         std::vector<int> cluster, int size) {
   const int S = D.numSubdomains();
-  std::vector<std::vector<int>> neighbours(S);
-  for (int s = 0; s < S; ++s)
-    for (int t = s + 1; t < S; ++t)
-      if (D.subdomains[s].body == D.subdomains[t].body && !sharedFace(D, coords, s, t).empty())
-        neighbours[s].push_back(t), neighbours[t].push_back(s);
+  const std::vector<std::vector<int>> neighbours = mesh::faceNeighbours(M, D);
   std::map<int, int> count;
   for (int c : cluster) ++count[c];
   auto connectedWithout = [&](int c, int removed) {
@@ -517,7 +352,8 @@ int main(int argc, char** argv) {
     const feti::TotalFeti feti(scene.mesh, scene.decomposition, std::move(copies), B,
                                Teuchos::rcp(new Teuchos::MpiComm<int>(MPI_COMM_WORLD)), settings);
     const auto& D = scene.decomposition;
-    const auto& coords = scene.mesh.coords;
+    const mesh::Mesh& M = scene.mesh;
+    const auto& coords = M.coords;
     const int S = D.numSubdomains();
     const LO nd = static_cast<LO>(B.numRows);
     auto toDual = [&](const Vec& v) {
@@ -551,17 +387,16 @@ int main(int argc, char** argv) {
     std::vector<int> clusterOf(S);
     std::vector<Cluster> clusters;
     if (metisSize > 0) {
-      clusterOf = how == "greedy"      ? greedyClusters(D, coords, metisSize)
-                  : how == "kmeans"    ? kmeansClusters(D, coords, metisSize, false)
-                  : how == "kmeans-moved" ? moveDanglingSubdomains(D, coords, kmeansClusters(D, coords, metisSize, false), metisSize)
-                  : how == "kmeans-balanced" ? kmeansClusters(D, coords, metisSize, true)
-                  : how == "metis-moved" ? moveDanglingSubdomains(D, coords, metisClusters(D, coords, metisSize, false), metisSize)
-                  : how == "bisection" ? bisectionClusters(D, coords, metisSize)
-                                       : metisClusters(D, coords, metisSize, recursive);
+      clusterOf = how == "greedy"      ? greedyClusters(M, D, metisSize)
+                  : how == "kmeans"    ? mesh::compactClusters(M, D, metisSize)
+                  : how == "kmeans-moved" ? moveDanglingSubdomains(M, D, mesh::compactClusters(M, D, metisSize), metisSize)
+                  : how == "metis-moved" ? moveDanglingSubdomains(M, D, metisClusters(M, D, metisSize, false), metisSize)
+                  : how == "bisection" ? bisectionClusters(M, D, metisSize)
+                                       : metisClusters(M, D, metisSize, recursive);
       clusters.resize(*std::max_element(clusterOf.begin(), clusterOf.end()) + 1);
       for (int s = 0; s < S; ++s) clusters[clusterOf[s]].subdomains.push_back(s);
     }
-    const std::vector<std::array<double, 3>> centroids = subdomainCentroids(D, coords);
+    const std::vector<std::array<double, 3>> centroids = mesh::subdomainCentroids(M, D);
     for (int s = 0; s < S && metisSize == 0; ++s) {
       const std::array<double, 3>& c = centroids[s];
       const auto& b = box[D.subdomains[s].body];
@@ -582,7 +417,7 @@ int main(int argc, char** argv) {
           const int a = stack.back();
           stack.pop_back();
           for (size_t b = 0; b < C.subdomains.size(); ++b)
-            if (!seen[b] && !sharedFace(D, coords, C.subdomains[a], C.subdomains[b]).empty()) seen[b] = 1, stack.push_back(static_cast<int>(b));
+            if (!seen[b] && !mesh::sharedFaceNodes(M, D, C.subdomains[a], C.subdomains[b]).empty()) seen[b] = 1, stack.push_back(static_cast<int>(b));
         }
         disconnected += std::count(seen.begin(), seen.end(), 0) > 0;
       }
@@ -592,7 +427,7 @@ int main(int argc, char** argv) {
       for (const Cluster& C : clusters)
         for (int s : C.subdomains) {
           int k = 0;
-          for (int t : C.subdomains) k += t != s && !sharedFace(D, coords, s, t).empty();
+          for (int t : C.subdomains) k += t != s && !mesh::sharedFaceNodes(M, D, s, t).empty();
           faces += k;
           oneFace += k == 1;
         }
@@ -604,12 +439,12 @@ int main(int argc, char** argv) {
       for (const Cluster& C : clusters)
         for (int s : C.subdomains)
           for (int t : C.subdomains) {
-            if (t <= s || !sharedFace(D, coords, s, t).empty()) continue;
+            if (t <= s || !mesh::sharedFaceNodes(M, D, s, t).empty()) continue;
             const size_t n = sharedNodes(D, s, t).size();
             if (n == 0) continue;
             bool path = false;
             for (int u : C.subdomains)
-              path = path || (u != s && u != t && !sharedFace(D, coords, s, u).empty() && !sharedFace(D, coords, u, t).empty());
+              path = path || (u != s && u != t && !mesh::sharedFaceNodes(M, D, s, u).empty() && !mesh::sharedFaceNodes(M, D, u, t).empty());
             if (path) continue;
             (n > 1 ? edgePairs : cornerPairs) += 1;
           }
@@ -659,7 +494,7 @@ int main(int argc, char** argv) {
           const int s = C.subdomains[a], t = C.subdomains[b];
           const auto& ns = D.subdomains[s].nodes;
           const auto& nt = D.subdomains[t].nodes;
-          const std::vector<LO> shared = sharedFace(D, coords, s, t);
+          const std::vector<LO> shared = mesh::sharedFaceNodes(M, D, s, t);
           if (shared.empty()) continue;
           auto localOf = [&](const std::vector<LO>& nodes, LO node) {
             return static_cast<LO>(std::lower_bound(nodes.begin(), nodes.end(), node) - nodes.begin());
@@ -920,7 +755,7 @@ int main(int argc, char** argv) {
       std::vector<int> order(clusters.size());
       std::iota(order.begin(), order.end(), 0);
       std::sort(order.begin(), order.end(), [&](int a, int b) { return share[a] > share[b]; });
-      const auto cen = subdomainCentroids(D, coords);
+      const auto cen = mesh::subdomainCentroids(M, D);
       for (int k = 0; k < 3; ++k) {
         std::printf("cluster %d: share %.3f, subdomain centroids:", order[k], share[order[k]]);
         for (int s : clusters[order[k]].subdomains) std::printf(" (%.2f %.2f %.2f)", cen[s][0], cen[s][1], cen[s][2]);
