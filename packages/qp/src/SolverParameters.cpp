@@ -69,9 +69,14 @@ const core::ParameterTable<SmalseSettings>& smalseTable() {
                "(omega = 1 while r0 <= 0.3 or G mu turns; doc/parameters.md)",
                {"Relaxed", "Fixed"})
           .add("norm estimate steps", &SmalseSettings::normEstimateSteps,
-               "cap on the Lanczos steps (products with A, counted in the PFP applications) that estimate ||A|| to 1e-4 "
-               "(about 10 on Table 1; the power method needed about 25)",
+               "cap on the Lanczos steps (products with A, counted in the PFP applications) that estimate ||A|| "
+               "(8-15 on Table 1 at the default tolerance, 9-25 at 1e-4; the power method needed about 25 for 1e-4)",
                core::intRange(1, 100000))
+          .add("norm estimate tolerance", &SmalseSettings::normEstimateTolerance,
+               "Lanczos stops when its estimate of ||A|| moves by at most this (relative) in a step. For rho >= 2 the "
+               "estimate only scales rho, M_0 and the equality test (alpha_bar = 1.9 / (1.02 rho ||A||) is safe for "
+               "any estimate above ||A|| / rho); below rho = 2 at most 1e-4 is used (doc/parameters.md)",
+               Teuchos::rcp(new core::RealRangeValidator(0.0, /*lowIncluded=*/false, 1.0, /*highIncluded=*/false)))
           .add("inner floor", &SmalseSettings::innerFloor,
                "inner solves stop at ||g^P|| <= (inner floor) epsilon ||c|| at the latest (M_k may shrink without "
                "limit when the Coulomb slip bound moves)",

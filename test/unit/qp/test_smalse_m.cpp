@@ -202,12 +202,28 @@ TEST(SmalseM, aKnownNormGivesTheSameSolutionWithoutTheEstimatesProducts) {
     EXPECT_EQ(x1, x2) << "seed " << seed;  // bit for bit
     EXPECT_EQ(second.normA, first.normA);
     long long lanczos = 0;
-    qp::lanczosNorm(op, *map, tunedSettings().normEstimateSteps, 1e-4, &lanczos);
+    qp::lanczosNorm(op, *map, tunedSettings().normEstimateSteps, qp::normEstimateToleranceFor(tunedSettings()), &lanczos);
     EXPECT_GT(lanczos, 0);
     EXPECT_EQ(estimated - known, lanczos) << "seed " << seed;
     EXPECT_EQ(second.operatorApplications, known);
     EXPECT_LE(test::maxDifference(x2, exact), 1e-8) << "seed " << seed;
   }
+}
+
+TEST(SmalseM, theNormEstimateIsLooseOnlyWhereRhoBoundsTheStep) {
+  // From rho = 2 on, ||A_rho|| = rho ||A||_est for any estimate above ||A|| / 2, so the Lanczos
+  // stop may be loose; below, alpha_bar rests on ||A|| itself and the stop is at most 1e-4.
+  qp::SmalseSettings s;
+  s.normEstimateTolerance = 1e-3;
+  s.rho = 10.0;
+  EXPECT_EQ(qp::normEstimateToleranceFor(s), 1e-3);
+  s.rho = 2.0;
+  EXPECT_EQ(qp::normEstimateToleranceFor(s), 1e-3);
+  s.rho = 1.0;  // the paper's
+  EXPECT_EQ(qp::normEstimateToleranceFor(s), 1e-4);
+  s.normEstimateTolerance = 1e-6;
+  EXPECT_EQ(qp::normEstimateToleranceFor(s), 1e-6);
+  EXPECT_EQ(qp::SmalseSettings{}.normEstimateTolerance, 1e-3);
 }
 
 TEST(SmalseM, satisfiesKktAndMatchesAdmmWithBoundsEllipsesAndEquality) {

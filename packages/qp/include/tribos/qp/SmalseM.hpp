@@ -51,6 +51,9 @@ struct SmalseSettings {
   /// (exact on Im G^T, where A_rho = rho I). Null: none. Overrides mpgp.preconditioner.
   const SymmetricOperator* preconditioner = nullptr;
   int normEstimateSteps = 50;  ///< cap on the Lanczos steps for ||A||
+  /// Lanczos stops when its estimate of ||A|| moves by at most this (relative) in a step; at
+  /// most 1e-4 when rho < 2 (normEstimateToleranceFor).
+  double normEstimateTolerance = 1e-3;
   double rhoGrowth = 1.0;      ///< > 1: rho *= rhoGrowth when ||G mu|| fell by less than rhoTargetRatio
   double rhoTargetRatio = 0.5;
   /// "Ratio": rho *= rhoGrowth; "Model": rho *= min(rhoGrowth, (1/t - 1)/(1/r - 1)) for the
@@ -96,6 +99,9 @@ struct SmalseCounters {
 /// It returns true to veto convergence at this iteration (the slip bound moved by more than
 /// epsilon): SMALSE-M stops only when its own criteria hold and the hook returned false.
 using OuterHook = std::function<bool(int, const Vector&, double, double, double)>;
+
+/// The Lanczos tolerance for ||A|| that SmalseM::solve uses: the setting, at most 1e-4 when rho < 2.
+double normEstimateToleranceFor(const SmalseSettings& s);
 
 class SmalseM {
  public:
