@@ -208,7 +208,7 @@ TEST_F(DriverInput, theParameterListingShowsRangesAndTheBudget) {
   const auto run = runCommand(kDriver + " --list-parameters");
   ASSERT_EQ(run.status, 0) << run.output;
   for (const char* line : {"Solver/SMALSE-M/rho  (double, default 10, range (0, inf))",
-                           "Solver/SMALSE-M/beta  (double, default 0.5, range (0, 1))",
+                           "Solver/SMALSE-M/beta  (double, default 0.9, range (0, 1))",
                            "Solver/MPGP/step scale  (double, default 1.9, range (0, 2))",
                            "Solver/Max Seconds  (double, default 0, range [0, inf))",
                            "Materials/*/Poisson Ratio  (double, default none (required), range (-1, 0.5))"})

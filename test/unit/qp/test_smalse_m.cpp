@@ -489,7 +489,7 @@ TEST(SmalseM, parametersAreDocumentedAndValidated) {
   EXPECT_EQ(defaults.mpgp.maxIterations, reference.mpgp.maxIterations);
   EXPECT_EQ(reference.rho, 10.0);
   EXPECT_EQ(reference.M0, 1.0);
-  EXPECT_EQ(reference.betaM, 0.5);
+  EXPECT_EQ(reference.betaM, 0.9);
   // Values are read, and out-of-range or unknown names are errors.
   Teuchos::ParameterList pl;
   pl.sublist("SMALSE-M").set("rho", 10.0);

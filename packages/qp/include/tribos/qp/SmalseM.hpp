@@ -40,7 +40,7 @@ struct SmalseSettings {
   double eta = 1.0;            ///< eta, relative to ||c|| (the paper: eta = ||P h||)
   double rho = 10.0;           ///< rho, relative to ||A|| (the paper: rho = ||P F P||, i.e. 1)
   double M0 = 1.0;             ///< M_0 > 0, relative to ||A|| (M has the units of A); paper: 1e-6
-  double betaM = 0.5;          ///< M_{k+1} = betaM M_k when the Lagrangian does not grow enough (paper: 0.1)
+  double betaM = 0.9;          ///< M_{k+1} = betaM M_k when the Lagrangian does not grow enough (paper: 0.1)
   int maxOuterIterations = 100;
   /// "Conventional": ||A|| ||Q mu|| <= eps ||c||;  "Paper": ||Q mu|| <= eps M_0 ||mu||
   /// (M_0 relative, so the paper's eps M_0 = 1e-11 needs a tolerance above round-off).
