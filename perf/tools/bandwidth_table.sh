@@ -10,7 +10,7 @@
 #                              the F applications (bytes_per_f_application, their two
 #                              projections' G passes included), the preconditioner
 #                              applications, the other projections' G passes and every coarse
-#                              solve (its factor's values, both substitutions), / triad
+#                              solve (its factor's values, 8 or 4 bytes each, both substitutions), / triad
 #   iteration ratio          = time / iteration bound       (how near the whole iteration runs
 #                              to the bandwidth; MPGP's vector work is not counted)
 # The triad (build/bin/tribos_stream_triad, best of 20 sweeps over 400 MB arrays, with the same
@@ -50,7 +50,7 @@ bound = j["bytes_per_f_application"] / (gbs * 1e9)
 p = j["operator_profile"]
 other_projections = max(0, p["projections"] - p["projections_reused"] - 2 * p["f_applications"])
 total = (p["f_applications"] * j["bytes_per_f_application"] + p["preconditioner_applications"] * p["preconditioner_bytes"]
-         + other_projections * p["projection_bytes"] + p["coarse_solves"] * p["coarse_values_per_solve"] * 16.0)
+         + other_projections * p["projection_bytes"] + p["coarse_solves"] * p["coarse_values_per_solve"] * (8.0 if p.get("coarse_single") else 16.0))
 iteration = total / j["pfp_applications"]
 iteration_bound = iteration / (gbs * 1e9)
 print(f'{j["n_subdomains"]},{h},{j["n_threads"]},{j["pfp_applications"]},{t["solve_s"]:.2f},{t["total_s"]:.2f},'

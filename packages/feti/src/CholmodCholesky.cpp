@@ -115,7 +115,8 @@ void packSupernodalInPlace(cholmod_factor& L, PackedFactor& packed) {
   }
   // The array, shrunk to the packed values, changes hands: CHOLMOD must not free it.
   void* shrunk = next > 0 ? SuiteSparse_config.realloc_func(x, static_cast<size_t>(next) * sizeof(double)) : nullptr;
-  packed.adoptValues(static_cast<double*>(shrunk ? shrunk : x), next, SuiteSparse_config.free_func);
+  packed.adoptValues(static_cast<double*>(shrunk ? shrunk : x), next, SuiteSparse_config.free_func,
+                     SuiteSparse_config.realloc_func);
   L.x = nullptr;
   L.xsize = 0;
 }
@@ -274,6 +275,10 @@ class CholmodCholesky final : public SparseCholesky {
 
   LO size() const override { return n_; }
   long long factorNonzeros() const override { return packed_.storedValues(); }
+  bool roundToSingle() override {
+    packed_.roundToSingle();
+    return true;
+  }
   long long solveBytes() const override { return packed_.solveBytes(); }
   std::string name() const override { return "CHOLMOD"; }
   void setSubtreeSolve(bool enabled) override { subtreeSolve_ = enabled; }

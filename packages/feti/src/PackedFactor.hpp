@@ -47,8 +47,18 @@ class PackedFactor {
   void appendLaidOutSupernode(LO firstColumn, LO numColumns, const std::vector<LO>& rows, long long triangleOffset,
                               long long panelOffset, const double* inverseDiagonal);
   /// Takes `values` (count entries) as the stored values, freed by `release`: no copy of the
-  /// factor (CholmodCholesky: CHOLMOD's own array, compacted in place).
-  void adoptValues(double* values, long long count, void (*release)(void*));
+  /// factor (CholmodCholesky: CHOLMOD's own array, compacted in place). `resize` (optional,
+  /// realloc's contract) lets roundToSingle shrink that array in place instead of copying.
+  void adoptValues(double* values, long long count, void (*release)(void*),
+                   void* (*resize)(void*, size_t) = nullptr);
+  /// Rounds the stored values of L to single precision (4 bytes each instead of 8) and frees
+  /// the double ones; the reciprocal diagonal stays double. The solves then apply
+  /// (L~ L~^T)^{-1} with L~ = fl32(L), an SPD matrix of its own, exactly as before (double
+  /// arithmetic, the same order of every sum: the same bits on every thread and rank). For
+  /// G G^T in SMALSE-M's projections, where any SPD approximation leaves the solution exact
+  /// (doc/coarse_problem.md, "The coarse factor in single precision").
+  void roundToSingle();
+  bool single() const { return single_; }
   /// Sets the fill-reducing permutation: row k of the factor is row perm[k] of A.
   void setPermutation(std::vector<LO> perm) { perm_ = std::move(perm); }
 
@@ -168,13 +178,31 @@ class PackedFactor {
   void solveSubtrees(double* v) const;
 
   const double* valueData() const { return adopted_ ? adopted_.get() : values_.data(); }
-  long long valueCount() const { return adopted_ ? adoptedCount_ : static_cast<long long>(values_.size()); }
+  long long valueCount() const {
+    if (single_) return singleCount_;
+    return adopted_ ? adoptedCount_ : static_cast<long long>(values_.size());
+  }
+  /// Bytes of one stored value of L (the reciprocal diagonal is always double).
+  long long valueBytes() const { return single_ ? 4 : 8; }
+  template <class V>
+  void forwardWith(const V* values, LO first, LO last, double* x, double* panelWork, LO columnEnd,
+                   double* topUpdates) const;
+  template <class V>
+  void backwardWith(const V* values, LO first, LO last, double* x, double* panelWork) const;
 
   std::vector<Supernode> supernodes_;
   std::vector<LO> rows_;
   std::vector<double> values_;  ///< appendSupernode's; empty once values are adopted
   std::unique_ptr<double, void (*)(void*)> adopted_{nullptr, nullptr};  ///< adoptValues'
   long long adoptedCount_ = 0;
+  void* (*resize_)(void*, size_t) = nullptr;  ///< adoptValues': realloc for adopted_
+  /// roundToSingle's values: in singleValues_, or in place in the adopted array (resized to
+  /// them, then held by singleAdopted_); singleData_ points at them.
+  std::vector<float> singleValues_;
+  std::unique_ptr<float, void (*)(void*)> singleAdopted_{nullptr, nullptr};
+  const float* singleData_ = nullptr;
+  long long singleCount_ = 0;
+  bool single_ = false;
   std::vector<double> inverseDiagonal_;  ///< 1 / L_jj, by column
   std::vector<LO> perm_;
   LO maxPanelRows_ = 0;
@@ -191,9 +219,11 @@ inline void PackedFactor::appendLaidOutSupernode(LO firstColumn, LO numColumns, 
   maxPanelRows_ = std::max(maxPanelRows_, static_cast<LO>(rows.size()));
 }
 
-inline void PackedFactor::adoptValues(double* values, long long count, void (*release)(void*)) {
+inline void PackedFactor::adoptValues(double* values, long long count, void (*release)(void*),
+                                      void* (*resize)(void*, size_t)) {
   adopted_ = std::unique_ptr<double, void (*)(void*)>(values, release);
   adoptedCount_ = count;
+  resize_ = resize;
   std::vector<double>().swap(values_);
 }
 

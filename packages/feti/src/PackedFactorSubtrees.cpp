@@ -238,7 +238,7 @@ std::vector<T> readArray(const std::vector<char>& bytes, size_t& at) {
 
 std::vector<char> PackedFactor::serialize(const std::vector<std::pair<LO, LO>>& ranges) const {
   // The layout of deserialize: supernodes (offsets into the part's arrays), row indices,
-  // values (triangle then panel, supernode by supernode), reciprocal diagonal, permutation,
+  // whether the values are single, the values (triangle then panel, supernode by supernode), reciprocal diagonal, permutation,
   // maxPanelRows.
   std::vector<Supernode> parts;
   size_t rows = 0, values = 0;
@@ -256,21 +256,28 @@ std::vector<char> PackedFactor::serialize(const std::vector<std::pair<LO, LO>>& 
       parts.push_back(s);
     }
   std::vector<char> bytes;
-  bytes.reserve(sizeof(Supernode) * parts.size() + sizeof(LO) * rows + sizeof(double) * values +
+  bytes.reserve(sizeof(Supernode) * parts.size() + sizeof(LO) * rows + static_cast<size_t>(valueBytes()) * values +
                 (sizeof(double) + sizeof(LO)) * perm_.size() + 64);
   appendArray(bytes, parts.data(), parts.size());
   appendCount(bytes, rows);
   for (const auto& [first, last] : ranges)
     for (LO k = first; k < last; ++k)
       appendItems(bytes, rows_.data() + supernodes_[k].rowOffset, static_cast<size_t>(supernodes_[k].numPanelRows));
+  const int single = single_ ? 1 : 0;
+  appendArray(bytes, &single, 1);
   appendCount(bytes, values);
-  const double* all = valueData();
-  for (const auto& [first, last] : ranges)
-    for (LO k = first; k < last; ++k) {
-      const Supernode& s = supernodes_[k];
-      appendItems(bytes, all + s.triangleOffset, static_cast<size_t>(s.numColumns) * (s.numColumns - 1) / 2);
-      appendItems(bytes, all + s.panelOffset, static_cast<size_t>(s.numColumns) * s.numPanelRows);
-    }
+  auto appendValues = [&](const auto* all) {
+    for (const auto& [first, last] : ranges)
+      for (LO k = first; k < last; ++k) {
+        const Supernode& s = supernodes_[k];
+        appendItems(bytes, all + s.triangleOffset, static_cast<size_t>(s.numColumns) * (s.numColumns - 1) / 2);
+        appendItems(bytes, all + s.panelOffset, static_cast<size_t>(s.numColumns) * s.numPanelRows);
+      }
+  };
+  if (single_)
+    appendValues(singleData_);
+  else
+    appendValues(valueData());
   appendArray(bytes, inverseDiagonal_.data(), inverseDiagonal_.size());
   appendArray(bytes, perm_.data(), perm_.size());
   appendArray(bytes, &maxRows, 1);
@@ -282,7 +289,14 @@ PackedFactor PackedFactor::deserialize(const std::vector<char>& bytes) {
   size_t at = 0;
   f.supernodes_ = readArray<Supernode>(bytes, at);
   f.rows_ = readArray<LO>(bytes, at);
-  f.values_ = readArray<double>(bytes, at);
+  const std::vector<int> single = readArray<int>(bytes, at);
+  f.single_ = !single.empty() && single[0] != 0;
+  if (f.single_) {
+    f.singleValues_ = readArray<float>(bytes, at);
+    f.singleData_ = f.singleValues_.data();
+    f.singleCount_ = static_cast<long long>(f.singleValues_.size());
+  } else
+    f.values_ = readArray<double>(bytes, at);
   f.inverseDiagonal_ = readArray<double>(bytes, at);
   f.perm_ = readArray<LO>(bytes, at);
   const std::vector<LO> maxRows = readArray<LO>(bytes, at);

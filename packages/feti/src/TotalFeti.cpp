@@ -146,6 +146,14 @@ MPI_Comm rawComm(const Teuchos::Comm<int>& comm) {
 /// doc/coarse_problem.md ("The coarse solve over the ranks"). Depends on the factor alone:
 /// the bits are those of the serial solve either way. TRIBOS_DISTRIBUTED_COARSE_FROM=<values>
 /// overrides it (for those measurements).
+/// The single-precision coarse factor is kept when one solve with it differs from the double
+/// one by at most this (relative): the rounding then perturbs P by about as much on Im G^T,
+/// which leaves A_rho's spectrum and the refinement of the exact solves (about this
+/// contraction per step) untouched (doc/coarse_problem.md).
+constexpr double kSingleCoarseGate = 1e-3;
+/// Iterative refinement steps of solveCoarseExactly at most (about 3 at the gate's 1e-3).
+constexpr int kMaxCoarseRefinements = 20;
+
 long long distributedCoarseFromValues() {
   if (const char* from = std::getenv("TRIBOS_DISTRIBUTED_COARSE_FROM")) return std::atoll(from);
   return 200000;
@@ -459,9 +467,8 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
   // (4) G on the owned rows; G G^T, replicated, factorised once.
   buildCoarseRows(mesh, decomposition);
   buildCoarsePattern();
+  measureTraffic();  // before factorizeCoarse: "Auto" compares the coarse solve with it
   factorizeCoarse();
-
-  measureTraffic();
 
   // (5) e = R^T f, d~ = B K^dagger f - c, lambda_Im = G^T (G G^T)^{-1} e.
   e_.assign(numCoarse(), 0.0);
@@ -485,7 +492,7 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
   }
   lambdaIm_ = createDualVector();
   std::vector<double> a = e_;
-  solveCoarse(a);
+  solveCoarseExactly(a);  // G lambda_Im = e to double precision
   applyGt(a, *lambdaIm_);
 }
 
@@ -1060,9 +1067,9 @@ void TotalFeti::factorizeCoarse() const {
   // (onRootThenBroadcast): its assembled matrix lives only as long as the factorisation.
   core::Stopwatch watch;
   fem::CsrMatrix GGt = assembleCoarse(nullptr);
-  std::vector<double> nothing;
+  std::vector<double> singleError(1, 0.0);  // > 0: rounded to single with this error
   onRootThenBroadcast(
-      nothing,
+      singleError,
       [&] {
         auto factor = makeSparseCholesky(settings_.factorization);
         factor->setSubtreeSolve(true);  // solved on the main thread of rank 0
@@ -1076,8 +1083,19 @@ void TotalFeti::factorizeCoarse() const {
         coarse_ = std::move(factor);
         profile_.coarseFactorNonzeros = coarse_->factorNonzeros();
         profile_.coarseSubtrees = coarse_->subtreeCount();
+        if (singleCoarsePays() && !coarseSingleRejected_) singleError[0] = roundCoarseToSingle();
       },
       [](const std::string& message) { throw core::InputError(message); });
+  profile_.coarseSingleError = singleError[0];
+  if (singleError[0] > kSingleCoarseGate) {
+    // Too inaccurate for this G G^T (kappa ~ 1e4 and more): factorised again in double.
+    coarseSingleRejected_ = true;
+    coarse_.reset();
+    factorizeCoarse();
+    return;
+  }
+  coarseSingle_ = singleError[0] > 0.0;
+  profile_.coarseSingle = coarseSingle_;
   // Collective: the subtrees of its elimination tree to the ranks that will solve them.
   distributedCoarse_ = DistributedCoarseSolve::create(rawComm(*comm_), coarse_.get(), distributedCoarseFromValues());
   profile_.coarseRankSubtrees = distributedCoarse_ ? distributedCoarse_->numLeaves() : 0;
@@ -1086,6 +1104,79 @@ void TotalFeti::factorizeCoarse() const {
       distributedCoarse_ ? distributedCoarse_->valuesOnThisRank() : (coarse_ ? coarse_->factorNonzeros() : 0);
   coarseFactored_ = true;
   profile_.coarseFactorSeconds += watch.seconds();
+}
+
+bool TotalFeti::singleCoarsePays() const {
+  // Rank 0, with the factor: "Auto" rounds where the two coarse solves of an A_rho product
+  // read at least as many bytes as its F application (bytesPerFApplication_, the same on
+  // every rank): there the rounding saves a quarter or more of the product's traffic.
+  // Elsewhere the double factor keeps the exact projector's path: on symmetric scenes (the
+  // paper's bricks) pairs of constraints reach their bounds in the same step only with it,
+  // and any perturbation of P beyond ~1e-11 costs up to 20 % more F applications there
+  // (doc/coarse_problem.md, "The coarse factor in single precision").
+  if (settings_.coarsePrecision == "Single") return true;
+  if (settings_.coarsePrecision != "Auto") return false;
+  return 2.0 * static_cast<double>(coarse_->solveBytes()) >= bytesPerFApplication_;
+}
+
+double TotalFeti::roundCoarseToSingle() const {
+  // One solve of a fixed right-hand side before and after the rounding: the relative change
+  // is about kappa(G G^T) 1e-7, the size of the perturbation the rounding makes to P.
+  const LO n = coarse_->size();
+  std::vector<double> b(static_cast<size_t>(n)), exact(b.size()), rounded(b.size());
+  std::uint32_t state = 12345u;
+  for (double& v : b) {
+    state = 1664525u * state + 1013904223u;  // a fixed sequence (LCG), spread over [-1, 1)
+    v = static_cast<double>(state) / 2147483648.0 - 1.0;
+  }
+  coarse_->solve(b.data(), exact.data());
+  if (!coarse_->roundToSingle()) return 0.0;
+  coarse_->solve(b.data(), rounded.data());
+  double difference = 0.0, norm = 0.0;
+  for (size_t i = 0; i < b.size(); ++i) {
+    difference += (rounded[i] - exact[i]) * (rounded[i] - exact[i]);
+    norm += exact[i] * exact[i];
+  }
+  // Never 0 once rounded (a positive error marks the single factor for every rank).
+  return std::max(std::sqrt(difference / norm), std::numeric_limits<double>::min());
+}
+
+void TotalFeti::solveCoarseExactly(std::vector<double>& a) const {
+  if (!coarseFactored_) factorizeCoarse();
+  if (!coarseSingle_) {
+    solveCoarse(a);
+    return;
+  }
+  // Iterative refinement: x += C~^{-1} (b - G G^T x) contracts by about the gate's error per
+  // step; it stops when the correction reaches round-off or stops shrinking. The same
+  // numbers on every rank (coarse vectors are replicated), so the same decisions.
+  const std::vector<double> b = a;
+  solveCoarse(a);
+  DualVector v(dualMap_);
+  std::vector<double> r;
+  double previous = std::numeric_limits<double>::infinity(), correction = 0.0, norm = 0.0;
+  for (int k = 0; k < kMaxCoarseRefinements; ++k) {
+    applyGt(a, v);
+    applyG(v, r);
+    for (size_t i = 0; i < r.size(); ++i) r[i] = b[i] - r[i];
+    solveCoarse(r);
+    ++profile_.coarseRefinementSteps;
+    correction = 0.0;
+    norm = 0.0;
+    for (size_t i = 0; i < r.size(); ++i) {
+      a[i] += r[i];
+      correction += r[i] * r[i];
+      norm += a[i] * a[i];
+    }
+    if (correction <= 1e-32 * norm || correction >= previous) break;
+    previous = correction;
+  }
+  if (correction <= 1e-20 * norm) return;
+  // Not refined to double precision (not seen): the double factor after all.
+  coarseSingleRejected_ = true;
+  releaseCoarseFactor();
+  a = b;
+  solveCoarse(a);
 }
 
 void TotalFeti::releaseCoarseFactor() const {
@@ -1555,6 +1646,20 @@ void TotalFeti::project(const DualVector& x, DualVector& y) const {
   profile_.gSeconds += watch.seconds();
 }
 
+void TotalFeti::projectExactly(const DualVector& x, DualVector& y) const {
+  if (!coarseFactored_) factorizeCoarse();
+  if (!coarseSingle_) {
+    project(x, y);  // exact already
+    return;
+  }
+  std::vector<double> a;
+  applyG(x, a);
+  solveCoarseExactly(a);
+  DualVector gta(dualMap_);
+  applyGt(a, gta);
+  y.update(1.0, x, -1.0, gta, 0.0);
+}
+
 int TotalFeti::findProjection(const double* x) const {
   // Bitwise (memcmp): the copy is then exactly what the projection would compute. The
   // comparison stops at the first differing entry, so a miss costs next to nothing; all
@@ -1594,7 +1699,7 @@ std::vector<double> TotalFeti::rigidBodyCoefficients(const DualVector& lambda) c
   residual.update(-1.0, *dTilde_, 1.0);
   std::vector<double> alpha;
   applyG(residual, alpha);
-  solveCoarse(alpha);
+  solveCoarseExactly(alpha);
   return alpha;
 }
 

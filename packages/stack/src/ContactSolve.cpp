@@ -205,6 +205,7 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
   const std::string preconditioner = fetiList.get<std::string>("Preconditioner");
   settings.dirichletPreconditioner = preconditioner == "Dirichlet";
   settings.lumpedPreconditioner = preconditioner == "Lumped";
+  settings.coarsePrecision = fetiList.get<std::string>("Coarse Factor Precision");
   auto friction = frictionSettings(tribos);
   auto smalse = smalseSettings(tribos);
   WallClockBudget budget(tribos.sublist("Solver").get<double>("Max Seconds"), comm);

@@ -168,6 +168,15 @@ void fetiParameters(ParameterList& pl) {
       "Schur complement on the constrained dofs); linear solves: projected CG; contact: MPGP's CG steps "
       "preconditioned in face (restricted to the free set)",
       Teuchos::tuple<std::string>("None", "Lumped", "Dirichlet"), &pl);
+  Teuchos::setStringToIntegralParameter<int>(
+      "Coarse Factor Precision", "Auto",
+      "contact solves: the factor of G G^T that SMALSE-M's projections use: \"Single\" (rounded to 4 bytes per "
+      "value: half the bytes per coarse solve; SMALSE-M's penalty on G mu keeps the solution that of the exact "
+      "projector; lambda_Im and the rigid body coefficients are refined to double; used only where one solve "
+      "differs from the double one by at most 1e-3), \"Double\", or \"Auto\" (Single where two coarse solves "
+      "read at least as many bytes as one F application: many small subdomains). Linear solves: always double "
+      "(projected CG needs the exact projector). doc/coarse_problem.md",
+      Teuchos::tuple<std::string>("Auto", "Single", "Double"), &pl);
   pl.set("Max Iterations", 1000,
          "linear solves: cap on projected CG iterations; reaching it ends the solve as not converged (exit 3)",
          core::intRange(1, kMaxCount));

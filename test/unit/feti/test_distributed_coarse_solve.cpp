@@ -1,6 +1,6 @@
 // The coarse factor's solves spread over the ranks (DistributedCoarseSolve): on any number of
 // ranks and threads they give the bits of the serial solve of the factor on rank 0, on every
-// rank; factors too small to pay, and one rank, keep the solve on rank 0.
+// rank, in double and in single precision; factors too small to pay, and one rank, keep the solve on rank 0.
 #include <gtest/gtest.h>
 #include <mpi.h>
 
@@ -33,10 +33,14 @@ TEST(DistributedCoarseSolve, givesTheSerialSolveBitsOnEveryRank) {
   // Every rank builds the same matrix; rank 0 factorises it (as TotalFeti's G G^T), every
   // rank factorises it too for the reference (the serial solve of the same factor: the
   // factorisation is deterministic).
+  // Also with the factor rounded to single precision (TotalFeti's "Coarse Factor Precision"):
+  // the parts travel as floats, the same bits again.
+  for (const bool single : {false, true})
   for (int m : {9, 12}) {
     const fem::CsrMatrix A = test::randomSpd(m, 0.1, 11u + m);
     auto factor = feti::makeSparseCholesky("CHOLMOD");
     factor->factorize(A);
+    if (single) ASSERT_TRUE(factor->roundToSingle());
     auto spread = feti::DistributedCoarseSolve::create(MPI_COMM_WORLD, worldRank() == 0 ? factor.get() : nullptr, 0);
     if (worldSize() == 1) {
       EXPECT_EQ(spread, nullptr) << "one rank: solved where it is";
@@ -63,7 +67,7 @@ TEST(DistributedCoarseSolve, givesTheSerialSolveBitsOnEveryRank) {
         factor->solve(b.data(), reference.data());
         spread->solve(b.data(), x.data());
         EXPECT_EQ(std::memcmp(x.data(), reference.data(), sizeof(double) * x.size()), 0)
-            << "m = " << m << ", " << threads << " threads, seed " << seed << ", rank " << worldRank();
+            << (single ? "single, " : "") << "m = " << m << ", " << threads << " threads, seed " << seed << ", rank " << worldRank();
         // In place (x = b), as TotalFeti::solveCoarse calls it.
         std::vector<double> v = b;
         spread->solve(v.data(), v.data());

@@ -175,6 +175,55 @@ TEST(SparseCholesky, subtreeSolvesGiveTheSameBitsOnAnyThreadCountAndSolveTheSyst
   unsetenv("TRIBOS_SUBTREE_SOLVE_FROM");
 }
 
+// roundToSingle (G G^T's factor for SMALSE-M's projections, TotalFeti's "Coarse Factor
+// Precision"): on a simplicial and a supernodal factor (the latter rounded in place in
+// CHOLMOD's array), split into subtrees. The solves read about half the bytes; they differ
+// from the double ones (rounded: not zero) by about the rounding times the condition number
+// (below 1e-4 on these matrices); they give the same bits on 1-3 threads; and iterative
+// refinement with them converges to the double solution, as TotalFeti's exact solves do.
+TEST(SparseCholesky, roundedToSingleItHalvesTheBytesAndRefinesToTheDoubleSolution) {
+  setenv("TRIBOS_SUBTREE_SOLVE_FROM", "0", 1);
+  for (int m : {8, 12}) {
+    const fem::CsrMatrix A = randomSpd(m, 0.1, 7u + m);
+    auto exact = feti::makeSparseCholesky("CHOLMOD"), rounded = feti::makeSparseCholesky("CHOLMOD");
+    rounded->setSubtreeSolve(true);
+    exact->factorize(A);
+    rounded->factorize(A);
+    const long long values = rounded->factorNonzeros(), bytes = rounded->solveBytes();
+    ASSERT_TRUE(rounded->roundToSingle());
+    EXPECT_EQ(rounded->factorNonzeros(), values);
+    EXPECT_LT(rounded->solveBytes(), 0.62 * static_cast<double>(bytes)) << "m = " << m;
+    EXPECT_GT(rounded->solveBytes(), 0.45 * static_cast<double>(bytes)) << "m = " << m;
+    const auto b = randomVector(static_cast<size_t>(A.n), 5u + m);
+    std::vector<double> x(b.size()), first;
+    exact->solve(b.data(), x.data());
+    for (int threads : {1, 2, 3}) {
+      core::setNumThreads(threads);
+      std::vector<double> y(b.size());
+      rounded->solve(b.data(), y.data());
+      if (first.empty()) first = y;
+      EXPECT_EQ(std::memcmp(y.data(), first.data(), sizeof(double) * y.size()), 0) << threads << " threads, m = " << m;
+    }
+    core::setNumThreads(0);
+    std::vector<double> difference(b.size());
+    for (size_t i = 0; i < b.size(); ++i) difference[i] = first[i] - x[i];
+    const double error = norm(difference.data(), b.size()) / norm(x.data(), x.size());
+    EXPECT_GT(error, 1e-12) << "m = " << m;
+    EXPECT_LT(error, 1e-4) << "m = " << m;
+    // z += C~^-1 (b - A z): contracts by about `error` per step.
+    std::vector<double> z = first, r(b.size()), d(b.size());
+    for (int step = 0; step < 6; ++step) {
+      A.apply(z.data(), r.data());
+      for (size_t i = 0; i < r.size(); ++i) r[i] = b[i] - r[i];
+      rounded->solve(r.data(), d.data());
+      for (size_t i = 0; i < z.size(); ++i) z[i] += d[i];
+    }
+    for (size_t i = 0; i < b.size(); ++i) difference[i] = z[i] - x[i];
+    EXPECT_LT(norm(difference.data(), b.size()) / norm(x.data(), x.size()), 1e-13) << "m = " << m;
+  }
+  unsetenv("TRIBOS_SUBTREE_SOLVE_FROM");
+}
+
 // setSparseColumns / solveInPlaceOnColumns, as F uses them (the dofs of B_s: a subdomain's
 // surface): for a right-hand side that vanishes off the surface of the m^3 grid, the solution
 // on the surface has the bits of the whole solve; "CHOLMOD" reads less of the factor for it

@@ -68,6 +68,10 @@ class SparseCholesky {
   virtual void setSubtreeSolve(bool enabled) { (void)enabled; }
   /// Subtrees the solves run concurrently (0: serial solves).
   virtual int subtreeCount() const { return 0; }
+  /// Rounds the stored factor L to single precision (PackedFactor::roundToSingle): later
+  /// solves apply (L~ L~^T)^{-1}, L~ = fl32(L), reading half the bytes. Returns false, and
+  /// keeps the factor as it is, where the implementation cannot ("Tacho").
+  virtual bool roundToSingle() { return false; }
   /// The factor in tribos's packed form ("CHOLMOD"), for DistributedCoarseSolve; null when
   /// the implementation has none ("Tacho").
   virtual const PackedFactor* packedFactor() const { return nullptr; }

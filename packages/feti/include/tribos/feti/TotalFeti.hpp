@@ -50,6 +50,15 @@ struct TotalFetiSettings {
   bool explicitF = false;                 ///< dense local F_s assembled once vs two solves per apply
   bool dirichletPreconditioner = false;   ///< factorise K_ii per subdomain for applyDirichlet
   bool lumpedPreconditioner = false;      ///< keep K_bb per subdomain for applyLumped (also kept with Dirichlet)
+  /// Precision of G G^T's factor for project(), coarseCoordinates() and solveCoarse():
+  /// "Double"; "Single" (rounded: half the bytes per coarse solve) where it is accurate
+  /// enough (kSingleCoarseGate), lambda_Im and rigidBodyCoefficients(lambda) then refined to
+  /// double; "Auto": single where two coarse solves read at least as many bytes as one F
+  /// application. Single only for callers that enforce G x = 0 themselves (SMALSE-M's
+  /// penalty): P is then I - G^T C~^{-1} G, the identity on Ker G but not an exact projector
+  /// (doc/coarse_problem.md, "The coarse factor in single precision"); projected CG needs
+  /// the exact one.
+  std::string coarsePrecision = "Double";
 };
 
 /// Where the time of the dual operators goes (cumulative over the object's life, this rank;
@@ -74,6 +83,12 @@ struct OperatorProfile {
   /// Stored values of the coarse factor that this rank reads per solve (rank 0: the whole
   /// factor, or with coarseRankSubtrees its subtrees and the top).
   long long coarseValuesPerSolve = 0;
+  /// Whether the coarse factor is in single precision (TotalFetiSettings::singleCoarseFactor
+  /// and the gate passed), the gate's relative error ||x~ - x|| / ||x|| (0: not measured) and
+  /// the refinement steps of the exact coarse solves.
+  bool coarseSingle = false;
+  double coarseSingleError = 0.0;
+  long long coarseRefinementSteps = 0;
   long long gEntries = 0, gRows = 0;   ///< entries (row, subdomain) of G on this rank's rows, rows
   /// The least bytes one projection (G x and G^T a) and one preconditioner application
   /// (B S B^T or B K_bb B^T; 0 without one) move, summed over the ranks (measureTraffic).
@@ -107,8 +122,12 @@ class TotalFeti {
   void applyG(const DualVector& x, std::vector<double>& gx) const;
   /// y = G^T a (a of length l, replicated).
   void applyGt(const std::vector<double>& a, DualVector& y) const;
-  /// a := (G G^T)^{-1} a.
+  /// a := (G G^T)^{-1} a, with the single-precision factor where it is in use
+  /// (TotalFetiSettings::singleCoarseFactor): then (L~ L~^T)^{-1} a.
   void solveCoarse(std::vector<double>& a) const;
+  /// a := (G G^T)^{-1} a to double precision whatever the factor's: with a single-precision
+  /// one, solveCoarse refined by iterative refinement (products G G^T x as G (G^T x)).
+  void solveCoarseExactly(std::vector<double>& a) const;
   /// Frees the factor of G G^T and the solve-time memos (the largest replicated data at
   /// thousands of subdomains: doc/scalability.md), for a caller done with projections,
   /// before the factor of G_I G_I^T of rigidBodyCoefficients(lambda, mask). A later coarse
@@ -116,6 +135,11 @@ class TotalFeti {
   void releaseCoarseFactor() const;
   /// y = P x = x - G^T (G G^T)^{-1} G x (y may be x).
   void project(const DualVector& x, DualVector& y) const;
+  /// y = P x with the exact projector whatever the coarse factor's precision
+  /// (solveCoarseExactly; y may be x): for a vector whose part in Im G^T is large against its
+  /// part in Ker G (SMALSE-M's c = P h), where the single-precision factor would leave a
+  /// visible residue of that part.
+  void projectExactly(const DualVector& x, DualVector& y) const;
   /// gx = G x and a = (G G^T)^{-1} G x (replicated; ||Q x||^2 = gx^T a): copied, without G x
   /// or a coarse solve, when x is one of the last four projected vectors (same bits on every
   /// rank); else computed. Collective.
@@ -247,6 +271,14 @@ class TotalFeti {
   mutable std::unique_ptr<DistributedCoarseSolve> distributedCoarse_;
   /// Whether G G^T is factorised (on rank 0): the same on every rank.
   mutable bool coarseFactored_ = false;
+  /// Whether its factor is in single precision (the same on every rank), and whether the
+  /// single one was found too inaccurate for this G G^T (then it stays double).
+  mutable bool coarseSingle_ = false, coarseSingleRejected_ = false;
+  /// Rank 0: rounds coarse_ to single precision and returns the relative error of one solve
+  /// against the double one (a fixed right-hand side).
+  double roundCoarseToSingle() const;
+  /// Rank 0, coarse_ factorised: whether coarsePrecision asks for the single factor.
+  bool singleCoarsePays() const;
   /// Assembles G G^T (collective) and factorises it into coarse_ on rank 0.
   void factorizeCoarse() const;
   /// Runs `work` on rank 0 alone, then broadcasts v (of the same length on every rank) from
