@@ -154,3 +154,29 @@ TEST(tribosDriver, singlePrecisionCoarseFactorGivesTheDoubleFactorsSolution) {
   EXPECT_LT(std::abs(f1 - f2), 1e-8 * std::abs(f1));
   std::filesystem::remove_all(dir);
 }
+
+// Where the single factor solves the gate's right-hand side worse than the gate allows (here
+// the gate lowered below its error), G G^T is factorised again in double: the run is the
+// double factor's, bit for bit, and the summary reports the error that sent it back.
+TEST(tribosDriver, aSingleCoarseFactorFailingTheGateFallsBackToDouble) {
+  char tmpl[] = "/tmp/tribos_gate_XXXXXX";
+  ASSERT_NE(::mkdtemp(tmpl), nullptr);
+  const std::filesystem::path dir(tmpl);
+  const std::string cell = "--set 'Mesh/Subdomains Per Brick=2x1x1' --set 'Mesh/H Over h=2'";
+  std::filesystem::create_directories(dir / "double");
+  std::filesystem::create_directories(dir / "gated");
+  const auto dbl = solve({1, 1}, dir / "double", "two_bricks.xml", cell + " --set 'FETI/Coarse Factor Precision=Double'");
+  ::setenv("TRIBOS_SINGLE_COARSE_GATE", "1e-15", 1);
+  const auto gated = solve({1, 1}, dir / "gated", "two_bricks.xml", cell + " --set 'FETI/Coarse Factor Precision=Single'");
+  ::unsetenv("TRIBOS_SINGLE_COARSE_GATE");
+  ASSERT_FALSE(dbl.is_null());
+  ASSERT_FALSE(gated.is_null());
+  EXPECT_FALSE(gated["operator_profile"]["coarse_single"].get<bool>());
+  EXPECT_GT(gated["operator_profile"]["coarse_single_error"].get<double>(), 1e-15);
+  EXPECT_EQ(gated["operator_profile"]["coarse_refinement_steps"].get<long long>(), 0);
+  EXPECT_EQ(gated["f_applications"], dbl["f_applications"]);
+  EXPECT_EQ(gated["outer_iterations"], dbl["outer_iterations"]);
+  const double e1 = dbl["energy"], e2 = gated["energy"];
+  EXPECT_EQ(e1, e2);
+  std::filesystem::remove_all(dir);
+}

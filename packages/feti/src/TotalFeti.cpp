@@ -149,8 +149,12 @@ MPI_Comm rawComm(const Teuchos::Comm<int>& comm) {
 /// The single-precision coarse factor is kept when one solve with it differs from the double
 /// one by at most this (relative): the rounding then perturbs P by about as much on Im G^T,
 /// which leaves A_rho's spectrum and the refinement of the exact solves (about this
-/// contraction per step) untouched (doc/coarse_problem.md).
-constexpr double kSingleCoarseGate = 1e-3;
+/// contraction per step) untouched (doc/coarse_problem.md). TRIBOS_SINGLE_COARSE_GATE=<value>
+/// overrides it (tests of the fallback to double).
+double singleCoarseGate() {
+  if (const char* gate = std::getenv("TRIBOS_SINGLE_COARSE_GATE")) return std::atof(gate);
+  return 1e-3;
+}
 /// Iterative refinement steps of solveCoarseExactly at most (about 3 at the gate's 1e-3).
 constexpr int kMaxCoarseRefinements = 20;
 
@@ -1087,11 +1091,12 @@ void TotalFeti::factorizeCoarse() const {
       },
       [](const std::string& message) { throw core::InputError(message); });
   profile_.coarseSingleError = singleError[0];
-  if (singleError[0] > kSingleCoarseGate) {
+  if (singleError[0] > singleCoarseGate()) {
     // Too inaccurate for this G G^T (kappa ~ 1e4 and more): factorised again in double.
     coarseSingleRejected_ = true;
     coarse_.reset();
     factorizeCoarse();
+    profile_.coarseSingleError = singleError[0];  // the error that sent it back
     return;
   }
   coarseSingle_ = singleError[0] > 0.0;

@@ -52,7 +52,7 @@ struct TotalFetiSettings {
   bool lumpedPreconditioner = false;      ///< keep K_bb per subdomain for applyLumped (also kept with Dirichlet)
   /// Precision of G G^T's factor for project(), coarseCoordinates() and solveCoarse():
   /// "Double"; "Single" (rounded: half the bytes per coarse solve) where it is accurate
-  /// enough (kSingleCoarseGate), lambda_Im and rigidBodyCoefficients(lambda) then refined to
+  /// enough (singleCoarseGate in the .cpp), lambda_Im and rigidBodyCoefficients(lambda) then refined to
   /// double; "Auto": single where two coarse solves read at least as many bytes as one F
   /// application. Single only for callers that enforce G x = 0 themselves (SMALSE-M's
   /// penalty): P is then I - G^T C~^{-1} G, the identity on Ker G but not an exact projector
@@ -83,9 +83,10 @@ struct OperatorProfile {
   /// Stored values of the coarse factor that this rank reads per solve (rank 0: the whole
   /// factor, or with coarseRankSubtrees its subtrees and the top).
   long long coarseValuesPerSolve = 0;
-  /// Whether the coarse factor is in single precision (TotalFetiSettings::singleCoarseFactor
-  /// and the gate passed), the gate's relative error ||x~ - x|| / ||x|| (0: not measured) and
-  /// the refinement steps of the exact coarse solves.
+  /// Whether the coarse factor is in single precision (TotalFetiSettings::coarsePrecision
+  /// and the gate passed), the gate's relative error ||x~ - x|| / ||x|| (0: not rounded; > 0
+  /// with coarseSingle false: the gate sent it back to double) and the refinement steps of
+  /// the exact coarse solves.
   bool coarseSingle = false;
   double coarseSingleError = 0.0;
   long long coarseRefinementSteps = 0;
