@@ -131,6 +131,17 @@ nlohmann::json profileJson(const feti::OperatorProfile& p) {
           {"preconditioner_bytes", p.preconditionerBytes}};
 }
 
+/// The coarse factor's precision when it is not plain double (FETI/Coarse Factor
+/// Precision): a progress line for the user, empty otherwise.
+std::string coarseFactorLine(const feti::OperatorProfile& p) {
+  if (p.coarseSingleError <= 0.0) return "";
+  std::ostringstream line;
+  line << "  coarse factor: "
+       << (p.coarseSingle ? "single precision" : "double (the single one failed the gate, 1e-3)")
+       << ", one solve " << p.coarseSingleError << " from the double one (relative)\n";
+  return line.str();
+}
+
 nlohmann::json historyJson(const std::vector<stack::OuterIterationRecord>& history) {
   nlohmann::json list = nlohmann::json::array();
   for (const auto& h : history)
@@ -423,6 +434,7 @@ int run(int argc, char** argv, int rank) {
                 << ", complementarity " << r.kkt.complementarity << ", normal sign " << r.kkt.normalSign
                 << ", friction " << r.kkt.frictionAdmissibility << ", slip rule " << r.kkt.slipRule << ", stick rule "
                 << r.kkt.stickRule << "\n"
+                << coarseFactorLine(contactSolve.profile)
                 << "  times: factorization " << contactSolve.factorizationSeconds << " s, solve "
                 << contactSolve.solveSeconds << " s\n";
   } else {
