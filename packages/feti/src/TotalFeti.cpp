@@ -970,14 +970,24 @@ fem::CsrMatrix TotalFeti::assembleCoarse(const std::vector<char>* ownedRowMask) 
     return blockStart[s] + static_cast<LO>(std::lower_bound(first, last, t) - first);
   };
   const CoarseRows& G = *G_;
-  std::vector<LO> touched;  // the blocks of this rank's counted rows, ascending
+  // Only the blocks (s, t) with s <= t are summed: (t, s) is (s, t)^T, the same products
+  // (g_t[c] g_s[a] = g_s[a] g_t[c] exactly) in the same exact slot sums, so the matrix below
+  // reads them transposed with the bits of summing them itself. Each row's g_{s,r} are
+  // decoded once (rowG) for all its pairs.
+  const LO numBlocks = blockStart[numSubdomains_];
+  std::vector<LO> slotOf(static_cast<size_t>(numBlocks), -1);  // block -> its index among `touched`
+  std::vector<LO> touched;  // the upper blocks of this rank's counted rows, ascending
   for (LO r = 0; r < G.numRows; ++r) {
     if (!counted(r)) continue;
     for (LO e = G.rowStart[r]; e < G.rowStart[r + 1]; ++e)
-      for (LO f = G.rowStart[r]; f < G.rowStart[r + 1]; ++f) touched.push_back(blockOf(G.rowSubdomain[e], G.rowSubdomain[f]));
+      for (LO f = G.rowStart[r]; f < G.rowStart[r + 1]; ++f)
+        if (G.rowSubdomain[e] <= G.rowSubdomain[f]) slotOf[blockOf(G.rowSubdomain[e], G.rowSubdomain[f])] = 0;
   }
-  std::sort(touched.begin(), touched.end());
-  touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+  for (LO k = 0; k < numBlocks; ++k)
+    if (slotOf[k] == 0) {
+      slotOf[k] = static_cast<LO>(touched.size());
+      touched.push_back(k);
+    }
 
   // Reproducible sums (core::SumBins): the rows of a block are owned by different ranks on
   // different layouts. |g_s[a] g_t[c]| <= gMax^2; at most one term per row of B. The slots
@@ -985,20 +995,25 @@ fem::CsrMatrix TotalFeti::assembleCoarse(const std::vector<char>* ownedRowMask) 
   const core::SumBins bins(gMax_ * gMax_, static_cast<long long>(B_.numRows));
   constexpr size_t kBlock = kSlots * 36;
   std::vector<double> local(kBlock * touched.size(), 0.0);
+  std::vector<double> g;  // the row's g_{s,r}, 6 per entry
   for (LO r = 0; r < G.numRows; ++r) {
     if (!counted(r)) continue;
-    for (LO e = G.rowStart[r]; e < G.rowStart[r + 1]; ++e)
-      for (LO f = G.rowStart[r]; f < G.rowStart[r + 1]; ++f) {
-        const LO k = blockOf(G.rowSubdomain[e], G.rowSubdomain[f]);
-        double* block = &local[kBlock * static_cast<size_t>(std::lower_bound(touched.begin(), touched.end(), k) - touched.begin())];
-        double gs[6], gt[6];
-        G.rowG(e, gs);
-        G.rowG(f, gt);
+    const LO first = G.rowStart[r], entries = G.rowStart[r + 1] - first;
+    g.resize(6 * static_cast<size_t>(entries));
+    for (LO e = 0; e < entries; ++e) G.rowG(first + e, &g[6 * static_cast<size_t>(e)]);
+    for (LO e = 0; e < entries; ++e)
+      for (LO f = 0; f < entries; ++f) {
+        const int s = G.rowSubdomain[first + e], t = G.rowSubdomain[first + f];
+        if (s > t) continue;
+        double* block = &local[kBlock * static_cast<size_t>(slotOf[blockOf(s, t)])];
+        const double* gs = &g[6 * static_cast<size_t>(e)];
+        const double* gt = &g[6 * static_cast<size_t>(f)];
         for (int a = 0; a < 6; ++a)
           for (int c = 0; c < 6; ++c) bins.deposit(gs[a] * gt[c], block + kSlots * (a * 6 + c));
       }
   }
-  std::vector<double> slots;  // rank 0: the whole pattern's
+  std::vector<LO>().swap(slotOf);
+  std::vector<double> slots;  // rank 0: the whole pattern's (upper blocks filled)
   addBlocksOnRoot(touched, local, slots);
   fem::CsrMatrix GGt;
   if (comm_->getRank() != 0) return GGt;
@@ -1011,11 +1026,16 @@ fem::CsrMatrix TotalFeti::assembleCoarse(const std::vector<char>* ownedRowMask) 
   GGt.values.reserve(slots.size() / kSlots);
   for (int s = 0; s < numSubdomains_; ++s)
     for (int a = 0; a < 6; ++a) {
-      for (LO k = blockStart[s]; k < blockStart[s + 1]; ++k)
+      for (LO k = blockStart[s]; k < blockStart[s + 1]; ++k) {
+        const int t = coarseNeighbours_[k];
+        // (s, t) below the diagonal: entry (c, a) of the upper block (t, s).
+        const LO stored = s <= t ? k : blockOf(t, s);
         for (int c = 0; c < 6; ++c) {
-          GGt.colInd.push_back(6 * coarseNeighbours_[k] + c);
-          GGt.values.push_back(core::SumBins::combine(&slots[kSlots * (36 * static_cast<size_t>(k) + a * 6 + c)]));
+          const int entry = s <= t ? a * 6 + c : c * 6 + a;
+          GGt.colInd.push_back(6 * t + c);
+          GGt.values.push_back(core::SumBins::combine(&slots[kSlots * (36 * static_cast<size_t>(stored) + entry)]));
         }
+      }
       GGt.rowPtr[6 * s + a + 1] = static_cast<LO>(GGt.colInd.size());
     }
   return GGt;
