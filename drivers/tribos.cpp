@@ -137,7 +137,7 @@ std::string coarseFactorLine(const feti::OperatorProfile& p) {
   if (p.coarseSingleError <= 0.0) return "";
   std::ostringstream line;
   line << "  coarse factor: "
-       << (p.coarseSingle ? "single precision" : "double (the single one failed the gate, 1e-3)")
+       << (p.coarseSingle ? "single precision" : "double (the single one was not accurate enough)")
        << ", one solve " << p.coarseSingleError << " from the double one (relative)\n";
   return line.str();
 }

@@ -119,9 +119,28 @@ TEST(tribosDriver, singlePrecisionCoarseFactorSameResultOnOneTwoThreeRanks) {
   const std::string settings =
       "--set 'Mesh/Subdomains Per Brick=4x2x2' --set 'Mesh/H Over h=2' --set 'FETI/Coarse Factor Precision=Single'";
   expectSameResultOnEveryLayout("two_bricks.xml", settings, {Layout{2, 1}, Layout{1, 2}});
+  // 256 subdomains: a factor the planner splits (4x2x2's is not), so that float parts travel.
+  const std::string spread =
+      "--set 'Mesh/Subdomains Per Brick=8x4x4' --set 'Mesh/H Over h=2' --set 'FETI/Coarse Factor Precision=Single'";
   ::setenv("TRIBOS_DISTRIBUTED_COARSE_FROM", "0", 1);
-  expectSameResultOnEveryLayout("two_bricks.xml", settings, {Layout{2, 1}, Layout{3, 1}});
+  expectSameResultOnEveryLayout("two_bricks.xml", spread, {Layout{2, 1}, Layout{3, 1}});
+  char tmpl[] = "/tmp/tribos_single_spread_XXXXXX";
+  ASSERT_NE(::mkdtemp(tmpl), nullptr);
+  const auto j = solve({2, 1}, tmpl, "two_bricks.xml", spread);
   ::unsetenv("TRIBOS_DISTRIBUTED_COARSE_FROM");
+  ASSERT_FALSE(j.is_null());
+  EXPECT_TRUE(j["operator_profile"]["coarse_single"].get<bool>());
+  EXPECT_GE(j["operator_profile"]["coarse_rank_subtrees"].get<int>(), 2);
+  std::filesystem::remove_all(tmpl);
+}
+
+// "Auto" decides from quantities every rank layout shares (the coarse factor and the
+// subdomains' bytes, not the ranks' copies of G's slots): a cell at the threshold
+// (10x5x5 / H/h 2: two coarse solves read 1.0x what F does) takes the same precision, and
+// gives the same bits, on 1, 2 and 3 ranks.
+TEST(tribosDriver, autoCoarsePrecisionIsTheSameOnEveryLayout) {
+  expectSameResultOnEveryLayout("two_bricks.xml", "--set 'Mesh/Subdomains Per Brick=10x5x5' --set 'Mesh/H Over h=2'",
+                                {Layout{2, 1}, Layout{3, 1}});
 }
 
 // The single-precision coarse factor changes the projector, not the problem (SMALSE-M's

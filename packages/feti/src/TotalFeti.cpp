@@ -894,6 +894,7 @@ void TotalFeti::measureTraffic() {
     f += rows * (2 * kIndex + 3 * kDouble);  // overlap indices in and out; x gathered, y added
     factorEntries += static_cast<double>(L->solver.factor().factorNonzeros());
   }
+  const double subdomainF = f;
   // The preconditioner: K_bb's upper triangle (lumped), with the Dirichlet one K_ib twice (K_ib
   // and K_bi = K_ib^T) and the K_ii factor (both substitutions); B_s^T and B_s (its terms,
   // twice), the dual entries.
@@ -918,9 +919,13 @@ void TotalFeti::measureTraffic() {
   const double slots = static_cast<double>(G_->coords.size() + G_->full.size());
   const double projection = (gxTerms + gEntries) * sizeof(CoarseTerm) + 2 * slots * kDouble + owned * (kIndex + 3 * kDouble);
   if (preconditioner) dirichlet += owned * kDouble;
-  double local[4] = {f + 2 * projection, factorEntries, projection, dirichlet}, global[4] = {0.0, 0.0, 0.0, 0.0};
-  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, 4, local, global);
+  // The subdomains' part alone (each counted once, by its owner: the same sum on every
+  // layout, unlike the projection's slots, which ranks sharing a subdomain both hold).
+  double local[5] = {f + 2 * projection, factorEntries, projection, dirichlet, subdomainF},
+         global[5] = {0.0, 0.0, 0.0, 0.0, 0.0};
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, 5, local, global);
   bytesPerFApplication_ = global[0];
+  subdomainBytesPerF_ = global[4];
   factorNonzeros_ = static_cast<long long>(global[1]);
   profile_.projectionBytes = global[2];
   profile_.preconditionerBytes = global[3];
@@ -1091,9 +1096,9 @@ void TotalFeti::factorizeCoarse() const {
   // (onRootThenBroadcast): its assembled matrix lives only as long as the factorisation.
   core::Stopwatch watch;
   fem::CsrMatrix GGt = assembleCoarse(nullptr);
-  std::vector<double> singleError(1, 0.0);  // > 0: rounded to single with this error
+  std::vector<double> single(2, 0.0);  // rounded to single (1) and the gate's error
   onRootThenBroadcast(
-      singleError,
+      single,
       [&] {
         auto factor = makeSparseCholesky(settings_.factorization);
         factor->setSubtreeSolve(true);  // solved on the main thread of rank 0
@@ -1107,19 +1112,25 @@ void TotalFeti::factorizeCoarse() const {
         coarse_ = std::move(factor);
         profile_.coarseFactorNonzeros = coarse_->factorNonzeros();
         profile_.coarseSubtrees = coarse_->subtreeCount();
-        if (singleCoarsePays() && !coarseSingleRejected_) singleError[0] = roundCoarseToSingle();
+        if (singleCoarsePays() && !coarseSingleRejected_) {
+          const auto [rounded, error] = roundCoarseToSingle();
+          single[0] = rounded ? 1.0 : 0.0;
+          single[1] = error;
+        }
       },
       [](const std::string& message) { throw core::InputError(message); });
-  profile_.coarseSingleError = singleError[0];
-  if (singleError[0] > singleCoarseGate()) {
-    // Too inaccurate for this G G^T (kappa ~ 1e4 and more): factorised again in double.
+  profile_.coarseSingleError = single[1];
+  if (single[0] != 0.0 && !(single[1] <= singleCoarseGate())) {
+    // Too inaccurate for this G G^T (kappa ~ 1e4 and more; NaN too): factorised again in
+    // double, on every rank alike (the flags came from rank 0).
     coarseSingleRejected_ = true;
     coarse_.reset();
+    profile_.coarseFactorSeconds += watch.seconds();
     factorizeCoarse();
-    profile_.coarseSingleError = singleError[0];  // the error that sent it back
+    profile_.coarseSingleError = single[1];  // the error that sent it back
     return;
   }
-  coarseSingle_ = singleError[0] > 0.0;
+  coarseSingle_ = single[0] != 0.0;
   profile_.coarseSingle = coarseSingle_;
   // Collective: the subtrees of its elimination tree to the ranks that will solve them.
   distributedCoarse_ = DistributedCoarseSolve::create(rawComm(*comm_), coarse_.get(), distributedCoarseFromValues());
@@ -1133,18 +1144,23 @@ void TotalFeti::factorizeCoarse() const {
 
 bool TotalFeti::singleCoarsePays() const {
   // Rank 0, with the factor: "Auto" rounds where the two coarse solves of an A_rho product
-  // read at least as many bytes as its F application (bytesPerFApplication_, the same on
-  // every rank): there the rounding saves a quarter or more of the product's traffic.
+  // read at least as many bytes as the subdomain solves of its F application
+  // (subdomainBytesPerF_: the same on every rank layout, so that the choice, and with it
+  // every bit of the run, is too): there the rounding saves a quarter or more of the
+  // product's traffic.
   // Elsewhere the double factor keeps the exact projector's path: on symmetric scenes (the
   // paper's bricks) pairs of constraints reach their bounds in the same step only with it,
   // and any perturbation of P beyond ~1e-11 costs up to 20 % more F applications there
   // (doc/coarse_problem.md, "The coarse factor in single precision").
   if (settings_.coarsePrecision == "Single") return true;
-  if (settings_.coarsePrecision != "Auto") return false;
-  return 2.0 * static_cast<double>(coarse_->solveBytes()) >= bytesPerFApplication_;
+  if (settings_.coarsePrecision == "Double") return false;
+  TEUCHOS_TEST_FOR_EXCEPTION(settings_.coarsePrecision != "Auto", std::invalid_argument,
+                             "tribos::feti::TotalFeti: coarsePrecision must be \"Auto\", \"Single\" or \"Double\", not \""
+                                 << settings_.coarsePrecision << "\"");
+  return 2.0 * static_cast<double>(coarse_->solveBytes()) >= subdomainBytesPerF_;
 }
 
-double TotalFeti::roundCoarseToSingle() const {
+std::pair<bool, double> TotalFeti::roundCoarseToSingle() const {
   // One solve of a fixed right-hand side before and after the rounding: the relative change
   // is about kappa(G G^T) 1e-7, the size of the perturbation the rounding makes to P.
   const LO n = coarse_->size();
@@ -1155,15 +1171,14 @@ double TotalFeti::roundCoarseToSingle() const {
     v = static_cast<double>(state) / 2147483648.0 - 1.0;
   }
   coarse_->solve(b.data(), exact.data());
-  if (!coarse_->roundToSingle()) return 0.0;
+  if (!coarse_->roundToSingle()) return {false, 0.0};
   coarse_->solve(b.data(), rounded.data());
   double difference = 0.0, norm = 0.0;
   for (size_t i = 0; i < b.size(); ++i) {
     difference += (rounded[i] - exact[i]) * (rounded[i] - exact[i]);
     norm += exact[i] * exact[i];
   }
-  // Never 0 once rounded (a positive error marks the single factor for every rank).
-  return std::max(std::sqrt(difference / norm), std::numeric_limits<double>::min());
+  return {true, std::sqrt(difference / norm)};  // NaN or Inf: rejected by the gate
 }
 
 void TotalFeti::solveCoarseExactly(std::vector<double>& a) const {
@@ -1173,8 +1188,10 @@ void TotalFeti::solveCoarseExactly(std::vector<double>& a) const {
     return;
   }
   // Iterative refinement: x += C~^{-1} (b - G G^T x) contracts by about the gate's error per
-  // step; it stops when the correction reaches round-off or stops shrinking. The same
-  // numbers on every rank (coarse vectors are replicated), so the same decisions.
+  // step (at most 1e-3: 1e-16 in five steps); it stops when the correction reaches round-off
+  // (1e-16 of x) or stops shrinking, and is accepted when the last correction was below 1e-10
+  // of x. The same numbers on every rank (coarse vectors are replicated), so the same
+  // decisions.
   const std::vector<double> b = a;
   solveCoarse(a);
   DualVector v(dualMap_);
@@ -1197,11 +1214,15 @@ void TotalFeti::solveCoarseExactly(std::vector<double>& a) const {
     previous = correction;
   }
   if (correction <= 1e-20 * norm) return;
-  // Not refined to double precision (not seen): the double factor after all.
+  // Not refined to round-off (not seen): the double factor after all, for every later
+  // coarse solve too; the summary keeps the gate's error (coarse_single false with an error:
+  // sent back to double).
+  const double error = profile_.coarseSingleError;
   coarseSingleRejected_ = true;
   releaseCoarseFactor();
   a = b;
   solveCoarse(a);
+  profile_.coarseSingleError = error;
 }
 
 void TotalFeti::releaseCoarseFactor() const {

@@ -174,7 +174,8 @@ void fetiParameters(ParameterList& pl) {
       "value: half the bytes per coarse solve; SMALSE-M's penalty on G mu keeps the solution that of the exact "
       "projector; lambda_Im and the rigid body coefficients are refined to double; used only where one solve "
       "differs from the double one by at most 1e-3), \"Double\", or \"Auto\" (Single where two coarse solves "
-      "read at least as many bytes as one F application: many small subdomains). Linear solves: always double "
+      "read at least as many bytes as the subdomain solves of one F application: many small subdomains). Linear "
+      "solves: always double "
       "(projected CG needs the exact projector). doc/coarse_problem.md",
       Teuchos::tuple<std::string>("Auto", "Single", "Double"), &pl);
   pl.set("Max Iterations", 1000,

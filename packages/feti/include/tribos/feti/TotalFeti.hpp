@@ -26,6 +26,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tribos/feti/ConstraintMatrix.hpp"
@@ -52,12 +53,12 @@ struct TotalFetiSettings {
   bool lumpedPreconditioner = false;      ///< keep K_bb per subdomain for applyLumped (also kept with Dirichlet)
   /// Precision of G G^T's factor for project(), coarseCoordinates() and solveCoarse():
   /// "Double"; "Single" (rounded: half the bytes per coarse solve) where it is accurate
-  /// enough (singleCoarseGate in the .cpp), lambda_Im and rigidBodyCoefficients(lambda) then refined to
-  /// double; "Auto": single where two coarse solves read at least as many bytes as one F
-  /// application. Single only for callers that enforce G x = 0 themselves (SMALSE-M's
-  /// penalty): P is then I - G^T C~^{-1} G, the identity on Ker G but not an exact projector
-  /// (doc/coarse_problem.md, "The coarse factor in single precision"); projected CG needs
-  /// the exact one.
+  /// enough (singleCoarseGate in the .cpp), lambda_Im and rigidBodyCoefficients(lambda) then
+  /// refined to double; "Auto": single where two coarse solves read at least as many bytes
+  /// as the subdomain solves of one F application. Single only for callers that enforce
+  /// G x = 0 themselves (SMALSE-M's penalty): P is then I - G^T C~^{-1} G, the identity on
+  /// Ker G but not an exact projector (doc/coarse_problem.md, "The coarse factor in single
+  /// precision"); projected CG needs the exact one.
   std::string coarsePrecision = "Double";
 };
 
@@ -275,9 +276,10 @@ class TotalFeti {
   /// Whether its factor is in single precision (the same on every rank), and whether the
   /// single one was found too inaccurate for this G G^T (then it stays double).
   mutable bool coarseSingle_ = false, coarseSingleRejected_ = false;
-  /// Rank 0: rounds coarse_ to single precision and returns the relative error of one solve
-  /// against the double one (a fixed right-hand side).
-  double roundCoarseToSingle() const;
+  /// Rank 0: rounds coarse_ to single precision where its implementation can; returns
+  /// whether it did and the relative difference of one solve (a fixed right-hand side)
+  /// before and after.
+  std::pair<bool, double> roundCoarseToSingle() const;
   /// Rank 0, coarse_ factorised: whether coarsePrecision asks for the single factor.
   bool singleCoarsePays() const;
   /// Assembles G G^T (collective) and factorises it into coarse_ on rank 0.
@@ -321,6 +323,9 @@ class TotalFeti {
   double factorizationSeconds_ = 0.0;
   long long factorNonzeros_ = 0;
   double bytesPerFApplication_ = 0.0;
+  /// Of bytesPerFApplication_: the subdomains' solves and rows of B alone (layout-independent;
+  /// "Auto" of TotalFetiSettings::coarsePrecision compares the coarse solves with it).
+  double subdomainBytesPerF_ = 0.0;
 };
 
 }  // namespace tribos::feti
