@@ -10,7 +10,9 @@
 #                              the F applications (bytes_per_f_application, their two
 #                              projections' G passes included), the preconditioner
 #                              applications, the other projections' G passes and every coarse
-#                              solve (its factor's values, 8 or 4 bytes each, both substitutions), / triad
+#                              solve (its factor's values, 8 or 4 bytes each (the reciprocal diagonal, 8 in
+#                              both, counted as the rest: a slight underestimate for a single factor), both
+#                              substitutions), / triad
 #   iteration ratio          = time / iteration bound       (how near the whole iteration runs
 #                              to the bandwidth; MPGP's vector work is not counted)
 # The triad (build/bin/tribos_stream_triad, best of 20 sweeps over 400 MB arrays, with the same
