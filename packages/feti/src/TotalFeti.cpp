@@ -1096,7 +1096,9 @@ void TotalFeti::factorizeCoarse() const {
   // (onRootThenBroadcast): its assembled matrix lives only as long as the factorisation.
   core::Stopwatch watch;
   fem::CsrMatrix GGt = assembleCoarse(nullptr);
-  std::vector<double> single(2, 0.0);  // rounded to single (1) and the gate's error
+  // Rounded to single (1), the gate's error, and two coarse solves' bytes over those of F's
+  // subdomain solves (with the double factor).
+  std::vector<double> single(3, 0.0);
   onRootThenBroadcast(
       single,
       [&] {
@@ -1112,7 +1114,8 @@ void TotalFeti::factorizeCoarse() const {
         coarse_ = std::move(factor);
         profile_.coarseFactorNonzeros = coarse_->factorNonzeros();
         profile_.coarseSubtrees = coarse_->subtreeCount();
-        if (singleCoarsePays() && !coarseSingleRejected_) {
+        single[2] = 2.0 * static_cast<double>(coarse_->solveBytes()) / subdomainBytesPerF_;
+        if (singleCoarsePays(single[2]) && !coarseSingleRejected_) {
           const auto [rounded, error] = roundCoarseToSingle();
           single[0] = rounded ? 1.0 : 0.0;
           single[1] = error;
@@ -1120,6 +1123,7 @@ void TotalFeti::factorizeCoarse() const {
       },
       [](const std::string& message) { throw core::InputError(message); });
   profile_.coarseSingleError = single[1];
+  profile_.coarseToFBytes = single[2];
   if (single[0] != 0.0 && !(single[1] <= singleCoarseGate())) {
     // Too inaccurate for this G G^T (kappa ~ 1e4 and more; NaN too): factorised again in
     // double, on every rank alike (the flags came from rank 0).
@@ -1142,7 +1146,7 @@ void TotalFeti::factorizeCoarse() const {
   profile_.coarseFactorSeconds += watch.seconds();
 }
 
-bool TotalFeti::singleCoarsePays() const {
+bool TotalFeti::singleCoarsePays(double coarseToFBytes) const {
   // Rank 0, with the factor: "Auto" rounds where the two coarse solves of an A_rho product
   // read at least as many bytes as the subdomain solves of its F application
   // (subdomainBytesPerF_: the same on every rank layout, so that the choice, and with it
@@ -1157,7 +1161,7 @@ bool TotalFeti::singleCoarsePays() const {
   TEUCHOS_TEST_FOR_EXCEPTION(settings_.coarsePrecision != "Auto", std::invalid_argument,
                              "tribos::feti::TotalFeti: coarsePrecision must be \"Auto\", \"Single\" or \"Double\", not \""
                                  << settings_.coarsePrecision << "\"");
-  return 2.0 * static_cast<double>(coarse_->solveBytes()) >= subdomainBytesPerF_;
+  return coarseToFBytes >= 1.0;
 }
 
 std::pair<bool, double> TotalFeti::roundCoarseToSingle() const {

@@ -91,6 +91,10 @@ struct OperatorProfile {
   bool coarseSingle = false;
   double coarseSingleError = 0.0;
   long long coarseRefinementSteps = 0;
+  /// Bytes two solves with the double coarse factor read, over those of the subdomain solves
+  /// of one F application (layout-independent): "Auto" rounds from 1; from 2 the driver
+  /// advises fewer, larger subdomains.
+  double coarseToFBytes = 0.0;
   long long gEntries = 0, gRows = 0;   ///< entries (row, subdomain) of G on this rank's rows, rows
   /// The least bytes one projection (G x and G^T a) and one preconditioner application
   /// (B S B^T or B K_bb B^T; 0 without one) move, summed over the ranks (measureTraffic).
@@ -280,8 +284,9 @@ class TotalFeti {
   /// whether it did and the relative difference of one solve (a fixed right-hand side)
   /// before and after.
   std::pair<bool, double> roundCoarseToSingle() const;
-  /// Rank 0, coarse_ factorised: whether coarsePrecision asks for the single factor.
-  bool singleCoarsePays() const;
+  /// Rank 0, coarse_ factorised: whether coarsePrecision asks for the single factor, given
+  /// two coarse solves' bytes over those of F's subdomain solves.
+  bool singleCoarsePays(double coarseToFBytes) const;
   /// Assembles G G^T (collective) and factorises it into coarse_ on rank 0.
   void factorizeCoarse() const;
   /// Runs `work` on rank 0 alone, then broadcasts v (of the same length on every rank) from
