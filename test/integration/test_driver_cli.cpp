@@ -163,3 +163,20 @@ TEST(tribosCommandLine, idleOpenMpThreadsSleepUnlessTheUserChoseOtherwise) {
   EXPECT_NE(chosen.output.find("OMP_WAIT_POLICY = 'ACTIVE'"), std::string::npos) << chosen.output;
   EXPECT_EQ(chosen.output.find("GOMP_SPINCOUNT = '0'"), std::string::npos) << chosen.output;
 }
+
+// Where two coarse solves read at least twice the bytes of F's subdomain solves (many small
+// subdomains: 14x7x7 per brick at H/h 2, ratio 2.3), the progress output says that the coarse
+// problem dominates and that fewer, larger subdomains would be faster, and names the coarse
+// factor's precision ("Auto" rounds it there); on the paper's smallest cell it says neither.
+TEST(tribosCommandLine, aDecompositionTooFineForTheCoarseProblemIsPointedOut) {
+  const std::string oneOuter = " --set 'Mesh/H Over h=2' --set 'Solver/Max Outer Iterations=1'";
+  const auto fine = runCommand(kDriver + " --input " + quote(scene()) + " --set 'Mesh/Subdomains Per Brick=14x7x7'" +
+                               oneOuter);
+  EXPECT_EQ(fine.status, 3) << fine.output;  // one outer iteration: not converged
+  EXPECT_NE(fine.output.find("note: the coarse problem dominates"), std::string::npos) << fine.output;
+  EXPECT_NE(fine.output.find("fewer, larger subdomains would be faster"), std::string::npos);
+  EXPECT_NE(fine.output.find("coarse factor: single precision"), std::string::npos);
+  const auto coarse = runCommand(kDriver + " --input " + quote(scene()) + oneOuter);
+  EXPECT_EQ(coarse.output.find("coarse problem dominates"), std::string::npos) << coarse.output;
+  EXPECT_EQ(coarse.output.find("coarse factor:"), std::string::npos);
+}
