@@ -6,6 +6,7 @@
 // (Coulomb, the default scene).
 //
 // Usage: build/bin/tribos_bench_dual_operator [grid (10x5x5)] [H/h (5)] [repeats (40)] [only this operation]
+//          ["List/Name=value" ...] (further parameters, e.g. "FETI/Coarse Factor Precision=Single")
 // Threads: OMP_NUM_THREADS; ranks: mpirun. Prints a CSV header and one line: median wall,
 // median process CPU and best wall milliseconds per call of each operation (doc/performance.md).
 #include <mpi.h>
@@ -89,6 +90,7 @@ int main(int argc, char** argv) {
                                 std::string("Contact/Slave Side Set=contact_aluminium"),
                                 std::string("Contact/Master Side Set=contact_steel")})
       core::applyOverride(params, *valid, o);
+    for (int a = 5; a < argc; ++a) core::applyOverride(params, *valid, argv[a]);  // further "List/Name=value"
     core::validateAndSetDefaults(params, *valid, "bench");
     const auto scene = stack::buildScene(params, "bench");
     std::vector<fem::SubdomainSystem> systems;
@@ -97,6 +99,7 @@ int main(int argc, char** argv) {
     feti::TotalFetiSettings settings;
     settings.factorization = params.sublist("FETI").get<std::string>("Factorization");
     settings.dirichletPreconditioner = true;  // MPGP's default preconditioner in face
+    settings.coarsePrecision = params.sublist("FETI").get<std::string>("Coarse Factor Precision");
     const feti::TotalFeti feti(scene.mesh, scene.decomposition, std::move(systems), B,
                                Teuchos::rcp(new Teuchos::MpiComm<int>(MPI_COMM_WORLD)), settings);
 
