@@ -118,6 +118,7 @@ nlohmann::json profileJson(const feti::OperatorProfile& p) {
           {"coarse_solve_s", p.coarseSolveSeconds},
           {"preconditioner_s", p.preconditionerSeconds},
           {"coarse_factor_s", p.coarseFactorSeconds},
+          {"rigid_coefficients_s", p.rigidCoefficientsSeconds},
           {"coarse_factor_nonzeros", p.coarseFactorNonzeros},
           {"coarse_subtrees", p.coarseSubtrees},
           {"coarse_rank_subtrees", p.coarseRankSubtrees},

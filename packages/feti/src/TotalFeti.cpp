@@ -1269,6 +1269,7 @@ void TotalFeti::onRootThenBroadcast(std::vector<double>& v, const std::function<
 
 std::vector<double> TotalFeti::rigidBodyCoefficients(const DualVector& lambda,
                                                      const std::vector<char>& ownedRowMask) const {
+  const core::ScopedSeconds timed(profile_.rigidCoefficientsSeconds);
   TEUCHOS_TEST_FOR_EXCEPTION(ownedRowMask.size() != static_cast<size_t>(G_->numRows), std::invalid_argument,
                              "tribos::feti::TotalFeti::rigidBodyCoefficients: the mask has "
                                  << ownedRowMask.size() << " entries, this rank owns " << G_->numRows << " rows");
@@ -1744,6 +1745,7 @@ void TotalFeti::coarseCoordinates(const DualVector& x, std::vector<double>& gx, 
 }
 
 std::vector<double> TotalFeti::rigidBodyCoefficients(const DualVector& lambda) const {
+  const core::ScopedSeconds timed(profile_.rigidCoefficientsSeconds);
   DualVector residual(dualMap_);
   applyF(lambda, residual);
   residual.update(-1.0, *dTilde_, 1.0);

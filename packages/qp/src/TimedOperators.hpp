@@ -9,18 +9,7 @@
 
 namespace tribos::qp {
 
-/// Adds the wall time of its scope to `total`.
-class ScopedSeconds {
- public:
-  explicit ScopedSeconds(double& total) : total_(total) {}
-  ~ScopedSeconds() { total_ += watch_.seconds(); }
-  ScopedSeconds(const ScopedSeconds&) = delete;
-  ScopedSeconds& operator=(const ScopedSeconds&) = delete;
-
- private:
-  double& total_;
-  core::Stopwatch watch_;
-};
+using core::ScopedSeconds;
 
 /// A with the time of its products added to `seconds`.
 class TimedOperator : public SymmetricOperator {

@@ -18,4 +18,17 @@ class Stopwatch {
   std::chrono::steady_clock::time_point start_;
 };
 
+/// Adds the wall time of its scope to `total`.
+class ScopedSeconds {
+ public:
+  explicit ScopedSeconds(double& total) : total_(total) {}
+  ~ScopedSeconds() { total_ += watch_.seconds(); }
+  ScopedSeconds(const ScopedSeconds&) = delete;
+  ScopedSeconds& operator=(const ScopedSeconds&) = delete;
+
+ private:
+  double& total_;
+  Stopwatch watch_;
+};
+
 }  // namespace tribos::core

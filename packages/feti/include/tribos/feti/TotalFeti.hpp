@@ -76,6 +76,9 @@ struct OperatorProfile {
   double coarseSolveSeconds = 0.0;     ///< (G G^T)^{-1} a
   double preconditionerSeconds = 0.0;  ///< B K B^T or B S B^T
   double coarseFactorSeconds = 0.0;    ///< assembly + factorisation of G G^T
+  /// rigidBodyCoefficients: F lambda, G_I (F lambda - d~)_I, G_I G_I^T assembled, factorised and
+  /// solved (contact), or the exact coarse solve (all rows active)
+  double rigidCoefficientsSeconds = 0.0;
   long long coarseFactorNonzeros = 0;  ///< stored entries of the factor of G G^T
   int coarseSubtrees = 0;  ///< subtrees its solves run concurrently (0: serial solves)
   /// Leaves (subtrees solved by one rank) of its solves spread over the ranks (0: solved on
