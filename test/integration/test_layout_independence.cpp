@@ -167,6 +167,8 @@ TEST(tribosDriver, singlePrecisionCoarseFactorGivesTheDoubleFactorsSolution) {
   EXPECT_GT(gate, 0.0);
   EXPECT_LE(gate, 1e-3);
   EXPECT_GT(sgl["operator_profile"]["coarse_refinement_steps"].get<long long>(), 0);
+  // The end's alpha (G_I G_I^T) is timed in the summary with the other coarse costs.
+  EXPECT_GT(dbl["operator_profile"]["rigid_coefficients_s"].get<double>(), 0.0);
   const double e1 = dbl["energy"], e2 = sgl["energy"];
   EXPECT_LT(std::abs(e1 - e2), 1e-10 * std::abs(e1));
   const double f1 = dbl["total_normal_force"], f2 = sgl["total_normal_force"];
