@@ -431,6 +431,11 @@ int run(int argc, char** argv, int rank) {
     // Coulomb hook (MPGP's vector updates, projections onto Omega, reductions; issue 9).
     summary["times"]["smalse_s"] = r.counters.seconds;
     summary["times"]["vector_s"] = r.counters.seconds - r.counters.operatorSeconds;
+    // Of smalse_s: the products with A_rho = PFP + rho Q (pfp_applications of them, the norm
+    // estimate's included) and the inner preconditioner's applications, each with its
+    // projections: issue 9's time per PFP application is products_s / pfp_applications.
+    summary["times"]["products_s"] = r.counters.productSeconds;
+    summary["times"]["preconditioning_s"] = r.counters.preconditionerSeconds;
     summary["operator_profile"] = profileJson(contactSolve.profile);
     if (rank == 0)
       std::cout << "  SMALSE-M: " << (r.converged ? "converged" : "NOT CONVERGED (" + r.message + ")") << ": "

@@ -271,6 +271,8 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
     s.preconditionerApplications += k.preconditionerApplications;
     s.seconds += k.seconds;
     s.operatorSeconds += k.operatorSeconds;
+    s.productSeconds += k.productSeconds;
+    s.preconditionerSeconds += k.preconditionerSeconds;
     applicationsBefore = s.operatorApplications;
     s.projectedGradient = k.projectedGradient;
     s.equalityResidual = k.equalityResidual;

@@ -102,17 +102,19 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
   // The time of the whole solve, and of it what A, M^-1, Q and the hook take (the operators'
   // wrappers add it; A_rho and M^-1 + Q/rho are given rawQ, so that no call counts twice).
   const core::Stopwatch watch;
-  double inside = 0.0;
+  double inside = 0.0, products = 0.0, preconditioning = 0.0;  // inside: Q and the hook
   const TimedProjector Q(rawQ, inside);
   auto finish = [&]() {
     counters.seconds = watch.seconds();
-    counters.operatorSeconds = inside;
+    counters.productSeconds = products;
+    counters.preconditionerSeconds = preconditioning;
+    counters.operatorSeconds = inside + products + preconditioning;
     return counters;
   };
   const auto map = mu.getMap();
   // Scale-free parameters: rho and M relative to ||A||, eta relative to ||c|| (= ||P h||).
   counters.normA = knownNormA > 0.0 ? knownNormA
-                                    : lanczosNorm(TimedOperator(A, inside), *map, s.normEstimateSteps,
+                                    : lanczosNorm(TimedOperator(A, products), *map, s.normEstimateSteps,
                                                   normEstimateToleranceFor(s),
                                                   &counters.operatorApplications);
   double normC = norm2(c);
@@ -144,7 +146,7 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
   double normArho = 1.02 * std::max(counters.normA, rho);
   double M = s.M0 * counters.normA;
   const double eta = s.eta * normC, eps = s.tolerance * normC;
-  PenalisedOperator Arho(A, rawQ, rho, map, inside);
+  PenalisedOperator Arho(A, rawQ, rho, map, products);
   Vector betaT(map), b(map), g(map), Qmu(map), previousQmu(map);  // betaT = G^T beta (the multiplier as a dual vector)
   Vector previousB(map);
   // g = A_rho mu - b holds for the mu and b of the last inner solve; true until rho changes.
@@ -161,10 +163,10 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
   std::unique_ptr<PenalisedPreconditioner> preconditioner;
   std::unique_ptr<TimedOperator> givenPreconditioner;  // mpgp.preconditioner as it stands, timed
   if (s.preconditioner) {
-    preconditioner = std::make_unique<PenalisedPreconditioner>(*s.preconditioner, rawQ, rho, map, inside);
+    preconditioner = std::make_unique<PenalisedPreconditioner>(*s.preconditioner, rawQ, rho, map, preconditioning);
     mpgpSettings.preconditioner = preconditioner.get();
   } else if (s.mpgp.preconditioner) {
-    givenPreconditioner = std::make_unique<TimedOperator>(*s.mpgp.preconditioner, inside);
+    givenPreconditioner = std::make_unique<TimedOperator>(*s.mpgp.preconditioner, preconditioning);
     mpgpSettings.preconditioner = givenPreconditioner.get();
   }
   // ||Q mu|| at every inner stop test, followed along CG steps where Q allows it.

@@ -683,6 +683,15 @@ TEST(SmalseM, fusedPenaltyTermAndNormQGiveTheSameSolution) {
       EXPECT_GT(op.fused, 0) << "seed " << seed;
       EXPECT_GT(projector.norms, 0) << "seed " << seed;
       if (preconditioned) EXPECT_EQ(fusedPreconditioner.fused, counters.preconditionerApplications);
+      // The time split of the summary (times.products_s, preconditioning_s): each part timed,
+      // within the operators' time, within the whole.
+      EXPECT_GT(counters.productSeconds, 0.0);
+      if (preconditioned)
+        EXPECT_GT(counters.preconditionerSeconds, 0.0);
+      else
+        EXPECT_EQ(counters.preconditionerSeconds, 0.0);
+      EXPECT_LE(counters.productSeconds + counters.preconditionerSeconds, counters.operatorSeconds);
+      EXPECT_LE(counters.operatorSeconds, counters.seconds);
       const auto x = test::gather(mu);
       EXPECT_LE(test::maxDifference(x, reference.x), 1e-8 * std::max(1.0, test::normInf(reference.x)))
           << "seed " << seed << (preconditioned ? " preconditioned" : "");

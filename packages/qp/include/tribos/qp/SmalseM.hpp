@@ -89,6 +89,11 @@ struct SmalseCounters {
   /// norm estimate's), the preconditioner, Q and the hook: seconds - operatorSeconds is
   /// SMALSE-M's and MPGP's own work (vector updates, projections onto Omega, reductions).
   double seconds = 0.0, operatorSeconds = 0.0;
+  /// Of operatorSeconds: the products with A_rho and the norm estimate's products with A (what
+  /// operatorApplications counts), and the applications of the inner preconditioner M^-1 + Q/rho
+  /// (what preconditionerApplications counts), each with its projections (issue 9's time per
+  /// PFP application measured on the product alone).
+  double productSeconds = 0.0, preconditionerSeconds = 0.0;
   bool converged = false;
   bool nonFinite = false;  ///< stopped on a NaN or infinite norm (||PFP||, ||g^P||, ||G mu||)
 };
