@@ -43,6 +43,11 @@ const core::ParameterTable<contact::FrictionSettings>& frictionTable() {
                "Coulomb: \"Inexact\" updates the slip bound g := lambda_nu after every SMALSE-M outer iteration "
                "(the paper's choice); \"Exact\" solves every Tresca problem to Solver/Tolerance first",
                {"Inexact", "Exact"})
+          .add("Slip Bound Test", &F::slipBoundTest,
+               "Coulomb, Inexact: \"Epsilon\" stops only when the last update moved the slip bound by at most "
+               "Solver/Tolerance (relative); \"Paper\" on SMALSE-M's criteria alone, as the paper's Section 5 "
+               "(its Table 1 counts), which may stop with g a few epsilon from lambda_nu",
+               {"Epsilon", "Paper"})
           .add("Max Fixed Point Iterations", &F::maxFixedPointIterations,
                "Coulomb, Exact: cap on the Tresca solves; reaching it ends the solve as not converged (exit 3)",
                core::intRange(1, kMaxCount));

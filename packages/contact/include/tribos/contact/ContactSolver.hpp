@@ -27,6 +27,9 @@ struct FrictionSettings {
   double F1 = 0.3, F2 = 0.3;       ///< friction coefficients along t1, t2
   double slipBound = 0.0;          ///< Tresca: g as a nodal force [force]
   std::string fixedPoint = "Inexact";  ///< Coulomb: "Inexact" (update g every outer iteration) | "Exact"
+  /// Coulomb, Inexact: "Epsilon" stops only once an update moved g by at most eps (relative);
+  /// "Paper" on SMALSE-M's criteria alone, as the paper's Section 5 (its Table 1 counts).
+  std::string slipBoundTest = "Epsilon";
   int maxFixedPointIterations = 50;    ///< Exact variant: cap on Tresca solves
   /// Divergence: the fixed-point change grew in this many consecutive updates (after the
   /// first few) -> stop and report "fixed point diverges".
