@@ -40,7 +40,7 @@ std::string describeContactChain(const Teuchos::ParameterList& tribos) {
         << ") -> " << friction.model;
   if (friction.model == "Coulomb")
     chain << " (" << friction.fixedPoint << " successive approximations, F1 " << friction.F1 << ", F2 " << friction.F2
-          << ")";
+          << (friction.fixedPoint == "Inexact" ? ", slip-bound test " + friction.slipBoundTest : std::string()) << ")";
   if (friction.model == "Tresca") chain << " (g = " << friction.slipBound << ", F1 " << friction.F1 << ", F2 "
                                         << friction.F2 << ")";
   return chain.str();
