@@ -46,7 +46,8 @@ const core::ParameterTable<contact::FrictionSettings>& frictionTable() {
           .add("Slip Bound Test", &F::slipBoundTest,
                "Coulomb, Inexact: \"Epsilon\" stops only when the last update moved the slip bound by at most "
                "Solver/Tolerance (relative); \"Paper\" on SMALSE-M's criteria alone, as the paper's Section 5 "
-               "(its Table 1 counts), which may stop with g a few epsilon from lambda_nu",
+               "(its Table 1 counts), which may stop with g a few epsilon from lambda_nu and Coulomb's law broken at "
+               "that bound: the KKT gate then reports the run as not converged (doc/parameters.md)",
                {"Epsilon", "Paper"})
           .add("Max Fixed Point Iterations", &F::maxFixedPointIterations,
                "Coulomb, Exact: cap on the Tresca solves; reaching it ends the solve as not converged (exit 3)",
