@@ -3,12 +3,14 @@
 //   tribos-msh2exo [--split-bodies] mesh.msh mesh.exo
 // --split-bodies duplicates the nodes that two bodies share, so a conforming interface meshed
 // once becomes a node-to-node contact pair ("<surface>_<body>" side sets on each side).
-// Exit status: 0 written, 2 bad input (the message names the file), 1 internal error.
-#include <filesystem>
+// Exit status: 0 written, 2 bad input (the message names the file), 4 the mesh could not be
+// written (an I/O failure), 1 internal error.
 #include <iostream>
 #include <string>
 
 #include "tribos/core/Errors.hpp"
+#include "tribos/core/InputFiles.hpp"
+#include "tribos/core/OutputFile.hpp"
 #include "tribos/mesh/ExodusIO.hpp"
 #include "tribos/mesh/GmshReader.hpp"
 
@@ -29,25 +31,28 @@ int main(int argc, char** argv) {
     std::cerr << "usage: tribos-msh2exo [--split-bodies] mesh.msh mesh.exo\n";
     return 2;
   }
-  // Written under a temporary name and renamed when complete: a failed conversion leaves no
-  // file that looks like a mesh (nor clobbers an older one).
-  const std::string partial = out + ".tribos-partial";
-  std::error_code ignored;
+  // Written under a temporary name unique to this run and renamed when complete
+  // (core/OutputFile.hpp): a failed conversion leaves no file that looks like a mesh, nor
+  // clobbers an older one; the input itself is never the output.
   try {
+    tribos::core::requireRegularInputFile(in, "the gmsh file");
+    if (tribos::core::sameFile(in, out))
+      throw tribos::core::InputError(out + ": is the input mesh; writing it would destroy it: give another name");
+    tribos::core::OutputFile file(out, "the Exodus mesh", false);
     const auto mesh = tribos::mesh::readGmsh(in, split);
-    tribos::mesh::writeExodus(partial, mesh);
-    std::filesystem::rename(partial, out);
+    file.writeWith([&](const std::string& path) { tribos::mesh::writeExodus(path, mesh); });
     std::cout << "tribos-msh2exo: " << in << " -> " << out << ": " << mesh.numNodes() << " nodes, "
               << mesh.numElements() << " tetrahedra, " << mesh.numBlocks() << " blocks, " << mesh.sideSets.size()
               << " side sets\n";
     for (const auto& s : mesh.sideSets) std::cout << "  side set \"" << s.name << "\": " << s.elements.size() << " faces\n";
     return 0;
   } catch (const tribos::core::InputError& e) {
-    std::filesystem::remove(partial, ignored);
     std::cerr << "tribos-msh2exo: error: " << e.what() << "\n";
     return 2;
+  } catch (const tribos::core::IoError& e) {
+    std::cerr << "tribos-msh2exo: error: " << e.what() << "\n";
+    return 4;
   } catch (const std::exception& e) {
-    std::filesystem::remove(partial, ignored);
     std::cerr << "tribos-msh2exo: internal error: " << e.what() << "\n";
     return 1;
   }

@@ -18,6 +18,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -30,8 +31,10 @@
 #include <vector>
 
 #include "CommandLine.hpp"
+#include "RunFiles.hpp"
 #include "RunOutcome.hpp"
 #include "tribos/stack/SubdomainSetup.hpp"
+#include "tribos/core/Deadline.hpp"
 #include "tribos/core/Errors.hpp"
 #include "tribos/core/Parallel.hpp"
 #include "tribos/core/Parameters.hpp"
@@ -46,35 +49,11 @@
 #include "tribos/stack/Results.hpp"
 #include "tribos/stack/Scene.hpp"
 #include "tribos/stack/SceneParameters.hpp"
+#include "tribos/stack/SameMeshOnEveryRank.hpp"
 #include "tribos/stack/SceneSize.hpp"
 
 namespace {
 using namespace tribos;
-
-// Rank 0 reads the file; every rank parses the same text, so every rank sees the same
-// parameters and the same errors.
-Teuchos::ParameterList readSceneXml(const std::string& path, int rank) {
-  std::string text;
-  long long length = -1;
-  if (rank == 0) {
-    std::ifstream in(path);
-    if (in) {
-      std::ostringstream buffer;
-      buffer << in.rdbuf();
-      text = buffer.str();
-      length = static_cast<long long>(text.size());
-    }
-  }
-  MPI_Bcast(&length, 1, MPI_LONG_LONG, 0, MPI_COMM_WORLD);
-  if (length < 0) throw core::InputError(path + ": cannot open the scene file");
-  text.resize(static_cast<size_t>(length));
-  MPI_Bcast(text.data(), static_cast<int>(length), MPI_CHAR, 0, MPI_COMM_WORLD);
-  // Strict: duplicate names, values that do not read as their type, non-finite numbers and
-  // deep nesting are input errors naming the file and the parameter.
-  const auto list = core::parameterListFromXml(text, path);
-  list->setName("Tribos");  // Teuchos does not keep the top-level name; its contents are validated
-  return *list;
-}
 
 nlohmann::json summaryJson(const stack::Scene& scene, const stack::SetupReport& report,
                            const feti::ConstraintMatrix& B, const driver::CommandLine& cl) {
@@ -252,29 +231,6 @@ void addResultsToSummary(const stack::StressResults& stress, const stack::ForceB
   summary["force_balance"] = balance.relativeImbalance;
 }
 
-// Output files are written under this suffix and renamed when complete: a run that fails
-// while writing leaves no file that looks valid.
-constexpr const char* kPartialSuffix = ".tribos-partial";
-
-// Before any work: rank 0 checks that it can create `path` (a trial file next to it, removed
-// at once), every rank learns the answer, and all throw the same input error; a run is never
-// lost to an unwritable output path after the solve.
-void requireWritable(const std::string& path, const std::string& option, int rank) {
-  if (path.empty()) return;
-  int ok = 1;
-  if (rank == 0) {
-    const std::string trial = path + kPartialSuffix;
-    std::ofstream probe(trial);
-    ok = probe ? 1 : 0;
-    probe.close();
-    std::remove(trial.c_str());
-  }
-  MPI_Bcast(&ok, 1, MPI_INT, 0, MPI_COMM_WORLD);
-  if (!ok)
-    throw core::InputError(path + ": cannot write this file (" + option +
-                           "): check that its directory exists and is writable");
-}
-
 // This process's peak resident set size in KiB (getrusage: ru_maxrss is in KiB on Linux).
 long peakRssKb() {
   struct rusage usage {};
@@ -291,17 +247,55 @@ std::vector<long> gatherPeakRssKb(int rank) {
   return all;
 }
 
-// Moves the completed `path` + kPartialSuffix to `path`.
-void commitOutput(const std::string& path) {
-  std::error_code error;
-  std::filesystem::rename(path + kPartialSuffix, path, error);
-  if (error) throw std::runtime_error(path + ": cannot rename the completed output into place: " + error.message());
+// The scene on every rank, or an input error on every rank: a rank that cannot read the mesh
+// file (replaced while the job started) must not leave the others waiting for it, and ranks
+// that read different meshes must not go on (stack/SameMeshOnEveryRank.hpp).
+stack::Scene buildSceneOnEveryRank(const Teuchos::ParameterList& params, const std::string& input,
+                                   const std::string& meshFile) {
+  stack::Scene scene;
+  std::exception_ptr failure;
+  try {
+    scene = stack::buildScene(params, input);
+  } catch (const core::InputError&) {
+    failure = std::current_exception();
+  }
+  int failed = failure ? 1 : 0;
+  MPI_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  if (failure) std::rethrow_exception(failure);
+  if (failed)
+    throw core::InputError((meshFile.empty() ? input : meshFile) + ": another rank could not read the scene");
+  if (!meshFile.empty()) stack::requireSameMeshOnEveryRank(scene.mesh, meshFile, MPI_COMM_WORLD);
+  return scene;
 }
+
+/// What steps (1) and (2) settle before any work: the command line, the parameters, the
+/// result files (checked) and the run's deadline.
+struct RunStart {
+  driver::CommandLine cl;
+  Teuchos::ParameterList params;
+  std::string meshFile;  ///< empty for a generated mesh
+  driver::ResultFiles files;
+  core::Deadline deadline;
+  core::Stopwatch total;  ///< from the start of the run
+};
+
+// A limit reached before the solve could end (Solver/Max Seconds during the set-up): no
+// results to write, but the summary still says what happened.
+void writeStoppedSummary(const RunStart& start, const std::string& message) {
+  nlohmann::json summary;
+  summary["input"] = start.cl.input;
+  summary["converged"] = false;
+  summary["message"] = message;
+  summary["times"] = {{"total_s", start.total.seconds()}};
+  start.files.summary->writeText(summary.dump(2) + "\n");
+}
+
+int solveAndReport(int argc, char** argv, int rank, const RunStart& start);
 
 int run(int argc, char** argv, int rank) {
   core::Stopwatch total;
   // (1) Command line.
-  const driver::CommandLine cl = driver::parseCommandLine(argc, argv);
+  driver::CommandLine cl = driver::parseCommandLine(argc, argv);
   const auto valid = stack::sceneValidParameters();
   if (cl.help || cl.version || cl.kokkosHelp) {  // Kokkos has printed its help for --kokkos-help
     if (rank == 0 && cl.help) std::cout << driver::usage();
@@ -313,26 +307,40 @@ int run(int argc, char** argv, int rank) {
     return core::kExitOk;
   }
 
-  requireWritable(cl.output, "--output", rank);
-  requireWritable(cl.summary, "--summary", rank);
-
-  // (2) Scene parameters: XML, command-line overrides, validation against every component.
-  Teuchos::ParameterList params = readSceneXml(cl.input, rank);
+  // (2) Scene parameters: XML, command-line overrides, validation against every component;
+  // the result files checked and the deadline set, before any work.
+  Teuchos::ParameterList params = driver::readSceneXml(cl.input, rank);
   core::validateAndSetDefaults(params, *valid, cl.input);
   // Each override is validated on its own, so that a bad value names the --set that gave it.
   for (const auto& assignment : cl.overrides) {
     core::applyOverride(params, *valid, assignment);
     core::validateAndSetDefaults(params, *valid, "--set \"" + assignment + "\"");
   }
-  stack::requireSceneFitsInMemory(params, cl.input, MPI_COMM_WORLD);
+  stack::requireSceneFitsInMemory(params, cl.input, MPI_COMM_WORLD, !cl.dryRun);
   if (const int threads = params.sublist("Parallel").get<int>("Threads"); threads > 0)
     core::setNumThreads(threads);
+  const std::string meshFile = stack::meshFilePath(params, cl.input);
+  driver::ResultFiles files = driver::prepareResultFiles(cl, {cl.input, meshFile}, rank);
+  const core::Deadline deadline(params.sublist("Solver").get<double>("Max Seconds"), total);
+  const RunStart start{std::move(cl), std::move(params), meshFile, std::move(files), deadline, total};
+  try {
+    return solveAndReport(argc, argv, rank, start);
+  } catch (const core::LimitReached& e) {  // thrown on every rank together
+    if (rank == 0 && start.files.summary) writeStoppedSummary(start, e.what());
+    throw;
+  }
+}
 
+/// Steps (3) to (5): the set-up, the solve and the results.
+int solveAndReport(int argc, char** argv, int rank, const RunStart& start) {
+  const auto& [cl, params, meshFile, resultFiles, deadline, total] = start;
   // (3) Mesh, decomposition, per-subdomain assembly, constraint matrix B.
   core::Stopwatch setup;
-  stack::Scene scene = stack::buildScene(params, cl.input);
+  stack::Scene scene = buildSceneOnEveryRank(params, cl.input, meshFile);
+  deadline.check("reading the mesh", MPI_COMM_WORLD);
   std::vector<fem::SubdomainSystem> systems;
   const stack::SetupReport report = stack::assembleOwnedSubdomains(scene, MPI_COMM_WORLD, systems);
+  deadline.check("the assembly", MPI_COMM_WORLD);
   int numRanks = 1;
   MPI_Comm_size(MPI_COMM_WORLD, &numRanks);
   core::Stopwatch constraintWatch;
@@ -347,6 +355,7 @@ int run(int argc, char** argv, int rank) {
   }
   const double constraintSeconds = constraintWatch.seconds();
   const double setupSeconds = setup.seconds();
+  deadline.check("the constraints", MPI_COMM_WORLD);
 
   if (rank == 0) {
     std::cout << "tribos: " << cl.input << "\n"
@@ -384,7 +393,7 @@ int run(int argc, char** argv, int rank) {
     summary["solver"] = "dry run: not solved";
   } else if (!linearProblem) {
     if (rank == 0) std::cout << "  solver chain: " << stack::describeContactChain(params) << "\n";
-    contactSolve = stack::solveContactScene(scene, std::move(systems), B, params, MPI_COMM_WORLD);
+    contactSolve = stack::solveContactScene(scene, std::move(systems), B, params, MPI_COMM_WORLD, total);
     const auto& r = contactSolve.contact;
     output.displacement = &contactSolve.displacement.value;
     output.reaction = &contactSolve.reaction;
@@ -455,7 +464,7 @@ int run(int argc, char** argv, int rank) {
   } else {
     const double tolerance = params.sublist("Solver").get<double>("Tolerance");
     linear = stack::solveLinearFeti(scene, std::move(systems), B, params.sublist("FETI"), tolerance, MPI_COMM_WORLD,
-                                    params.sublist("Solver").get<double>("Max Seconds"));
+                                    params.sublist("Solver").get<double>("Max Seconds"), total);
     output.displacement = &linear.displacement;
     output.reaction = &linear.reaction;
     appliedLoad = linear.appliedLoad;
@@ -510,25 +519,31 @@ int run(int argc, char** argv, int rank) {
   // again after writing the Exodus result, just before the summary.
   std::vector<long> maxRssPerRankKb = gatherPeakRssKb(rank);
   if (rank == 0) {
-    if (!cl.output.empty()) {
+    // A result that cannot be written (disk full, read-only, a file size limit) leaves no
+    // partial file; the summary is still written where it can be and records the failure.
+    std::string writeError;
+    if (resultFiles.exodus) {
       output.globals = globalValues(summary);
       output.info = infoRecords(argc, argv, params);
-      writeOutput(cl.output + kPartialSuffix, scene, output);
-      commitOutput(cl.output);
-      std::cout << "  wrote " << cl.output << "\n";
+      try {
+        resultFiles.exodus->writeWith([&](const std::string& path) { writeOutput(path, scene, output); });
+        std::cout << "  wrote " << cl.output << "\n";
+      } catch (const core::IoError& e) {
+        writeError = e.what();
+        summary["output_error"] = {{"option", "--output"}, {"file", cl.output}, {"error", writeError}};
+      }
     }
-    if (!cl.summary.empty()) {
+    if (resultFiles.summary) {
       maxRssPerRankKb[0] = std::max(maxRssPerRankKb[0], peakRssKb());
       summary["max_rss_per_rank_kb"] = maxRssPerRankKb;
-      {
-        std::ofstream out(cl.summary + kPartialSuffix);
-        if (!out) throw core::InputError(cl.summary + ": cannot write the summary file");
-        out << summary.dump(2) << "\n";
-        if (!out) throw core::InputError(cl.summary + ": writing the summary file failed");
+      try {
+        resultFiles.summary->writeText(summary.dump(2) + "\n");
+        std::cout << "  wrote " << cl.summary << "\n";
+      } catch (const core::IoError& e) {
+        writeError += (writeError.empty() ? "" : "; ") + std::string(e.what());
       }
-      commitOutput(cl.summary);
-      std::cout << "  wrote " << cl.summary << "\n";
     }
+    if (!writeError.empty()) throw core::IoError(writeError);
   }
   return status;
 }
@@ -581,6 +596,9 @@ int startKokkos(std::optional<Tpetra::ScopeGuard>& guard, int& kokkosArgc, char*
 int main(int argc, char** argv) {
   sleepWhileWaiting(argv);
   lineBufferedOutput();
+  // A file size limit (ulimit -f) makes a write fail with EFBIG, an I/O error the run reports
+  // (exit 4, nothing partial left), instead of killing the process in the middle of a write.
+  std::signal(SIGXFSZ, SIG_IGN);
   MPI_Init(&argc, &argv);
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);

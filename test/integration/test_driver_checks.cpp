@@ -49,6 +49,20 @@ TEST(tribosDriver, aFreeRigidMotionIsAnInputErrorBeforeTheSolve) {
   const auto run = runCommand(kDriver + " --input " + scene + " --set Solver/Verbose=false");
   EXPECT_EQ(run.status, 0) << run.output;
   EXPECT_FALSE(contains(run.output, "rigid motion")) << run.output;
+  EXPECT_FALSE(contains(run.output, "found no master face")) << run.output;
+}
+
+TEST(tribosDriver, aBodyFreeBecauseItsContactFoundNothingNamesTheSearchDistance) {
+  // The paper's bricks 0.5 apart with the upper brick unclamped: its contact, searched within
+  // 0.1, finds no master face, so nothing holds it; the message says why and which nodes.
+  const auto run = runCommand(kDriver + " --input " + quote(input("two_bricks.xml")) +
+                              " --dry-run --set 'Mesh/Initial Gap=0.5' --set 'Contact/Search Distance=0.1'"
+                              " --set 'Boundary/Dirichlet Node Sets={dirichlet_steel}'");
+  EXPECT_EQ(run.status, 2) << run.output;
+  EXPECT_TRUE(contains(run.output, "body \"aluminium\": translation x")) << run.output;
+  EXPECT_TRUE(contains(run.output, "slave nodes found no master face within Contact/Search Distance = 0.1 (nodes "))
+      << run.output;
+  EXPECT_TRUE(contains(run.output, "numbered from 1 as in the mesh file")) << run.output;
 }
 
 TEST(tribosDriver, theConsolePrintsEveryKktResidual) {

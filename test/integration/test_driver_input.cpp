@@ -172,24 +172,35 @@ TEST_F(DriverInput, aSceneTooLargeForMemoryIsAnInputErrorBeforeTheMesh) {
                 {"two_bricks.xml", "H Over h = 200", "GiB of memory", "Reduce Mesh/H Over h"});
   expectRefused("--input " + paperScene() + " --dry-run --set 'Mesh/Subdomains Per Brick=1000x500x500'",
                 {"Subdomains Per Brick = 1000x500x500", "32-bit"});
+  // An address-space limit (ulimit -v 8 GB): H/h = 60 ran 55 s into std::bad_alloc; its four
+  // subdomain factors alone need more. The dry run, which factorises nothing, still runs.
+  const auto limited = runCommand("ulimit -v 8000000 && " + kDriver + " --input " + paperScene() +
+                                  " --set 'Mesh/H Over h=60'");
+  EXPECT_EQ(limited.status, 2) << limited.output;
+  EXPECT_TRUE(contains(limited.output, "factor nonzeros at least")) << limited.output;
+  EXPECT_TRUE(contains(limited.output, "under its address-space limit (ulimit -v)")) << limited.output;
+  EXPECT_FALSE(contains(limited.output, "bad_alloc")) << limited.output;
 }
 
 TEST_F(DriverInput, limitsThatEndASolveNameThemselves) {
-  auto run = [&](const std::string& scene, const std::string& sets) {
+  // `resultsWritten` false: the limit came before the solve ended anything (the set-up).
+  auto run = [&](const std::string& scene, const std::string& sets, bool resultsWritten = true) {
     const auto summary = dir_ / "s.json", exo = dir_ / "r.exo";
     fs::remove(summary);
     fs::remove(exo);
     const auto r = runCommand(kDriver + " --input " + scene + " --set Solver/Verbose=false " + sets + " --summary " +
                               quote(summary.string()) + " --output " + quote(exo.string()));
     EXPECT_EQ(r.status, 3) << sets << "\n" << r.output;
-    EXPECT_TRUE(fs::exists(exo)) << "results are written";
+    EXPECT_EQ(fs::exists(exo), resultsWritten) << "results are written when a solve ended\n" << r.output;
     const auto json = nlohmann::json::parse(std::ifstream(summary));
     EXPECT_FALSE(json.at("converged").get<bool>());
     return json.at("message").get<std::string>();
   };
-  // A budget far below the solve's time: it ends at the first check, on any machine.
-  std::string message = run(paperScene(), "--set 'Solver/Max Seconds=0.001'");
+  // A budget far below the set-up's time: it ends at the first check, on any machine, before
+  // the solve; the summary says so.
+  std::string message = run(paperScene(), "--set 'Solver/Max Seconds=0.001'", false);
   EXPECT_TRUE(contains(message, "stopped: Solver/Max Seconds = 0.001 reached after ")) << message;
+  EXPECT_TRUE(contains(message, "during reading the mesh (nothing solved, no results written)")) << message;
   message = run(paperScene(), "--set 'Solver/Max Outer Iterations=2'");
   EXPECT_TRUE(contains(message, "stopped: Solver/Max Outer Iterations = 2 reached")) << message;
   message = run(paperScene(), "--set 'Solver/Max Outer Iterations=3' --set 'Solver/MPGP/max iterations=2'");
@@ -200,7 +211,7 @@ TEST_F(DriverInput, limitsThatEndASolveNameThemselves) {
   const std::string bonded = quote(tribos::test::sourceDir() + "/input/two_bricks_bonded.xml");
   message = run(bonded, "--set 'FETI/Max Iterations=2'");
   EXPECT_TRUE(contains(message, "stopped: FETI/Max Iterations = 2 reached")) << message;
-  message = run(bonded, "--set 'Solver/Max Seconds=0.001'");
+  message = run(bonded, "--set 'Solver/Max Seconds=0.001'", false);
   EXPECT_TRUE(contains(message, "stopped: Solver/Max Seconds = 0.001 reached")) << message;
 }
 

@@ -13,18 +13,20 @@ namespace tribos::core {
 
 namespace {
 // Which status the ranks agree on: the most telling one. Bad input explains an internal
-// error elsewhere (a rank that read garbage), and both explain a solve that did not end.
+// error elsewhere (a rank that read garbage), and both explain a solve that did not end. A
+// result that could not be written outranks "not converged": the user has nothing to look at.
 int severity(int status) {
   switch (status) {
     case kExitOk: return 0;
     case kExitNotConverged: return 1;
-    case kExitInternal: return 2;
-    default: return 3;  // kExitBadInput
+    case kExitIoFailure: return 2;
+    case kExitInternal: return 3;
+    default: return 4;  // kExitBadInput
   }
 }
 
 int statusOfSeverity(int s) {
-  constexpr int statuses[] = {kExitOk, kExitNotConverged, kExitInternal, kExitBadInput};
+  constexpr int statuses[] = {kExitOk, kExitNotConverged, kExitIoFailure, kExitInternal, kExitBadInput};
   return statuses[s];
 }
 

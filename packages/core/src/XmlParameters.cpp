@@ -132,7 +132,8 @@ bool arrayItems(const std::string& text, std::vector<std::string>& items) {
 }
 
 std::string valueProblem(const std::string& type, const std::string& value) {
-  static const std::regex array("Array\\((int|double|float)\\)");
+  // Every array type: Teuchos's own message for missing braces names no parameter.
+  static const std::regex array("Array\\((int|double|float|string|bool)\\)");
   std::smatch element;
   if (!std::regex_match(type, element, array)) return scalarProblem(type, value);
   std::vector<std::string> items;

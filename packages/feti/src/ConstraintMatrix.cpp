@@ -203,6 +203,9 @@ ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decom
       for (const auto& pair : search.pairs) masterSides.push_back(mesh::nodeToSurfaceRow(pair));
     }
     B.unpairedSlaveNodes = static_cast<GO>(search.unpaired.size());
+    constexpr size_t kSample = 5;
+    B.unpairedSample.assign(search.unpaired.begin(), search.unpaired.begin() + std::min(kSample, search.unpaired.size()));
+    B.searchDistance = spec.searchDistance;
     B.overlappingPairs = search.overlapping;
     B.largestOverlap = search.largestOverlap;
     const int numDirections = spec.tangentialRows ? 3 : 1;

@@ -10,6 +10,7 @@
 #include <Teuchos_CommHelpers.hpp>
 
 #include "tribos/core/Errors.hpp"
+#include "tribos/core/Format.hpp"
 #include "tribos/core/ReproducibleSum.hpp"
 
 namespace tribos::feti {
@@ -314,6 +315,21 @@ std::vector<FreeMotion> freeRigidMotions(const mesh::Mesh& mesh, const mesh::Dec
   return motions;
 }
 
+/// A body is often free because its contact found nothing: bodies farther apart (or overlapping
+/// deeper) than Contact/Search Distance get no contact rows. Empty when every slave node paired.
+namespace {
+std::string unpairedContactNote(const ConstraintMatrix& B) {
+  if (B.unpairedSlaveNodes == 0) return "";
+  std::string nodes;
+  for (LO n : B.unpairedSample) nodes += (nodes.empty() ? "" : ", ") + std::to_string(n + 1);
+  if (static_cast<GO>(B.unpairedSample.size()) < B.unpairedSlaveNodes) nodes += ", ...";
+  return "\n" + std::to_string(B.unpairedSlaveNodes) + " slave node" + (B.unpairedSlaveNodes == 1 ? "" : "s") +
+         " found no master face within Contact/Search Distance = " + core::formatNumber(B.searchDistance) +
+         " (nodes " + nodes + ", numbered from 1 as in the mesh file), so they have no contact rows: if the bodies "
+         "are apart (or overlap) by more than that, move them or raise Contact/Search Distance.";
+}
+}  // namespace
+
 void requireRestrainedBodies(const mesh::Mesh& mesh, const mesh::Decomposition& decomposition,
                              const ConstraintMatrix& B, const Teuchos::Comm<int>* comm) {
   const auto motions = freeRigidMotions(mesh, decomposition, B, comm);
@@ -322,6 +338,7 @@ void requireRestrainedBodies(const mesh::Mesh& mesh, const mesh::Decomposition& 
                         " rigid motion" + (motions.size() == 1 ? " is" : "s are") +
                         " free of every Dirichlet and contact row, so the problem has no unique solution";
   for (const auto& m : motions) message += "\n  " + m.description;
+  message += unpairedContactNote(B);
   message +=
       "\nHold each of these bodies: clamp a node set of it (Boundary/Dirichlet Node Sets), prescribe the free "
       "components on a node set (Boundary/<name>: Node Set, Components, e.g. a symmetry plane), add friction to "

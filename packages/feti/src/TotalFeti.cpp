@@ -7,6 +7,7 @@
 #include <Tpetra_Vector.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -15,6 +16,7 @@
 #include <map>
 #include <numeric>
 
+#include "tribos/core/Deadline.hpp"
 #include "tribos/core/Errors.hpp"
 #include "tribos/core/Parallel.hpp"
 #include "tribos/core/ReproducibleSum.hpp"
@@ -438,7 +440,12 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
     Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, 1, &mine, &primalDofs_);
   }
   core::Stopwatch watch;
+  std::atomic<bool> stopped{false};  // Solver/Max Seconds passed on this rank: the rest skipped
   core::forEachSubdomain(numOwned, [&](int i) {
+    if (stopped || (settings_.deadline && settings_.deadline->passed())) {
+      stopped = true;
+      return;
+    }
     Local& L = *local_[i];
     std::vector<std::array<double, 3>> coords;
     for (LO node : decomposition.subdomains[L.subdomain].nodes) coords.push_back(mesh.coords[node]);
@@ -465,6 +472,7 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
       L.denseF = packLowerInRowOrder(full, L.rowOrder);
     }
   });
+  if (settings_.deadline) settings_.deadline->agree(stopped, "the factorisation", rawComm(*comm));
   double seconds = watch.seconds();
   Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &seconds, &factorizationSeconds_);
 

@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "tribos/core/Errors.hpp"
+#include "tribos/core/InputFiles.hpp"
 
 namespace tribos::mesh {
 
@@ -361,7 +362,7 @@ ExodusData readExodus(const std::string& path) {
   // that is not Exodus.
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw core::InputError(path + ": the mesh file does not exist");
-  if (std::filesystem::is_directory(path, ec)) throw core::InputError(path + ": is a directory, not an Exodus file");
+  core::requireRegularInputFile(path, "the mesh file");  // a FIFO or a device: never opened
   if (!std::ifstream(path)) throw core::InputError(path + ": cannot open the mesh file (unreadable)");
   ex_opts(0);  // quiet, no abort: errors come back as negative statuses and become InputErrors
   int cpuWordSize = 8, ioWordSize = 0;

@@ -17,6 +17,7 @@
 
 #include "tribos/core/Errors.hpp"
 #include "tribos/core/Format.hpp"
+#include "tribos/core/InputFiles.hpp"
 
 namespace tribos::mesh {
 
@@ -437,8 +438,7 @@ Mesh parseGmsh(std::string_view text, const std::string& source, bool splitBodie
 }
 
 Mesh readGmsh(const std::string& path, bool splitBodies) {
-  std::error_code error;
-  if (std::filesystem::is_directory(path, error)) throw core::InputError(path + ": is a directory, not a gmsh file");
+  core::requireRegularInputFile(path, "the gmsh file");  // a FIFO or a device: never opened
   std::ifstream in(path, std::ios::binary);
   if (!in) throw core::InputError(path + ": cannot open the gmsh file");
   std::ostringstream text;

@@ -194,7 +194,7 @@ void gatherContactFields(const Scene& scene, const feti::ConstraintMatrix& B, MP
 
 ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
                                      const feti::ConstraintMatrix& B, const Teuchos::ParameterList& tribos,
-                                     MPI_Comm comm) {
+                                     MPI_Comm comm, core::Stopwatch runStart) {
   ContactSolveResult out;
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
@@ -208,7 +208,9 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
   settings.coarsePrecision = fetiList.get<std::string>("Coarse Factor Precision");
   auto friction = frictionSettings(tribos);
   auto smalse = smalseSettings(tribos);
-  WallClockBudget budget(tribos.sublist("Solver").get<double>("Max Seconds"), comm);
+  const core::Deadline deadline(tribos.sublist("Solver").get<double>("Max Seconds"), runStart);
+  settings.deadline = &deadline;
+  WallClockBudget budget(deadline, comm);
   smalse.stopRequested = budget.stopRequest();
   if (rank == 0) attachProgress(tribos.sublist("Solver"), friction, smalse, out.history);
   auto runs = std::make_shared<RunRecord>();

@@ -45,9 +45,10 @@ std::string linearSolveMessage(const feti::ProjectedCgResult& solve, const feti:
 
 LinearFetiResult solveLinearFeti(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
                                  const feti::ConstraintMatrix& B, const Teuchos::ParameterList& fetiList,
-                                 double tolerance, MPI_Comm comm, double maxSeconds) {
+                                 double tolerance, MPI_Comm comm, double maxSeconds, core::Stopwatch runStart) {
   LinearFetiResult result;
-  WallClockBudget budget(maxSeconds, comm);  // from the set-up of the solver, factorisation included
+  const core::Deadline deadline(maxSeconds, runStart);
+  WallClockBudget budget(deadline, comm);
   auto teuchosComm = Teuchos::rcp(new Teuchos::MpiComm<int>(comm));
   const int rank = teuchosComm->getRank();
 
@@ -64,6 +65,7 @@ LinearFetiResult solveLinearFeti(const Scene& scene, std::vector<fem::SubdomainS
   settings.explicitF = fetiList.get<std::string>("Dual Operator") == "Explicit";
   settings.dirichletPreconditioner = fetiList.get<std::string>("Preconditioner") == "Dirichlet";
   settings.lumpedPreconditioner = fetiList.get<std::string>("Preconditioner") == "Lumped";
+  settings.deadline = &deadline;
   const feti::TotalFeti feti(scene.mesh, scene.decomposition, std::move(owned), B, teuchosComm, settings);
   result.factorizationSeconds = feti.factorizationSeconds();
 

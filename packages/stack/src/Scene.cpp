@@ -58,6 +58,17 @@ std::array<double, 3> vector3(const ParameterList& pl, const std::string& name, 
   return {a[0], a[1], a[2]};
 }
 
+std::string meshPath(const ParameterList& meshList, const std::string& source) {
+  if (meshList.get<std::string>("Generator") == "Two Bricks") return "";
+  auto file = meshList.get<std::string>("File");
+  core::requireInput(!file.empty(), source + ": Mesh/Generator is \"Exodus\" but Mesh/File is empty");
+  // A relative path is relative to the scene file, so scenes can travel with their meshes.
+  const std::filesystem::path scenePath(source);
+  if (std::filesystem::path(file).is_relative() && scenePath.has_parent_path())
+    file = (scenePath.parent_path() / file).string();
+  return file;
+}
+
 void readMesh(const ParameterList& meshList, const std::string& source, Scene& scene) {
   core::Stopwatch watch;
   const auto generator = meshList.get<std::string>("Generator");
@@ -75,12 +86,7 @@ void readMesh(const ParameterList& meshList, const std::string& source, Scene& s
     parts = decomposition == "Structured" ? mesh::structuredPartition(scene.mesh, spec)
                                           : mesh::metisPartition(scene.mesh, meshList.get<int>("Subdomains"));
   } else {
-    auto file = meshList.get<std::string>("File");
-    core::requireInput(!file.empty(), source + ": Mesh/Generator is \"Exodus\" but Mesh/File is empty");
-    // A relative path is relative to the scene file, so scenes can travel with their meshes.
-    const std::filesystem::path scenePath(source);
-    if (std::filesystem::path(file).is_relative() && scenePath.has_parent_path())
-      file = (scenePath.parent_path() / file).string();
+    const std::string file = meshPath(meshList, source);
     scene.mesh = mesh::readExodus(file).mesh;
     scene.meshSeconds = watch.seconds();
     watch.restart();
@@ -251,6 +257,10 @@ Scene buildScene(const ParameterList& tribos, const std::string& source) {
     }
   }
   return scene;
+}
+
+std::string meshFilePath(const ParameterList& tribos, const std::string& source) {
+  return meshPath(tribos.sublist("Mesh"), source);
 }
 
 }  // namespace tribos::stack

@@ -194,9 +194,10 @@ void solverParameters(ParameterList& pl) {
   // Max Outer Iterations and the sublists SMALSE-M and MPGP. The rest is the stack's.
   qp::declareSolverParameters(pl);
   pl.set("Max Seconds", 0.0,
-         "wall-clock budget of the solve [s], on the clock of the progress lines (from the set-up of the solver "
-         "stack, factorisation included); when it runs out the iterations stop and the run ends as not converged "
-         "(exit 3, results written, the message names the budget); 0: no budget",
+         "wall-clock budget of the run [s], from its start: checked between the set-up's phases, between subdomain "
+         "factorisations and at every iteration. When it runs out during the solve the iterations stop and the run "
+         "ends as not converged (exit 3, results written, the message names the budget); before the solve, exit 3 "
+         "with the summary saying so and no results; 0: no budget",
          core::atLeast(0.0));
   pl.set("Verbose", true, "print the solver chain and one progress line per outer iteration (rank 0)");
   pl.set("Progress Interval", 2.0,

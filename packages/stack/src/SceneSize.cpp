@@ -2,12 +2,16 @@
 
 #include <Teuchos_ParameterList.hpp>
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <climits>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <cctype>
+#include <fstream>
 
 #include "tribos/core/Errors.hpp"
 #include "tribos/mesh/TwoBricks.hpp"
@@ -22,10 +26,38 @@ namespace {
 constexpr double kBytesPerTetrahedron = 24.0;
 constexpr double kBytesPerNode = 24.0;
 constexpr double kBytesPerPrimalUnknown = 500.0;
+// A subdomain factor of n unknowns holds at least kFactorFill n^(4/3) nonzeros of 8 bytes
+// (nested dissection in 3D). Measured on the bricks' cube subdomains (2x1x1, factor_nonzeros
+// of the summary): 5.2, 6.1, 7.3, 8.3 n^(4/3) at H/h = 6, 10, 14, 18.
+constexpr double kFactorFill = 5.0;
+constexpr double kBytesPerFactorNonzero = 8.0;
 
 double physicalMemoryBytes() {
   const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);
   return pages > 0 && pageSize > 0 ? static_cast<double>(pages) * static_cast<double>(pageSize) : HUGE_VAL;
+}
+
+/// The memory limit of this process's cgroup (v2 memory.max, or v1 memory.limit_in_bytes);
+/// HUGE_VAL when there is none or it cannot be read.
+double cgroupLimitBytes() {
+  for (const char* path : {"/sys/fs/cgroup/memory.max", "/sys/fs/cgroup/memory/memory.limit_in_bytes"}) {
+    std::ifstream in(path);
+    std::string text;
+    if (in >> text && !text.empty() && std::isdigit(static_cast<unsigned char>(text[0])))
+      return std::strtod(text.c_str(), nullptr);
+  }
+  return HUGE_VAL;
+}
+
+/// What this process may still map under its address-space limit (ulimit -v): the limit less
+/// what it maps already (libraries, MPI and Kokkos); HUGE_VAL without a limit.
+double addressSpaceLeftBytes() {
+  struct rlimit limit {};
+  if (getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return HUGE_VAL;
+  std::ifstream statm("/proc/self/statm");
+  double mappedPages = 0.0;
+  statm >> mappedPages;
+  return static_cast<double>(limit.rlim_cur) - mappedPages * static_cast<double>(sysconf(_SC_PAGE_SIZE));
 }
 
 std::string gib(double bytes) {
@@ -41,9 +73,11 @@ std::string count(double n) {
 }
 }  // namespace
 
-double SceneSize::bytesPerMachine(int ranksHere, int ranks) const {
+double SceneSize::bytesPerMachine(int ranksHere, int ranks, bool solving) const {
   const double mesh = tetrahedra * kBytesPerTetrahedron + nodes * kBytesPerNode;
-  return ranksHere * mesh + primalUnknowns * kBytesPerPrimalUnknown * ranksHere / std::max(ranks, 1);
+  const double matrices =
+      primalUnknowns * kBytesPerPrimalUnknown + (solving ? factorNonzeros * kBytesPerFactorNonzero : 0.0);
+  return ranksHere * mesh + matrices * ranksHere / std::max(ranks, 1);
 }
 
 SceneSize estimateSceneSize(const Teuchos::ParameterList& tribos) {
@@ -55,13 +89,16 @@ SceneSize estimateSceneSize(const Teuchos::ParameterList& tribos) {
   const double h = meshList.get<int>("H Over h");
   // Two bricks of nx*ny*nz subdomains of (H/h)^3 cubes, 5 tetrahedra per cube.
   const double nodesPerBrick = (grid.nx * h + 1.0) * (grid.ny * h + 1.0) * (grid.nz * h + 1.0);
-  size.tetrahedra = 2.0 * 5.0 * grid.nx * grid.ny * grid.nz * h * h * h;
+  const double subdomains = 2.0 * grid.nx * grid.ny * grid.nz;
+  size.tetrahedra = 5.0 * subdomains * h * h * h;
   size.nodes = 2.0 * nodesPerBrick;
   size.primalUnknowns = 3.0 * size.nodes;
+  size.factorNonzeros = subdomains * kFactorFill * std::pow(3.0 * (h + 1.0) * (h + 1.0) * (h + 1.0), 4.0 / 3.0);
   return size;
 }
 
-void requireSceneFitsInMemory(const Teuchos::ParameterList& tribos, const std::string& source, MPI_Comm comm) {
+void requireSceneFitsInMemory(const Teuchos::ParameterList& tribos, const std::string& source, MPI_Comm comm,
+                              bool solving) {
   const SceneSize size = estimateSceneSize(tribos);
   const auto& meshList = tribos.sublist("Mesh");
   const std::string scene = source + ": Mesh: Subdomains Per Brick = " +
@@ -79,15 +116,23 @@ void requireSceneFitsInMemory(const Teuchos::ParameterList& tribos, const std::s
   MPI_Comm_size(machine, &ranksHere);
   MPI_Comm_free(&machine);
   MPI_Comm_size(comm, &ranks);
-  double leastMemory = physicalMemoryBytes();
-  MPI_Allreduce(MPI_IN_PLACE, &leastMemory, 1, MPI_DOUBLE, MPI_MIN, comm);
+  double leastMemory[2] = {std::min(physicalMemoryBytes(), cgroupLimitBytes()), addressSpaceLeftBytes()};
+  MPI_Allreduce(MPI_IN_PLACE, leastMemory, 2, MPI_DOUBLE, MPI_MIN, comm);
   MPI_Allreduce(&ranksHere, &mostRanksHere, 1, MPI_INT, MPI_MAX, comm);
-  const double needed = size.bytesPerMachine(mostRanksHere, ranks);
-  core::requireInput(needed <= leastMemory,
-                     scene + " (" + count(size.primalUnknowns) + " primal unknowns at least), which need at least " +
-                         gib(needed) + " of memory on a machine running " + std::to_string(mostRanksHere) +
-                         " rank(s) (each rank holds the whole mesh); it has " + gib(leastMemory) +
-                         ". Reduce Mesh/H Over h or Mesh/Subdomains Per Brick");
+  const std::string what = scene + " (" + count(size.primalUnknowns) + " primal unknowns" +
+                           (solving ? ", " + count(size.factorNonzeros) + " factor nonzeros" : std::string()) +
+                           " at least), which need at least ";
+  const std::string advice = ". Reduce Mesh/H Over h or Mesh/Subdomains Per Brick";
+  const double needed = size.bytesPerMachine(mostRanksHere, ranks, solving);
+  core::requireInput(needed <= leastMemory[0],
+                     what + gib(needed) + " of memory on a machine running " + std::to_string(mostRanksHere) +
+                         " rank(s) (each rank holds the whole mesh); it has " + gib(leastMemory[0]) +
+                         " (physical memory or the cgroup's limit)" + advice);
+  const double neededByOneRank = size.bytesPerMachine(1, ranks, solving);
+  core::requireInput(neededByOneRank <= leastMemory[1],
+                     what + gib(neededByOneRank) + " per rank; a rank may map only " + gib(leastMemory[1]) +
+                         " more under its address-space limit (ulimit -v)" + advice +
+                         ", or raise the limit");
 }
 
 }  // namespace tribos::stack

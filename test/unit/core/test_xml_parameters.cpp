@@ -55,6 +55,7 @@ TEST(XmlParameters, valuesThatDoNotReadAsTheirTypeNameTheParameter) {
       {parameter("Flag", "bool", "maybe"), "is not true or false"},
       {parameter("Traction", "Array(double)", "{1, x, 2}"), "element \"x\" is not a number"},
       {parameter("Traction", "Array(double)", "1, 2"), "is not an array"},
+      {parameter("Sets", "Array(string)", "a, b"), "\"Mesh/Sets\" (type Array(string)): \"a, b\" is not an array"},
   };
   for (const auto& [xml, reason] : bad) {
     const auto message = errorOf(mesh(xml));

@@ -100,6 +100,8 @@ struct ConstraintMatrix {
   std::vector<GO> rowId;
   std::vector<ContactNode> contact;  ///< contact nodes, in row order
   GO unpairedSlaveNodes = 0;         ///< slave nodes with no master face within the search distance
+  std::vector<LO> unpairedSample;    ///< the first few of them (global node ids), for messages
+  double searchDistance = 0.0;       ///< Contact/Search Distance, for messages
   GO overlappingPairs = 0;           ///< contact nodes with a negative initial gap
   double largestOverlap = 0.0;       ///< max(-gap) over them
   std::vector<SubdomainBlock> blocks;  ///< index = global subdomain

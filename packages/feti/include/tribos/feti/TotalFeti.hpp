@@ -33,6 +33,10 @@
 #include "tribos/feti/SparseCholesky.hpp"
 #include "tribos/feti/SubdomainSolver.hpp"
 
+namespace tribos::core {
+class Deadline;
+}
+
 namespace tribos::feti {
 
 class DistributedCoarseSolve;
@@ -47,6 +51,9 @@ using DualMap = Tpetra::Map<LO, GO>;
 using DualVector = Tpetra::Vector<Scalar, LO, GO>;
 
 struct TotalFetiSettings {
+  /// Solver/Max Seconds: the factorisation stops between subdomains once it has passed, and
+  /// the constructor then throws core::LimitReached on every rank. Null: no deadline.
+  const core::Deadline* deadline = nullptr;
   std::string factorization = "CHOLMOD";  ///< SparseCholesky for K_reg and G G^T
   bool explicitF = false;                 ///< dense local F_s assembled once vs two solves per apply
   bool dirichletPreconditioner = false;   ///< factorise K_ii per subdomain for applyDirichlet

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "tribos/contact/ContactSolver.hpp"
+#include "tribos/core/Timer.hpp"
 #include "tribos/stack/GlobalFields.hpp"
 
 namespace Teuchos {
@@ -62,9 +63,10 @@ qp::SmalseSettings smalseSettings(const Teuchos::ParameterList& tribos);
 std::string describeContactChain(const Teuchos::ParameterList& tribos);
 
 /// Solves a contact scene (Friction Model None, Tresca or Coulomb). `owned`: this rank's
-/// assembled systems, consumed. Collective over `comm`.
+/// assembled systems, consumed. Solver/Max Seconds counts from `runStart` (the start of the
+/// run; by default this call) and covers the factorisation. Collective over `comm`.
 ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
                                      const feti::ConstraintMatrix& B, const Teuchos::ParameterList& tribos,
-                                     MPI_Comm comm);
+                                     MPI_Comm comm, core::Stopwatch runStart = {});
 
 }  // namespace tribos::stack

@@ -8,6 +8,7 @@
 #include <array>
 #include <vector>
 
+#include "tribos/core/Timer.hpp"
 #include "tribos/feti/ConstraintMatrix.hpp"
 #include "tribos/stack/Scene.hpp"
 
@@ -44,10 +45,11 @@ struct LinearFetiResult {
 
 /// Solves the linear T-FETI problem. `owned` are this rank's assembled subdomain systems
 /// (stack::assembleOwnedSubdomains), consumed. `feti` is the validated "FETI" sublist.
-/// `maxSeconds` > 0: wall-clock budget (Solver/Max Seconds) from the start of this call.
-/// Collective over `comm`.
+/// `maxSeconds` > 0: wall-clock budget (Solver/Max Seconds) from `runStart` (the start of the
+/// run; by default this call), the factorisation included. Collective over `comm`.
 LinearFetiResult solveLinearFeti(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
                                  const feti::ConstraintMatrix& B, const Teuchos::ParameterList& feti,
-                                 double tolerance, MPI_Comm comm, double maxSeconds = 0.0);
+                                 double tolerance, MPI_Comm comm, double maxSeconds = 0.0,
+                                 core::Stopwatch runStart = {});
 
 }  // namespace tribos::stack

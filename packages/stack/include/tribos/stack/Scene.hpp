@@ -46,4 +46,8 @@ struct Scene {
 /// parameter, file or mesh entity on bad input. `source` names the XML file in messages.
 Scene buildScene(const Teuchos::ParameterList& tribos, const std::string& source);
 
+/// The mesh file the validated "Tribos" list reads (Mesh/File, a relative path taken from the
+/// scene file's directory); empty for a generated mesh.
+std::string meshFilePath(const Teuchos::ParameterList& tribos, const std::string& source);
+
 }  // namespace tribos::stack

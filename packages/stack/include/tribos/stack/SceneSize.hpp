@@ -18,18 +18,22 @@ namespace tribos::stack {
 struct SceneSize {
   double tetrahedra = 0.0, nodes = 0.0;  ///< of the global mesh, which every rank holds
   double primalUnknowns = 0.0;           ///< 3 per node at least (subdomain copies add more)
+  double factorNonzeros = 0.0;           ///< of all subdomain factors (a solve, not a dry run)
   /// Bytes on one machine running `ranksHere` of `ranks` ranks: each rank its own copy of
-  /// the mesh and its share of the subdomain matrices.
-  double bytesPerMachine(int ranksHere, int ranks) const;
+  /// the mesh and its share of the subdomain matrices (and of their factors when `solving`).
+  double bytesPerMachine(int ranksHere, int ranks, bool solving) const;
 };
 
 /// The estimate for a validated "Tribos" list.
 SceneSize estimateSceneSize(const Teuchos::ParameterList& tribos);
 
 /// Throws core::InputError (naming `source`, Mesh/H Over h and Mesh/Subdomains Per Brick and
-/// the numbers) when the scene needs more memory than the machine with the least memory has,
-/// or more elements or nodes than 32-bit local indices count. Collective over `comm`: every
-/// rank reaches the same verdict.
-void requireSceneFitsInMemory(const Teuchos::ParameterList& tribos, const std::string& source, MPI_Comm comm);
+/// the numbers) when the scene needs more memory than the machine with the least memory has
+/// (physical memory or its cgroup's limit), more than one rank may still map (its address-space
+/// limit, `ulimit -v`), or more elements or nodes than 32-bit local indices count. `solving`
+/// false (a dry run): the factors are not counted. Collective over `comm`: every rank reaches
+/// the same verdict.
+void requireSceneFitsInMemory(const Teuchos::ParameterList& tribos, const std::string& source, MPI_Comm comm,
+                              bool solving = true);
 
 }  // namespace tribos::stack

@@ -7,14 +7,14 @@
 #include <functional>
 #include <string>
 
-#include "tribos/core/Timer.hpp"
+#include "tribos/core/Deadline.hpp"
 
 namespace tribos::stack {
 
 class WallClockBudget {
  public:
-  /// `maxSeconds` 0: no budget. The clock starts now (the set-up of the solver stack).
-  WallClockBudget(double maxSeconds, MPI_Comm comm) : maxSeconds_(maxSeconds), comm_(comm) {}
+  /// The run's deadline (Solver/Max Seconds from the start of the run; none: no budget).
+  WallClockBudget(const core::Deadline& deadline, MPI_Comm comm) : deadline_(deadline), comm_(comm) {}
 
   /// For SmalseSettings / ProjectedCgSettings::stopRequested: empty without a budget;
   /// otherwise collective (rank 0's clock, broadcast, so that every rank stops at the same
@@ -29,9 +29,8 @@ class WallClockBudget {
  private:
   bool spent();
 
-  double maxSeconds_;
+  core::Deadline deadline_;
   MPI_Comm comm_;
-  core::Stopwatch clock_;
   bool ranOut_ = false;
   double ranOutAfter_ = 0.0;
 };

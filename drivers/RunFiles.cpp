@@ -1,0 +1,73 @@
+#include "RunFiles.hpp"
+
+#include <mpi.h>
+
+#include <functional>
+
+#include "CommandLine.hpp"
+#include "tribos/core/Errors.hpp"
+#include "tribos/core/InputFiles.hpp"
+#include "tribos/core/XmlParameters.hpp"
+
+namespace tribos::driver {
+
+namespace {
+/// Runs `work` on rank 0 and makes every rank throw the InputError it threw there.
+void onRootForEveryRank(int rank, const std::function<void()>& work) {
+  std::string error;
+  if (rank == 0) {
+    try {
+      work();
+    } catch (const core::InputError& e) {
+      error = e.what();
+    }
+  }
+  int length = static_cast<int>(error.size());
+  MPI_Bcast(&length, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  error.resize(static_cast<size_t>(length));
+  MPI_Bcast(error.data(), length, MPI_CHAR, 0, MPI_COMM_WORLD);
+  if (length > 0) throw core::InputError(error);
+}
+
+/// An output that is an input would be destroyed by the result.
+void requireNotAnInput(const std::string& output, const std::string& option, const std::vector<std::string>& inputs) {
+  for (const auto& input : inputs)
+    if (!input.empty() && core::sameFile(output, input))
+      throw core::InputError(output + " (" + option + "): is an input of this run (" + input +
+                             "); writing it would destroy it: give another file name");
+}
+}  // namespace
+
+Teuchos::ParameterList readSceneXml(const std::string& path, int rank) {
+  std::string text;
+  onRootForEveryRank(rank, [&] { text = core::readRegularTextFile(path, "the scene file", kMaxSceneBytes); });
+  long long length = static_cast<long long>(text.size());
+  MPI_Bcast(&length, 1, MPI_LONG_LONG, 0, MPI_COMM_WORLD);
+  text.resize(static_cast<size_t>(length));
+  MPI_Bcast(text.data(), static_cast<int>(length), MPI_CHAR, 0, MPI_COMM_WORLD);
+  // Strict: duplicate names, values that do not read as their type, non-finite numbers and
+  // deep nesting are input errors naming the file and the parameter.
+  const auto list = core::parameterListFromXml(text, path);
+  list->setName("Tribos");  // Teuchos does not keep the top-level name; its contents are validated
+  return *list;
+}
+
+ResultFiles prepareResultFiles(const CommandLine& cl, const std::vector<std::string>& inputs, int rank) {
+  ResultFiles files;
+  onRootForEveryRank(rank, [&] {
+    if (!cl.output.empty() && !cl.summary.empty() && core::sameFile(cl.output, cl.summary))
+      throw core::InputError(cl.output + ": given as both --output and --summary; the summary would replace the "
+                             "results: give two file names");
+    if (!cl.output.empty()) {
+      requireNotAnInput(cl.output, "--output", inputs);
+      files.exodus = std::make_unique<core::OutputFile>(cl.output, "--output", false);
+    }
+    if (!cl.summary.empty()) {
+      requireNotAnInput(cl.summary, "--summary", inputs);
+      files.summary = std::make_unique<core::OutputFile>(cl.summary, "--summary", true);
+    }
+  });
+  return files;
+}
+
+}  // namespace tribos::driver

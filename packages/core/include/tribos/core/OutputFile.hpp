@@ -1,0 +1,52 @@
+#pragma once
+/// \file OutputFile.hpp
+/// One result file of a run (--output, --summary): checked before any work, written once at
+/// the end, and never destroying anything on the way.
+/// - A regular file (or a name not yet taken) is written under a temporary name unique to the
+///   run, created exclusively in the target's directory (two runs with the same target never
+///   share one), and renamed over the target only once complete; a write that fails removes
+///   the temporary file, so no partial file is left and the earlier file stays.
+/// - A character device or a FIFO (/dev/null, a pipe to another program) is written in place,
+///   never replaced; a FIFO is opened when checked, without blocking, so that one with no
+///   reader is refused before any work instead of hanging at the end.
+/// - A symbolic link is followed: the file it points to is written. A descriptor of the process
+///   (/dev/stdout, /dev/fd/N) is written in place, appended to.
+#include <functional>
+#include <string>
+
+namespace tribos::core {
+
+class OutputFile {
+ public:
+  /// Checks that `path` can be written, before any work. `option` names it in messages
+  /// ("--summary"); `streamAllowed` false: a regular file only (an Exodus result is written
+  /// by seeking, so it cannot go to a device or a pipe). Throws InputError naming the path
+  /// and the option otherwise.
+  OutputFile(std::string path, std::string option, bool streamAllowed);
+  ~OutputFile();
+  OutputFile(const OutputFile&) = delete;
+  OutputFile& operator=(const OutputFile&) = delete;
+
+  const std::string& path() const { return path_; }
+  const std::string& option() const { return option_; }
+
+  /// The whole file through `write(p)`, which writes a complete file at the path `p` it is
+  /// given (a temporary name next to the target). Regular targets only. Throws IoError naming
+  /// the file and the option when `write` throws, with nothing partial left.
+  void writeWith(const std::function<void(const std::string& path)>& write);
+  /// `text` as the whole file. Throws IoError naming the file and the option on failure.
+  void writeText(const std::string& text);
+
+ private:
+  /// A new, empty file with a name unique to this run in the target's directory: its path.
+  std::string createTemporary() const;
+  /// Renames the completed `temporary` over the target (permissions as a new file's).
+  void commit(const std::string& temporary) const;
+  [[noreturn]] void fail(const std::string& temporary, const std::string& why) const;
+
+  std::string path_;    ///< the file written (a link's target)
+  std::string option_;
+  int streamFd_ = -1;   ///< a device or FIFO, open from the check on
+};
+
+}  // namespace tribos::core
