@@ -81,7 +81,7 @@ nlohmann::json summaryJson(const stack::Scene& scene, const stack::SetupReport& 
 }
 
 // One object per SMALSE-M outer iteration: what the progress lines showed.
-/// Rank 0's operator counts and times (TotalFeti::profile; doc/coarse_problem.md).
+/// Rank 0's operator counts and times (TotalFeti::profile; doc/measurements/coarse_problem.md).
 nlohmann::json profileJson(const feti::OperatorProfile& p) {
   return {{"f_applications", p.fApplications},
           {"projections", p.projections},
@@ -121,13 +121,13 @@ std::string coarseFactorLine(const feti::OperatorProfile& p) {
     line << "  coarse factor: "
          << (p.coarseSingle ? "single precision" : "double (the single one was not accurate enough)")
          << ", one solve " << p.coarseSingleError << " from the double one (relative)\n";
-  // Measured on the bricks at n = 324 000 (doc/scalability.md): 4 000 subdomains (ratio 3.8)
+  // Measured on the bricks at n = 324 000 (doc/measurements/scalability.md): 4 000 subdomains (ratio 3.8)
   // take 2.3 times as long as 500 (ratio 0.10).
   if (p.coarseToFBytes >= 2.0)
     line << "  note: the coarse problem dominates (two coarse solves read " << std::setprecision(2)
          << p.coarseToFBytes << std::setprecision(6)
          << "x the bytes of an F application's subdomain solves): fewer, larger subdomains would be faster "
-            "(doc/coarse_problem.md)\n";
+            "(doc/measurements/coarse_problem.md)\n";
   return line.str();
 }
 

@@ -93,17 +93,16 @@ TEST(tribosDriver, tangentCgSameResultOnOneTwoThreeRanks) {
 }
 
 // The coarse solves spread over the ranks (DistributedCoarseSolve, issue 11), on whatever
-// factor size (its threshold's override), here G G^T of 256 subdomains (271 488 values, split
+// factor size (FETI/Distributed Coarse From = 0), here G G^T of 256 subdomains (271 488 values, split
 // over 2 and 3 ranks): the counts and the energy's bits of one rank, and the multi-rank runs
 // did spread them.
 TEST(tribosDriver, coarseSolvesSpreadOverTheRanksSameResult) {
-  ::setenv("TRIBOS_DISTRIBUTED_COARSE_FROM", "0", 1);
-  const std::string settings = "--set 'Mesh/Subdomains Per Brick=8x4x4' --set 'Mesh/H Over h=2'";
+  const std::string settings =
+      "--set 'Mesh/Subdomains Per Brick=8x4x4' --set 'Mesh/H Over h=2' --set 'FETI/Distributed Coarse From=0'";
   expectSameResultOnEveryLayout("two_bricks.xml", settings, {Layout{2, 1}, Layout{3, 1}});
   char tmpl[] = "/tmp/tribos_spread_XXXXXX";
   ASSERT_NE(::mkdtemp(tmpl), nullptr);
   const auto j = solve({2, 1}, tmpl, "two_bricks.xml", settings);
-  ::unsetenv("TRIBOS_DISTRIBUTED_COARSE_FROM");
   ASSERT_FALSE(j.is_null());
   EXPECT_GE(j["operator_profile"]["coarse_rank_subtrees"].get<int>(), 2);
   EXPECT_LT(j["operator_profile"]["coarse_values_per_solve"].get<long long>(),
@@ -114,20 +113,19 @@ TEST(tribosDriver, coarseSolvesSpreadOverTheRanksSameResult) {
 // The coarse factor in single precision (FETI/Coarse Factor Precision = Single): its parts
 // travel to the ranks as floats, lambda_Im and the rigid body coefficients are refined to
 // double on every rank alike; the same counts and energy bits on 1, 2 and 3 ranks, with the
-// coarse solves spread (the threshold's override) and on rank 0 alone.
+// coarse solves spread (FETI/Distributed Coarse From = 0) and on rank 0 alone.
 TEST(tribosDriver, singlePrecisionCoarseFactorSameResultOnOneTwoThreeRanks) {
   const std::string settings =
       "--set 'Mesh/Subdomains Per Brick=4x2x2' --set 'Mesh/H Over h=2' --set 'FETI/Coarse Factor Precision=Single'";
   expectSameResultOnEveryLayout("two_bricks.xml", settings, {Layout{2, 1}, Layout{1, 2}});
   // 256 subdomains: a factor the planner splits (4x2x2's is not), so that float parts travel.
   const std::string spread =
-      "--set 'Mesh/Subdomains Per Brick=8x4x4' --set 'Mesh/H Over h=2' --set 'FETI/Coarse Factor Precision=Single'";
-  ::setenv("TRIBOS_DISTRIBUTED_COARSE_FROM", "0", 1);
+      "--set 'Mesh/Subdomains Per Brick=8x4x4' --set 'Mesh/H Over h=2' --set 'FETI/Coarse Factor Precision=Single'"
+      " --set 'FETI/Distributed Coarse From=0'";
   expectSameResultOnEveryLayout("two_bricks.xml", spread, {Layout{2, 1}, Layout{3, 1}});
   char tmpl[] = "/tmp/tribos_single_spread_XXXXXX";
   ASSERT_NE(::mkdtemp(tmpl), nullptr);
   const auto j = solve({2, 1}, tmpl, "two_bricks.xml", spread);
-  ::unsetenv("TRIBOS_DISTRIBUTED_COARSE_FROM");
   ASSERT_FALSE(j.is_null());
   EXPECT_TRUE(j["operator_profile"]["coarse_single"].get<bool>());
   EXPECT_GE(j["operator_profile"]["coarse_rank_subtrees"].get<int>(), 2);
@@ -144,7 +142,7 @@ TEST(tribosDriver, autoCoarsePrecisionIsTheSameOnEveryLayout) {
 }
 
 // The single-precision coarse factor changes the projector, not the problem (SMALSE-M's
-// penalty enforces G mu = 0 itself; doc/coarse_problem.md): at eps = 1e-9 the solution is the
+// penalty enforces G mu = 0 itself; doc/measurements/coarse_problem.md): at eps = 1e-9 the solution is the
 // double factor's to the solver's accuracy (measured on 6x3x3 / H/h 2: energies 3e-12 apart,
 // displacements 9e-10 of the largest). The summary says which factor ran and how well it
 // solved the gate's right-hand side, and that the exact solves were refined.
@@ -187,9 +185,8 @@ TEST(tribosDriver, aSingleCoarseFactorFailingTheGateFallsBackToDouble) {
   std::filesystem::create_directories(dir / "double");
   std::filesystem::create_directories(dir / "gated");
   const auto dbl = solve({1, 1}, dir / "double", "two_bricks.xml", cell + " --set 'FETI/Coarse Factor Precision=Double'");
-  ::setenv("TRIBOS_SINGLE_COARSE_GATE", "1e-15", 1);
-  const auto gated = solve({1, 1}, dir / "gated", "two_bricks.xml", cell + " --set 'FETI/Coarse Factor Precision=Single'");
-  ::unsetenv("TRIBOS_SINGLE_COARSE_GATE");
+  const auto gated = solve({1, 1}, dir / "gated", "two_bricks.xml",
+                          cell + " --set 'FETI/Coarse Factor Precision=Single' --set 'FETI/Single Coarse Gate=1e-15'");
   ASSERT_FALSE(dbl.is_null());
   ASSERT_FALSE(gated.is_null());
   EXPECT_FALSE(gated["operator_profile"]["coarse_single"].get<bool>());

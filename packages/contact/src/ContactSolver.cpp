@@ -399,7 +399,7 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
   // Relative tolerance of the status tests (which rows are in contact, stick or slip), at most
   // 1e-3: at eps = 1e-2 the KKT tolerance is 1, so every lambda_nu counted as "no force" and
   // no row held the bodies' rigid motions (G_I G_I^T singular, "no equilibrium found" on the
-  // Hertz cylinder; doc/speed_accuracy.md). The acceptance test (6) stays at kktTolerance.
+  // Hertz cylinder; doc/measurements/speed_accuracy.md). The acceptance test (6) stays at kktTolerance.
   const double tau = std::min(kktTolerance, 1e-3);
   const double tinyForce = tau * forceScale;
   // The inactive rows of this rank's owned rows only (entry i: row first + i): each rank
@@ -436,7 +436,7 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
   // the flagged results exist (it was an internal error without output).
   std::vector<double> alpha;
   // The projections are done: G G^T's factor goes before G_I G_I^T's is made, so that a rank
-  // never holds two replicated coarse factors (doc/scalability.md, 4 000 subdomains).
+  // never holds two replicated coarse factors (doc/measurements/scalability.md, 4 000 subdomains).
   feti.releaseCoarseFactor();
   try {
     alpha = feti.rigidBodyCoefficients(*lambda, inactive);

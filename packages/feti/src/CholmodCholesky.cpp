@@ -38,14 +38,6 @@ namespace {
 /// catches up with two concurrent simplicial ones only at ~4000-6500 rows.
 constexpr LO kSupernodalFromDofs = 4000;
 
-/// Factors with at least this many stored values split their elimination tree for concurrent
-/// solves when asked (setSubtreeSolve): measured in doc/coarse_problem.md. The threshold
-/// depends on the factor alone, so every rank and thread layout takes the same path.
-/// TRIBOS_SUBTREE_SOLVE_FROM=<values> overrides it (for those measurements).
-long long subtreeSolveFromValues() {
-  if (const char* from = std::getenv("TRIBOS_SUBTREE_SOLVE_FROM")) return std::atoll(from);
-  return 500000;
-}
 
 /// Runs f with OpenMP parallel regions disabled unless already inside an active one.
 template <class F>
@@ -67,16 +59,16 @@ void withoutNestedThreads(F&& f) {
 
 /// Whether CHOLMOD factorises A supernodally: by the matrix alone, never by the thread that
 /// asks, so that the factor (and every result computed with it) is the same for any number
-/// of ranks and threads. TRIBOS_CHOLMOD_MODE=simplicial|supernodal overrides it (for the
-/// measurements of doc/performance.md).
-bool supernodalFactor(const fem::CsrMatrix& A) {
-  if (const char* mode = std::getenv("TRIBOS_CHOLMOD_MODE")) return std::string(mode) == "supernodal";
+/// of ranks and threads. FETI/CHOLMOD Mode may fix it (for the measurements of
+/// doc/measurements/performance.md).
+bool supernodalFactor(const fem::CsrMatrix& A, CholmodMode mode) {
+  if (mode != CholmodMode::Auto) return mode == CholmodMode::Supernodal;
   return A.n >= kSupernodalFromDofs;
 }
 
 /// A supernodal factor packed in place, in CHOLMOD's own array of values, which the packed
 /// factor then owns (no second copy of a factor alive: the replicated G G^T is the largest
-/// item per rank at thousands of subdomains, doc/scalability.md). CHOLMOD stores supernode k
+/// item per rank at thousands of subdomains, doc/measurements/scalability.md). CHOLMOD stores supernode k
 /// as an nsrow x nc column-major panel at px[k] (the diagonal block whole); the packed
 /// layout puts its panel rows (column-major) first and then the strict lower triangle of
 /// the diagonal block (by columns). Writing from the front never overtakes what is still to
@@ -193,7 +185,7 @@ void keepUpperTriangle(fem::CsrMatrix& A) {
 
 class CholmodCholesky final : public SparseCholesky {
  public:
-  CholmodCholesky() { cholmod_start(&common_); }
+  explicit CholmodCholesky(const SparseCholeskyOptions& options) : options_(options) { cholmod_start(&common_); }
   ~CholmodCholesky() override { cholmod_finish(&common_); }
 
   void factorize(const fem::CsrMatrix& A) override { factorize(A, nullptr); }
@@ -227,7 +219,7 @@ class CholmodCholesky final : public SparseCholesky {
     // (measured: wrong, "not positive definite" factors), so they hold blasMutex(): inside a
     // team of threads, supernodal factorisations run one at a time. Simplicial ones need no
     // BLAS and run concurrently.
-    common_.supernodal = supernodalFactor(A) ? CHOLMOD_SUPERNODAL : CHOLMOD_SIMPLICIAL;
+    common_.supernodal = supernodalFactor(A, options_.cholmodMode) ? CHOLMOD_SUPERNODAL : CHOLMOD_SIMPLICIAL;
     common_.print = 0;
     cholmod_factor* L = nullptr;
     withoutNestedThreads([&] {
@@ -244,7 +236,9 @@ class CholmodCholesky final : public SparseCholesky {
     if (consumed) *consumed = fem::CsrMatrix{};  // S pointed into it: not read from here on
     if (!failed) {
       packed_ = packFactor(*L);  // the solves use the packed copy only
-      if (subtreeSolve_) packed_.planSubtrees(subtreeSolveFromValues());
+      // The threshold depends on the factor alone: every layout takes the same path
+      // (measured in doc/measurements/coarse_problem.md).
+      if (subtreeSolve_) packed_.planSubtrees(options_.subtreeSolveFromValues);
     }
     if (L) cholmod_free_factor(&L, &common_);
     if (failed)
@@ -286,6 +280,7 @@ class CholmodCholesky final : public SparseCholesky {
   const PackedFactor* packedFactor() const override { return &packed_; }
 
  private:
+  SparseCholeskyOptions options_;
   bool subtreeSolve_ = false;
   mutable cholmod_common common_{};
   PackedFactor packed_;
@@ -295,7 +290,9 @@ class CholmodCholesky final : public SparseCholesky {
 };
 }  // namespace
 
-std::unique_ptr<SparseCholesky> makeCholmodCholesky() { return std::make_unique<CholmodCholesky>(); }
+std::unique_ptr<SparseCholesky> makeCholmodCholesky(const SparseCholeskyOptions& options) {
+  return std::make_unique<CholmodCholesky>(options);
+}
 
 long long choleskyFactorNonzeros(const fem::CsrMatrix& A, const std::vector<LO>& perm) {
   // Symbolic analysis only (pattern, simplicial, given order): column counts of L, no BLAS,

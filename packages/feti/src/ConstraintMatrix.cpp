@@ -52,7 +52,7 @@ struct Entry {
 /// by slave node (group 0), then gluing by (node, component, j) (group 1), then Dirichlet
 /// by (node, copy, component) (group 2). Its entries are [firstEntry, firstEntry +
 /// numEntries) of one array shared by all rows (RowList): a vector per row cost ~70 bytes of
-/// its own per row, 21 MB of every rank's set-up at 4 000 subdomains (doc/scalability.md).
+/// its own per row, 21 MB of every rank's set-up at 4 000 subdomains (doc/measurements/scalability.md).
 struct Row {
   RowKind kind = RowKind::Gluing;
   LO numEntries = 0;

@@ -206,7 +206,7 @@ PackedFactor::Ranges PackedFactor::reach(const std::vector<LO>& columns) const {
 void PackedFactor::solvePermutedOnReach(double* v, double* work, const Ranges& reach) const {
   // The forward substitution runs whole: skipping the same supernodes there made F slower
   // (10x5x5 / H/h 5, 2 threads: A_rho 7.5 -> 8.4 ms; the factor no longer streams in one
-  // run), while the backward one over the reach alone saves about 3.5 % (doc/performance.md).
+  // run), while the backward one over the reach alone saves about 3.5 % (doc/measurements/performance.md).
   forward(0, numSupernodes(), v, work, size(), nullptr);
   for (auto range = reach.rbegin(); range != reach.rend(); ++range) backward(range->first, range->second, v, work);
 }

@@ -1,6 +1,6 @@
 #pragma once
 // Internal: a sparse Cholesky factor L (A = P^T L L^T P) stored for the triangular solves
-// only, in as few bytes as a solve must read (doc/performance.md):
+// only, in as few bytes as a solve must read (doc/measurements/performance.md):
 //  - columns grouped into supernodes (consecutive columns whose sub-diagonal row sets nest,
 //    so they share one list of row indices);
 //  - per supernode, the diagonal triangle packed by columns (reciprocal diagonal apart) and
@@ -17,7 +17,7 @@
 // A factor solved alone (G G^T, on rank 0) may also split its elimination tree
 // into independent subtrees (planSubtrees, PackedFactorSubtrees.cpp) whose substitutions run
 // on the threads of core::forEachSubdomain: bandwidth-bound, one thread reads about half of
-// what two can (doc/coarse_problem.md).
+// what two can (doc/measurements/coarse_problem.md).
 #include <algorithm>
 #include <memory>
 #include <utility>
@@ -39,7 +39,7 @@ class PackedFactor {
   /// below the diagonal, `rowIndices` panel rows and `numSupernodes` supernodes in all. A
   /// builder that knows them (CHOLMOD's factor does) avoids the vectors' doubling growth,
   /// which held up to three times the factor's values while one was copied and left up to
-  /// twice in the stored factor (doc/scalability.md, G G^T when it was replicated).
+  /// twice in the stored factor (doc/measurements/scalability.md, G G^T when it was replicated).
   void reserve(long long strictLowerValues, long long rowIndices, LO numSupernodes, LO numColumns);
   /// For a builder that packs the values in place, in an array of its own: a supernode whose
   /// values it has already laid out (triangle and panel as above, at these offsets into that
@@ -56,7 +56,7 @@ class PackedFactor {
   /// (L~ L~^T)^{-1} with L~ = fl32(L), an SPD matrix of its own, exactly as before (double
   /// arithmetic, the same order of every sum: the same bits on every thread and rank). For
   /// G G^T in SMALSE-M's projections, where any SPD approximation leaves the solution exact
-  /// (doc/coarse_problem.md, "The coarse factor in single precision").
+  /// (doc/measurements/coarse_problem.md, "The coarse factor in single precision").
   void roundToSingle();
   bool single() const { return single_; }
   /// Sets the fill-reducing permutation: row k of the factor is row perm[k] of A.

@@ -27,7 +27,7 @@ namespace tribos::feti {
 
 namespace {
 /// The split stops at this many subtrees. Measured on G G^T at 20x10x10 / H/h 2
-/// (doc/coarse_problem.md): four leave 14 % of the factor in the top, sixteen 49 % (in 3D the
+/// (doc/measurements/coarse_problem.md): four leave 14 % of the factor in the top, sixteen 49 % (in 3D the
 /// separators hold much of the factor), and two threads get equal halves of the four.
 constexpr int kTargetSubtrees = 4;
 }  // namespace

@@ -91,7 +91,7 @@ struct RowPart {
 /// touches a few subdomains, possibly of different bodies (contact), and only the sum over its
 /// copies is the row. The parts are stored once (counted first, no growth by doubling): at
 /// 4 000 subdomains every rank held ~100 MB here, the largest item of its set-up
-/// (doc/scalability.md); now a rank holds the parts of its own rows.
+/// (doc/measurements/scalability.md); now a rank holds the parts of its own rows.
 std::vector<RowPart> rowsOfC(const mesh::Mesh& mesh, const mesh::Decomposition& decomposition,
                              const ConstraintMatrix& B, const std::vector<BodyFrame>& frames, GO firstRow,
                              GO endRow) {

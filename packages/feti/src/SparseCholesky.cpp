@@ -12,8 +12,8 @@ std::mutex& blasMutex() {
 
 std::vector<std::string> sparseCholeskyNames() { return {"CHOLMOD", "Tacho"}; }
 
-std::unique_ptr<SparseCholesky> makeSparseCholesky(const std::string& name) {
-  if (name == "CHOLMOD") return makeCholmodCholesky();
+std::unique_ptr<SparseCholesky> makeSparseCholesky(const std::string& name, const SparseCholeskyOptions& options) {
+  if (name == "CHOLMOD") return makeCholmodCholesky(options);
   if (name == "Tacho") return makeTachoCholesky();
   std::string valid;
   for (const auto& n : sparseCholeskyNames()) valid += " \"" + n + "\"";

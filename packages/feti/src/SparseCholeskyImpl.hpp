@@ -7,7 +7,7 @@
 #include "tribos/feti/SparseCholesky.hpp"
 
 namespace tribos::feti {
-std::unique_ptr<SparseCholesky> makeCholmodCholesky();
+std::unique_ptr<SparseCholesky> makeCholmodCholesky(const SparseCholeskyOptions& options);
 std::unique_ptr<SparseCholesky> makeTachoCholesky();
 
 /// Fill-reducing ordering (METIS_NodeND): perm[k] = the row eliminated k-th (METIS's

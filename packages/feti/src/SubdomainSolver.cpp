@@ -44,7 +44,7 @@ std::array<LO, 3> chooseFixingNodes(const std::vector<std::array<double, 3>>& co
 }
 
 void SubdomainSolver::compute(const fem::SubdomainSystem& system, const std::vector<std::array<double, 3>>& coords,
-                              const std::string& factorization) {
+                              const std::string& factorization, const SparseCholeskyOptions& options) {
   const fem::CsrMatrix& K = system.K;
   n_ = K.n;
   R_ = system.R;
@@ -89,7 +89,7 @@ void SubdomainSolver::compute(const fem::SubdomainSystem& system, const std::vec
     }
     reg.rowPtr[i + 1] = static_cast<LO>(reg.colInd.size());
   }
-  factor_ = makeSparseCholesky(factorization);
+  factor_ = makeSparseCholesky(factorization, options);
   factor_->factorize(reg);
   const std::vector<LO>& perm = factor_->permutation();
   kernelRows_.resize(6 * static_cast<size_t>(n_));

@@ -50,7 +50,7 @@ void applyBlock(const SubdomainBlock& b, const double* y, double* out) {
 /// A subdomain keeps its terms in the order applyBlockTranspose adds them (rows in `order`,
 /// each row's terms in B's order), one array that F and the preconditioners stream through
 /// instead of four (row order, row pointers, values and renumbered dofs:
-/// doc/performance.md, "G x and B_s each in one stream").
+/// doc/measurements/performance.md, "G x and B_s each in one stream").
 struct BlockTerm {
   LO row, dof;
   double value;
@@ -142,28 +142,9 @@ MPI_Comm rawComm(const Teuchos::Comm<int>& comm) {
   return (*mpi->getRawMpiComm())();
 }
 
-/// Coarse factors with at least this many stored values are solved over the ranks
-/// (DistributedCoarseSolve) when there are several; smaller ones on rank 0 alone, where the
-/// three collectives of a spread solve would cost more than they save. Measured in
-/// doc/coarse_problem.md ("The coarse solve over the ranks"). Depends on the factor alone:
-/// the bits are those of the serial solve either way. TRIBOS_DISTRIBUTED_COARSE_FROM=<values>
-/// overrides it (for those measurements).
-/// The single-precision coarse factor is kept when one solve with it differs from the double
-/// one by at most this (relative): the rounding then perturbs P by about as much on Im G^T,
-/// which leaves A_rho's spectrum and the refinement of the exact solves (about this
-/// contraction per step) untouched (doc/coarse_problem.md). TRIBOS_SINGLE_COARSE_GATE=<value>
-/// overrides it (tests of the fallback to double).
-double singleCoarseGate() {
-  if (const char* gate = std::getenv("TRIBOS_SINGLE_COARSE_GATE")) return std::atof(gate);
-  return 1e-3;
-}
-/// Iterative refinement steps of solveCoarseExactly at most (about 3 at the gate's 1e-3).
+/// Iterative refinement steps of solveCoarseExactly at most (about 3 at the gate's 1e-3,
+/// TotalFetiSettings::singleCoarseGate).
 constexpr int kMaxCoarseRefinements = 20;
-
-long long distributedCoarseFromValues() {
-  if (const char* from = std::getenv("TRIBOS_DISTRIBUTED_COARSE_FROM")) return std::atoll(from);
-  return 200000;
-}
 
 // Every rank's `mine`, concatenated in rank order (all ranks get the whole list).
 std::vector<long long> allGather(const Teuchos::Comm<int>& comm, const std::vector<long long>& mine) {
@@ -184,7 +165,7 @@ double* readWrite(DualVector& v) { return v.getLocalViewHost(Tpetra::Access::Rea
 /// A block of K in CSR (rows and columns renumbered), kept with K's column order inside each
 /// row. Column indices take 2 bytes when the block has at most 65 536 columns (a subdomain's
 /// boundary or interior unknowns: always at the H/h of Table 1): 10 bytes per entry instead
-/// of 12; the preconditioner reads these blocks once per application (doc/performance.md).
+/// of 12; the preconditioner reads these blocks once per application (doc/measurements/performance.md).
 /// Three products: with the block (rows), with its transpose (K_bi = K_ib^T read from K_ib),
 /// and, for a symmetric block stored as its upper triangle (K_bb), with the whole of it.
 struct KBlock {
@@ -308,7 +289,7 @@ KBlock extractBlock(const fem::CsrMatrix& K, const std::vector<LO>& rows, const 
                     bool upper = false) {
   auto keep = [&](size_t row, LO col) { return position[col] >= (upper ? static_cast<LO>(row) : 0); };
   // Counted first, so that the blocks, kept for the whole solve, hold no spare capacity (with
-  // push_back growth alone they held up to twice their entries: doc/scalability.md).
+  // push_back growth alone they held up to twice their entries: doc/measurements/scalability.md).
   size_t entries = 0;
   for (size_t r = 0; r < rows.size(); ++r)
     for (LO k = K.rowPtr[rows[r]]; k < K.rowPtr[rows[r] + 1]; ++k) entries += keep(r, K.colInd[k]);
@@ -339,7 +320,8 @@ KBlock extractBlock(const fem::CsrMatrix& K, const std::vector<LO>& rows, const 
 }
 
 // K_bb (both preconditioners) and, for the Dirichlet one (`interiorToo`), K_ii's factor and K_ib.
-void buildPreconditionerBlocks(TotalFeti::Local& L, bool interiorToo, const std::string& factorization) {
+void buildPreconditionerBlocks(TotalFeti::Local& L, bool interiorToo, const std::string& factorization,
+                               const SparseCholeskyOptions& options) {
   DirichletBlocks& D = L.dirichlet;
   std::vector<char> touched(L.n(), 0);
   for (LO d : L.block->dof) touched[d] = 1;
@@ -354,7 +336,7 @@ void buildPreconditionerBlocks(TotalFeti::Local& L, bool interiorToo, const std:
   D.xb.assign(boundary.size(), 0.0);
   D.yb.assign(boundary.size(), 0.0);
   if (!interiorToo || interior.empty()) return;
-  D.interiorFactor = makeSparseCholesky(factorization);
+  D.interiorFactor = makeSparseCholesky(factorization, options);
   D.interiorFactor->factorize(principalSubmatrix(L.system.K, interior));
   // Interior unknowns in the factor's order: K_ib's rows follow it, so the solve runs in place.
   const std::vector<LO>& perm = D.interiorFactor->permutation();
@@ -449,7 +431,7 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
     Local& L = *local_[i];
     std::vector<std::array<double, 3>> coords;
     for (LO node : decomposition.subdomains[L.subdomain].nodes) coords.push_back(mesh.coords[node]);
-    L.solver.compute(L.system, coords, settings_.factorization);
+    L.solver.compute(L.system, coords, settings_.factorization, settings_.factorOptions);
     std::vector<LO> position(L.n());
     const std::vector<LO>& perm = L.solver.permutation();
     for (LO k = 0; k < L.n(); ++k) position[perm[k]] = k;
@@ -458,7 +440,7 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
     L.solver.setSparseDofs(factorDof);
     L.factorTerms = blockTerms(*L.block, L.rowOrder, factorDof);
     if (settings_.dirichletPreconditioner || settings_.lumpedPreconditioner)
-      buildPreconditionerBlocks(L, settings_.dirichletPreconditioner, settings_.factorization);
+      buildPreconditionerBlocks(L, settings_.dirichletPreconditioner, settings_.factorization, settings_.factorOptions);
     if (settings_.explicitF) {
       // F_s = B_s K^dagger B_s^T, column by column of B_s^T (ALGORITHMS.md 3, explicit F).
       const LO m = L.m(), n = L.n();
@@ -476,7 +458,7 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
   double seconds = watch.seconds();
   Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &seconds, &factorizationSeconds_);
 
-  // (4) G on the owned rows; G G^T, replicated, factorised once.
+  // (4) G on the owned rows; G G^T assembled and factorised once, on rank 0.
   buildCoarseRows(mesh, decomposition);
   buildCoarsePattern();
   measureTraffic();  // before factorizeCoarse: "Auto" compares the coarse solve with it
@@ -518,7 +500,7 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
 /// others (contact rows with several terms) keep their 6 numbers g' in `full`. G x applies
 /// M_s^T once per subdomain to the sum of g' x_r, G^T a multiplies each g' by M_s a_s: the
 /// same G in exact arithmetic, hence the same projector, e, alpha and G G^T; only the
-/// rounding changes (doc/coarse_problem.md).
+/// rounding changes (doc/measurements/coarse_problem.md).
 /// Threads work on fixed chunks of kRowChunk rows; inside a chunk the entries are stored by
 /// subdomain ("runs"), then by kind (one loop without branches per kind), then by row, so
 /// that G^T a adds each entry's g_{s,r} . a_s into its row's sum in a chunk-sized buffer,
@@ -549,7 +531,7 @@ struct TotalFeti::CoarseRows {
   /// one array, and per owned subdomain its id and where its kinds start
   /// (ownedStart[6 i .. 6 i + 4] into ownedTerm, ownedStart[6 i + 5] = s): G x streams
   /// through two arrays instead of starting a new allocation at every subdomain
-  /// (doc/performance.md, "G x and B_s each in one stream").
+  /// (doc/measurements/performance.md, "G x and B_s each in one stream").
   std::vector<CoarseTerm> ownedTerm;
   std::vector<LO> ownedStart;
   int numChunks() const { return static_cast<int>(chunkRunStart.size()) - 1; }
@@ -887,7 +869,7 @@ void TotalFeti::buildCoarseRows(const mesh::Mesh& mesh, const mesh::Decompositio
 void TotalFeti::measureTraffic() {
   // The least each product with P F P must move between memory and the cores: every array
   // below is read (or written) once per use, the n_s-sized work vectors of a subdomain
-  // staying in cache. doc/performance.md divides it by the triad bandwidth.
+  // staying in cache. doc/measurements/performance.md divides it by the triad bandwidth.
   constexpr double kDouble = sizeof(double), kIndex = sizeof(LO);
   double f = 0.0, factorEntries = 0.0;
   for (const auto& L : local_) {
@@ -975,7 +957,7 @@ fem::CsrMatrix TotalFeti::assembleCoarse(const std::vector<char>* ownedRowMask) 
   // rows into the blocks they touch, in row order; rank 0 adds every rank's blocks into the
   // whole pattern and builds the matrix, which only it factorises. No rank but 0 holds an
   // array the size of the pattern (at 4 000 subdomains 62 MB of slots and a 47 MB matrix,
-  // which were the transient peak of every rank on 16 ranks, doc/scalability.md).
+  // which were the transient peak of every rank on 16 ranks, doc/measurements/scalability.md).
   auto counted = [&](LO ownedRow) { return !ownedRowMask || (*ownedRowMask)[ownedRow]; };
   const std::vector<LO>& blockStart = coarseBlockStart_;
   auto blockOf = [&](int s, int t) {
@@ -1110,7 +1092,7 @@ void TotalFeti::factorizeCoarse() const {
   onRootThenBroadcast(
       single,
       [&] {
-        auto factor = makeSparseCholesky(settings_.factorization);
+        auto factor = makeSparseCholesky(settings_.factorization, settings_.factorOptions);
         factor->setSubtreeSolve(true);  // solved on the main thread of rank 0
         try {
           factor->factorizeConsuming(std::move(GGt));
@@ -1132,7 +1114,7 @@ void TotalFeti::factorizeCoarse() const {
       [](const std::string& message) { throw core::InputError(message); });
   profile_.coarseSingleError = single[1];
   profile_.coarseToFBytes = single[2];
-  if (single[0] != 0.0 && !(single[1] <= singleCoarseGate())) {
+  if (single[0] != 0.0 && !(single[1] <= settings_.singleCoarseGate)) {
     // Too inaccurate for this G G^T (kappa ~ 1e4 and more; NaN too): factorised again in
     // double, on every rank alike (the flags came from rank 0).
     coarseSingleRejected_ = true;
@@ -1145,7 +1127,7 @@ void TotalFeti::factorizeCoarse() const {
   coarseSingle_ = single[0] != 0.0;
   profile_.coarseSingle = coarseSingle_;
   // Collective: the subtrees of its elimination tree to the ranks that will solve them.
-  distributedCoarse_ = DistributedCoarseSolve::create(rawComm(*comm_), coarse_.get(), distributedCoarseFromValues());
+  distributedCoarse_ = DistributedCoarseSolve::create(rawComm(*comm_), coarse_.get(), settings_.distributedCoarseFromValues);
   profile_.coarseRankSubtrees = distributedCoarse_ ? distributedCoarse_->numLeaves() : 0;
   profile_.coarseSplitDepth = distributedCoarse_ ? distributedCoarse_->depth() : 0;
   profile_.coarseValuesPerSolve =
@@ -1163,7 +1145,7 @@ bool TotalFeti::singleCoarsePays(double coarseToFBytes) const {
   // Elsewhere the double factor keeps the exact projector's path: on symmetric scenes (the
   // paper's bricks) pairs of constraints reach their bounds in the same step only with it,
   // and any perturbation of P beyond ~1e-11 costs up to 20 % more F applications there
-  // (doc/coarse_problem.md, "The coarse factor in single precision").
+  // (doc/measurements/coarse_problem.md, "The coarse factor in single precision").
   if (settings_.coarsePrecision == "Single") return true;
   if (settings_.coarsePrecision == "Double") return false;
   TEUCHOS_TEST_FOR_EXCEPTION(settings_.coarsePrecision != "Auto", std::invalid_argument,
@@ -1296,7 +1278,7 @@ std::vector<double> TotalFeti::rigidBodyCoefficients(const DualVector& lambda,
   onRootThenBroadcast(
       alpha,
       [&] {
-        auto factor = makeSparseCholesky(settings_.factorization);
+        auto factor = makeSparseCholesky(settings_.factorization, settings_.factorOptions);
         try {
           factor->factorizeConsuming(std::move(GiGit));
         } catch (const std::exception& e) {
@@ -1649,7 +1631,7 @@ void TotalFeti::solveCoarse(std::vector<double>& a) const {
   if (!coarseFactored_) factorizeCoarse();  // released (releaseCoarseFactor): the same factor again
   // Over the ranks when the factor is large (the bits of the serial solve), else on rank 0
   // alone, then broadcast: with every rank solving, the R ranks of a node streamed R copies
-  // of the factor at once (16 ranks at 4 000 subdomains: doc/scalability.md).
+  // of the factor at once (16 ranks at 4 000 subdomains: doc/measurements/scalability.md).
   if (distributedCoarse_) {
     distributedCoarse_->solve(memo.rhs.data(), a.data());
     memo.solution.assign(a.begin(), a.end());

@@ -1,7 +1,7 @@
 #pragma once
 // Internal: ||Q x|| of MPGP's iterate at each of its stop tests, for SMALSE-M's inner bound
 // M_k ||G mu|| (paper (19)-(20); ALGORITHMS.md 4). Computed afresh it costs a projection (in
-// T-FETI a coarse solve, the dominant cost at many subdomains: doc/coarse_problem.md). With
+// T-FETI a coarse solve, the dominant cost at many subdomains: doc/measurements/coarse_problem.md). With
 // linear coordinates (EqualityProjector::coordinates: ||Q x||^2 = u^T w) it follows a CG step
 // x := x - alpha p for the price of the coordinates of p, which the product A p has just
 // computed (the projector keeps them): u -= alpha u_p, w -= alpha w_p.

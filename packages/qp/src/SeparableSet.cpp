@@ -31,7 +31,7 @@ constexpr double kActiveTolerance = 1e-12;
 /// cannot be moved onto it (x - alpha p rounds back to x). Measured at 20x10x10 per brick,
 /// H/h 2: a disc of radius 5.9e-5 with ||E y|| = 1 - 2.1e-12 stayed "free", its feasible step
 /// was 5.8e-18 in every iteration, and MPGP crawled on expansion steps for hundreds of
-/// iterations (doc/coarse_problem.md). Such a block counts as on the boundary.
+/// iterations (doc/measurements/coarse_problem.md). Such a block counts as on the boundary.
 double ellipseActiveTolerance(const std::array<double, 2>& center, double smallestAxis) {
   const double resolution = std::numeric_limits<double>::epsilon() * std::max(std::abs(center[0]), std::abs(center[1]));
   return std::max(kActiveTolerance, 16.0 * resolution / smallestAxis);

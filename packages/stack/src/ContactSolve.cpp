@@ -1,4 +1,5 @@
 #include "tribos/stack/ContactSolve.hpp"
+#include "tribos/stack/FetiSettings.hpp"
 
 #include <Teuchos_DefaultMpiComm.hpp>
 #include <Teuchos_ParameterList.hpp>
@@ -199,13 +200,8 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   const auto& fetiList = tribos.sublist("FETI");
-  feti::TotalFetiSettings settings;
-  settings.factorization = fetiList.get<std::string>("Factorization");
-  settings.explicitF = fetiList.get<std::string>("Dual Operator") == "Explicit";
+  feti::TotalFetiSettings settings = totalFetiSettings(fetiList, false);
   const std::string preconditioner = fetiList.get<std::string>("Preconditioner");
-  settings.dirichletPreconditioner = preconditioner == "Dirichlet";
-  settings.lumpedPreconditioner = preconditioner == "Lumped";
-  settings.coarsePrecision = fetiList.get<std::string>("Coarse Factor Precision");
   auto friction = frictionSettings(tribos);
   auto smalse = smalseSettings(tribos);
   const core::Deadline deadline(tribos.sublist("Solver").get<double>("Max Seconds"), runStart);

@@ -1,4 +1,5 @@
 #include "tribos/stack/LinearFetiSolve.hpp"
+#include "tribos/stack/FetiSettings.hpp"
 
 #include <Teuchos_DefaultMpiComm.hpp>
 #include <Teuchos_ParameterList.hpp>
@@ -60,11 +61,7 @@ LinearFetiResult solveLinearFeti(const Scene& scene, std::vector<fem::SubdomainS
 
   result.appliedLoad = totalLoad(owned, comm);
 
-  feti::TotalFetiSettings settings;
-  settings.factorization = fetiList.get<std::string>("Factorization");
-  settings.explicitF = fetiList.get<std::string>("Dual Operator") == "Explicit";
-  settings.dirichletPreconditioner = fetiList.get<std::string>("Preconditioner") == "Dirichlet";
-  settings.lumpedPreconditioner = fetiList.get<std::string>("Preconditioner") == "Lumped";
+  feti::TotalFetiSettings settings = totalFetiSettings(fetiList, true);
   settings.deadline = &deadline;
   const feti::TotalFeti feti(scene.mesh, scene.decomposition, std::move(owned), B, teuchosComm, settings);
   result.factorizationSeconds = feti.factorizationSeconds();

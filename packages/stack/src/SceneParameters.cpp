@@ -158,6 +158,34 @@ void contactParameters(ParameterList& pl) {
          core::atLeast(0.0));
 }
 
+// Thresholds measured once (doc/measurements/coarse_problem.md, doc/factorization.md) and kept as
+// parameters for such measurements; each depends on a matrix alone, never on the layout, so
+// every rank and thread count takes the same path and results keep their bits.
+void fetiTuningParameters(ParameterList& pl) {
+  Teuchos::setStringToIntegralParameter<int>(
+      "CHOLMOD Mode", "Auto",
+      "how CHOLMOD factorises each matrix: \"Auto\" (supernodal from 4000 rows: the supernodal factorisation is "
+      "faster from about 2000 rows on one thread, but it holds the BLAS lock, so in a team of two threads it "
+      "catches up with two concurrent simplicial ones only at 4000-6500 rows), \"Simplicial\" or \"Supernodal\" "
+      "(doc/factorization.md); the solves cost the same in both modes",
+      Teuchos::tuple<std::string>("Auto", "Simplicial", "Supernodal"), &pl);
+  pl.set("Subtree Solve From", 500000,
+         "the factor of G G^T (solved on one rank's threads) splits its elimination tree for concurrent solves "
+         "when it stores at least this many values (doc/measurements/coarse_problem.md)",
+         core::intRange(0, std::numeric_limits<int>::max()));
+  pl.set("Distributed Coarse From", 200000,
+         "with several ranks, coarse factors of at least this many stored values are solved over the ranks "
+         "(smaller ones on rank 0 alone, where the three collectives of a spread solve cost more than they save; "
+         "doc/measurements/coarse_problem.md, \"The coarse solve over the ranks\"); the bits are the serial solve's either way",
+         core::intRange(0, std::numeric_limits<int>::max()));
+  pl.set("Single Coarse Gate", 1e-3,
+         "the single-precision coarse factor (Coarse Factor Precision) is kept when one solve with it differs from "
+         "the double one by at most this (relative): the rounding then perturbs P by about as much on Im G^T, which "
+         "leaves A_rho's spectrum and the refinement of the exact solves (about this contraction per step) "
+         "untouched; else G G^T is factorised again in double (doc/measurements/coarse_problem.md)",
+         core::openClosed(0.0, 1.0));
+}
+
 void fetiParameters(ParameterList& pl) {
   Teuchos::setStringToIntegralParameter<int>(
       "Factorization", "CHOLMOD",
@@ -182,11 +210,12 @@ void fetiParameters(ParameterList& pl) {
       "differs from the double one by at most 1e-3), \"Double\", or \"Auto\" (Single where two coarse solves "
       "read at least as many bytes as the subdomain solves of one F application: many small subdomains). Linear "
       "solves: always double "
-      "(projected CG needs the exact projector). doc/coarse_problem.md",
+      "(projected CG needs the exact projector). doc/measurements/coarse_problem.md",
       Teuchos::tuple<std::string>("Auto", "Single", "Double"), &pl);
   pl.set("Max Iterations", 1000,
          "linear solves: cap on projected CG iterations; reaching it ends the solve as not converged (exit 3)",
          core::intRange(1, kMaxCount));
+  fetiTuningParameters(pl);
 }
 
 void solverParameters(ParameterList& pl) {

@@ -139,12 +139,13 @@ TEST(SparseCholesky, subtreeSolvesGiveTheSameBitsOnAnyThreadCountAndSolveTheSyst
   // The replicated coarse factor's concurrent solves (setSubtreeSolve): the elimination
   // tree split into subtrees solved on the threads of forEachSubdomain, with the bits of the
   // serial solve. From any size here
-  // (the environment override of the threshold), on a supernodal factor (>= 4000 rows) and a
+  // (the threshold at 0, FETI/Subtree Solve From), on a supernodal factor (>= 4000 rows) and a
   // simplicial one (merged into supernodes by tribos), each split into at least three subtrees.
-  setenv("TRIBOS_SUBTREE_SOLVE_FROM", "0", 1);
   for (int m : {8, 12}) {
     const fem::CsrMatrix A = randomSpd(m, 0.1, 7u + m);
-    auto serial = feti::makeSparseCholesky("CHOLMOD"), split = feti::makeSparseCholesky("CHOLMOD");
+    feti::SparseCholeskyOptions fromAnySize;
+    fromAnySize.subtreeSolveFromValues = 0;
+    auto serial = feti::makeSparseCholesky("CHOLMOD", fromAnySize), split = feti::makeSparseCholesky("CHOLMOD", fromAnySize);
     split->setSubtreeSolve(true);
     serial->factorize(A);
     split->factorize(A);
@@ -172,7 +173,6 @@ TEST(SparseCholesky, subtreeSolvesGiveTheSameBitsOnAnyThreadCountAndSolveTheSyst
     // The subtractions of the serial solve in its order: its bits.
     EXPECT_EQ(std::memcmp(first.data(), reference.data(), sizeof(double) * first.size()), 0) << "m = " << m;
   }
-  unsetenv("TRIBOS_SUBTREE_SOLVE_FROM");
 }
 
 // roundToSingle (G G^T's factor for SMALSE-M's projections, TotalFeti's "Coarse Factor
@@ -182,10 +182,11 @@ TEST(SparseCholesky, subtreeSolvesGiveTheSameBitsOnAnyThreadCountAndSolveTheSyst
 // (below 1e-4 on these matrices); they give the same bits on 1-3 threads; and iterative
 // refinement with them converges to the double solution, as TotalFeti's exact solves do.
 TEST(SparseCholesky, roundedToSingleItHalvesTheBytesAndRefinesToTheDoubleSolution) {
-  setenv("TRIBOS_SUBTREE_SOLVE_FROM", "0", 1);
   for (int m : {8, 12}) {
     const fem::CsrMatrix A = randomSpd(m, 0.1, 7u + m);
-    auto exact = feti::makeSparseCholesky("CHOLMOD"), rounded = feti::makeSparseCholesky("CHOLMOD");
+    feti::SparseCholeskyOptions fromAnySize;
+    fromAnySize.subtreeSolveFromValues = 0;
+    auto exact = feti::makeSparseCholesky("CHOLMOD", fromAnySize), rounded = feti::makeSparseCholesky("CHOLMOD", fromAnySize);
     rounded->setSubtreeSolve(true);
     exact->factorize(A);
     rounded->factorize(A);
@@ -221,7 +222,6 @@ TEST(SparseCholesky, roundedToSingleItHalvesTheBytesAndRefinesToTheDoubleSolutio
     for (size_t i = 0; i < b.size(); ++i) difference[i] = z[i] - x[i];
     EXPECT_LT(norm(difference.data(), b.size()) / norm(x.data(), x.size()), 1e-13) << "m = " << m;
   }
-  unsetenv("TRIBOS_SUBTREE_SOLVE_FROM");
 }
 
 // setSparseColumns / solveInPlaceOnColumns, as F uses them (the dofs of B_s: a subdomain's

@@ -42,7 +42,8 @@ class RankErrors {
 
   /// Every rank calls this once with its outcome and exits with the status it returns. The
   /// status is the same on every rank: an input error (2) wins over an internal error (1),
-  /// which wins over "not converged" (3). Rank 0 prints each distinct message once on stderr
+  /// which wins over results that could not be written (4), which win over "not converged"
+  /// (3). Rank 0 prints each distinct message once on stderr
   /// as "<program>: <message>", with "(rank r of n)" after the program when not every rank
   /// had it. A rank whose status is 1 or 2 waits at most the grace for the others; then it
   /// prints its own message with its rank and calls MPI_Abort with its status.

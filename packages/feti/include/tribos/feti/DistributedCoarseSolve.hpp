@@ -1,7 +1,7 @@
 #pragma once
 /// \file DistributedCoarseSolve.hpp
 /// The coarse problem's triangular solves spread over the ranks (issue 11,
-/// doc/coarse_problem.md, "The coarse solve over the ranks").
+/// doc/measurements/coarse_problem.md, "The coarse solve over the ranks").
 ///
 /// G G^T is factorised on rank 0. Its elimination tree (nested dissection, postorder) is cut
 /// into a tree of tasks: the whole factor is split over all ranks into independent subtrees
@@ -20,7 +20,7 @@
 /// serial solve, on any number of ranks and threads.
 ///
 /// Replicating the solve on every rank streamed R copies of the factor at once (16 ranks at
-/// 4 000 subdomains: 43 ms a solve, doc/scalability.md); solving on rank 0 alone left the
+/// 4 000 subdomains: 43 ms a solve, doc/measurements/scalability.md); solving on rank 0 alone left the
 /// other ranks idle and read the whole factor with one core.
 #include <mpi.h>
 

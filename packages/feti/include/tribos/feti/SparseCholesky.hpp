@@ -28,7 +28,7 @@ class SparseCholesky {
   /// factorize(A) for a matrix the caller gives up: an implementation may free it as soon as
   /// the numeric factorisation no longer reads it (CHOLMOD: before its packed copy of the
   /// factor is made), so that A, the factor and the copy are never alive together (the
-  /// replicated G G^T, doc/scalability.md). A is left empty.
+  /// replicated G G^T, doc/measurements/scalability.md). A is left empty.
   virtual void factorizeConsuming(fem::CsrMatrix&& A) {
     factorize(A);
     A = fem::CsrMatrix{};
@@ -56,13 +56,13 @@ class SparseCholesky {
   /// Stored entries of the factor (for memory reports).
   virtual long long factorNonzeros() const = 0;
   /// Bytes one solve with one right-hand side reads from the factor (both triangular
-  /// substitutions): the numerator of the bandwidth bound of doc/performance.md.
+  /// substitutions): the numerator of the bandwidth bound of doc/measurements/performance.md.
   virtual long long solveBytes() const = 0;
   virtual std::string name() const = 0;
   /// For a factor solved alone on the main thread (G G^T on rank 0): set before
   /// factorize(), lets its solves run the independent subtrees of the elimination tree on
   /// the threads of core::forEachSubdomain when the factor is large enough to pay
-  /// (doc/coarse_problem.md). The solves then give the same bits for any number of threads,
+  /// (doc/measurements/coarse_problem.md). The solves then give the same bits for any number of threads,
   /// though not those of the serial solve. Such a factor must not be solved from inside
   /// forEachSubdomain. Implementations without it ignore it ("Tacho").
   virtual void setSubtreeSolve(bool enabled) { (void)enabled; }
@@ -77,10 +77,23 @@ class SparseCholesky {
   virtual const PackedFactor* packedFactor() const { return nullptr; }
 };
 
+/// How CHOLMOD factorises a matrix (FETI/CHOLMOD Mode): by its size (Auto: supernodal from
+/// 4000 rows, CholmodCholesky.cpp), or always one way (for measurements, doc/factorization.md).
+enum class CholmodMode { Auto, Simplicial, Supernodal };
+
+/// The tuning of a factorisation, validated parameters of the FETI list (one declaration:
+/// stack/SceneParameters.cpp). Each depends on the matrix alone, never on the layout.
+struct SparseCholeskyOptions {
+  CholmodMode cholmodMode = CholmodMode::Auto;
+  /// With setSubtreeSolve: factors of at least this many stored values split their
+  /// elimination tree for concurrent solves (FETI/Subtree Solve From).
+  long long subtreeSolveFromValues = 500000;
+};
+
 /// Names accepted by makeSparseCholesky.
 std::vector<std::string> sparseCholeskyNames();
 /// Creates a factorisation by name ("CHOLMOD" or "Tacho"); throws core::InputError naming
-/// the parameter "FETI/Factorization" and the valid names otherwise.
-std::unique_ptr<SparseCholesky> makeSparseCholesky(const std::string& name);
+/// the parameter "FETI/Factorization" and the valid names otherwise. Tacho ignores `options`.
+std::unique_ptr<SparseCholesky> makeSparseCholesky(const std::string& name, const SparseCholeskyOptions& options = {});
 
 }  // namespace tribos::feti

@@ -4,7 +4,7 @@
 /// ALGORITHMS.md 1): fixing-node regularisation K_reg = K + rho_f R_f R_f^T (R_f = R
 /// restricted to the 9 dofs of 3 non-collinear, far-apart nodes), factorised once; then
 ///   K^+ x = K_reg^{-1} x                       (K K^+ K = K)
-///   K^dagger x = (I - R R^T) K^+ (I - R R^T) x  (Moore-Penrose, eq. (11)).
+///   K^dagger x = (I - R R^T) K^+ (I - R R^T) x  (Moore-Penrose, eq. (9), Theorem 1).
 #include <array>
 #include <memory>
 #include <string>
@@ -21,7 +21,7 @@ class SubdomainSolver {
   /// orthonormal kernel basis of system.K. The solver keeps references to nothing: it
   /// copies R. Safe to call concurrently for different objects.
   void compute(const fem::SubdomainSystem& system, const std::vector<std::array<double, 3>>& coords,
-               const std::string& factorization);
+               const std::string& factorization, const SparseCholeskyOptions& options = {});
 
   /// y = K^+ x for nrhs column-major vectors of length n (Lemma 1's generalised inverse).
   void applyGeneralizedInverse(const double* x, double* y, int nrhs = 1) const;

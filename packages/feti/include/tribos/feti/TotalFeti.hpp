@@ -64,13 +64,21 @@ struct TotalFetiSettings {
   /// refined to double; "Auto": single where two coarse solves read at least as many bytes
   /// as the subdomain solves of one F application. Single only for callers that enforce
   /// G x = 0 themselves (SMALSE-M's penalty): P is then I - G^T C~^{-1} G, the identity on
-  /// Ker G but not an exact projector (doc/coarse_problem.md, "The coarse factor in single
+  /// Ker G but not an exact projector (doc/measurements/coarse_problem.md, "The coarse factor in single
   /// precision"); projected CG needs the exact one.
   std::string coarsePrecision = "Double";
+  /// The subdomain factors' and G G^T's tuning (FETI/CHOLMOD Mode, FETI/Subtree Solve From).
+  SparseCholeskyOptions factorOptions;
+  /// The single-precision coarse factor is kept when one solve with it differs from the double
+  /// one by at most this (relative; FETI/Single Coarse Gate).
+  double singleCoarseGate = 1e-3;
+  /// Coarse factors with at least this many stored values are solved over the ranks when
+  /// there are several (FETI/Distributed Coarse From).
+  long long distributedCoarseFromValues = 200000;
 };
 
 /// Where the time of the dual operators goes (cumulative over the object's life, this rank;
-/// doc/coarse_problem.md): counts and wall seconds of each operator, read by the summary.
+/// doc/measurements/coarse_problem.md): counts and wall seconds of each operator, read by the summary.
 struct OperatorProfile {
   long long fApplications = 0, projections = 0, coarseSolves = 0, preconditionerApplications = 0;
   long long coarseSolvesReused = 0;    ///< of coarseSolves: answered from the last two (same rhs bits)
@@ -145,7 +153,7 @@ class TotalFeti {
   /// one, solveCoarse refined by iterative refinement (products G G^T x as G (G^T x)).
   void solveCoarseExactly(std::vector<double>& a) const;
   /// Frees the factor of G G^T and the solve-time memos (the largest replicated data at
-  /// thousands of subdomains: doc/scalability.md), for a caller done with projections,
+  /// thousands of subdomains: doc/measurements/scalability.md), for a caller done with projections,
   /// before the factor of G_I G_I^T of rigidBodyCoefficients(lambda, mask). A later coarse
   /// solve factorises G G^T again (the same bits; collective, as every coarse solve is).
   void releaseCoarseFactor() const;
@@ -208,7 +216,7 @@ class TotalFeti {
   /// one F application per PFP product): the factors (both substitutions), R_s on either
   /// side of each solve, B_s^T and B_s, the dual entries in and out, and two projections
   /// (G read twice each). All ranks. Divided by the memory bandwidth it bounds
-  /// the time of one product from below (doc/performance.md).
+  /// the time of one product from below (doc/measurements/performance.md).
   double bytesPerFApplication() const { return bytesPerFApplication_; }
   /// sum of n_s over all subdomains (the same on every layout).
   long long primalDofs() const { return primalDofs_; }
@@ -309,7 +317,7 @@ class TotalFeti {
   /// The last two coarse solves (right-hand side, solution): the solvers project the same
   /// vector twice in a row of operator applications (P x inside P F P x, then Q x = x - P x;
   /// the same around the preconditioner), and a right-hand side with the same bits has the
-  /// same solution (doc/coarse_problem.md).
+  /// same solution (doc/measurements/coarse_problem.md).
   struct CoarseMemo {
     std::vector<double> rhs, solution;
     bool valid = false;

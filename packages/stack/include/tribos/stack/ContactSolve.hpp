@@ -48,7 +48,7 @@ struct ContactSolveResult {
   std::array<double, 3> totalContactForce{};  ///< sum of nodal contact forces in x, y, z (rank 0)
   double factorizationSeconds = 0.0, solveSeconds = 0.0;
   long long fApplications = 0;
-  feti::OperatorProfile profile;  ///< rank 0's operator times and counts (doc/coarse_problem.md)
+  feti::OperatorProfile profile;  ///< rank 0's operator times and counts (doc/measurements/coarse_problem.md)
   long long factorNonzeros = 0;       ///< feti::TotalFeti::factorNonzeros
   double bytesPerFApplication = 0.0;  ///< feti::TotalFeti::bytesPerFApplication
   std::string chain;                ///< the solver chain that was built, for verbose output

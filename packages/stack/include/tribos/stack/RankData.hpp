@@ -19,7 +19,7 @@ namespace tribos::stack {
 ///    sets stay (the owned subdomains' coordinates, the reactions' prescribed components).
 void keepRankData(Scene& scene, feti::ConstraintMatrix& B, int rank, int numRanks);
 
-/// Entries (rows, nonzeros) of B's blocks that a rank holds, for tests and doc/scalability.md.
+/// Entries (rows, nonzeros) of B's blocks that a rank holds, for tests and doc/measurements/scalability.md.
 struct HeldRows {
   long long rows = 0, nonzeros = 0;
 };
