@@ -8,7 +8,7 @@
 // Usage: build/bin/tribos_bench_dual_operator [grid (10x5x5)] [H/h (5)] [repeats (40)] [only this operation]
 //          ["List/Name=value" ...] (further parameters, e.g. "FETI/Coarse Factor Precision=Single")
 // Threads: OMP_NUM_THREADS; ranks: mpirun. Prints a CSV header and one line: median wall,
-// median process CPU and best wall milliseconds per call of each operation (doc/performance.md).
+// median process CPU and best wall milliseconds per call of each operation (doc/measurements/performance.md).
 #include <mpi.h>
 
 #include <Teuchos_DefaultMpiComm.hpp>

@@ -1,6 +1,6 @@
 // Speed against accuracy: for a sequence of tolerances epsilon, the F applications, solve
 // time and error of the displacement, the KKT residuals and the converged flag. Prints a CSV
-// (doc/speed_accuracy.md).
+// (doc/measurements/speed_accuracy.md).
 // Usage:
 //   build/bin/tribos_speed_accuracy [grid] [H/h] [Path=value ...]
 //     the paper's two bricks; frictionless error against the independent active-set solve of

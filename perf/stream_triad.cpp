@@ -1,5 +1,5 @@
 // STREAM-like triad a[i] = b[i] + s * c[i] with 1 and 2 OpenMP threads: the memory
-// bandwidth that bounds an implicit F application (doc/performance.md). Counts 24 bytes per
+// bandwidth that bounds an implicit F application (doc/measurements/performance.md). Counts 24 bytes per
 // element (two loads, one store; write-allocate traffic not counted, as STREAM does).
 // Each thread first-touches its own part of the arrays, then the best of `repeats` sweeps
 // is reported (STREAM's convention: the best run is the one least disturbed by neighbours).

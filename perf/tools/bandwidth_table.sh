@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Time per PFP application against the memory-bandwidth bound, per Table 1 cell
-# (doc/performance.md). For each cell: one run of build/bin/tribos (threads: OMP_NUM_THREADS,
+# (doc/measurements/performance.md). For each cell: one run of build/bin/tribos (threads: OMP_NUM_THREADS,
 # default 2), then
 #   time per PFP application = solve_s / pfp_applications   (the whole SMALSE-M iteration:
 #                              F, the projections, the MPGP vector work)

@@ -1,4 +1,4 @@
-#include "tribos/mesh/SubdomainClusters.hpp"
+#include "SubdomainClusters.hpp"
 
 #include <algorithm>
 #include <array>

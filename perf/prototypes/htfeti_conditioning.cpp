@@ -1,4 +1,4 @@
-// Prototype (issue 11, doc/coarse_problem.md "Hybrid T-FETI"): the conditioning of hybrid
+// Prototype (issue 11, doc/measurements/coarse_problem.md "Hybrid T-FETI"): the conditioning of hybrid
 // T-FETI against T-FETI on the bonded bricks, one rank. Subdomains are grouped into clusters of
 // c x c x c (structured bricks only); inside a cluster every pair of face neighbours is glued by
 // the averages of the six rigid motions over their shared face (the "kernel" rows B0); every row
@@ -12,7 +12,7 @@
 //
 // Usage: build/bin/tribos_htfeti_conditioning [grid (4x2x2)] [H/h (3)] [cluster edge c or AxBxC (2)]
 //          [grid | metis | metis-recursive | metis-moved | greedy | bisection | kmeans | kmeans-moved]
-//          (kmeans: mesh::compactClusters, the builder doc/coarse_problem.md recommends)
+//          (kmeans: mesh::compactClusters, the builder doc/measurements/coarse_problem.md recommends)
 //        build/bin/tribos_htfeti_conditioning SCENE.xml [cluster size (8)] [method as above, not grid]
 //          [Path=value overrides...]
 //        HTFETI_WHERE=1 also prints the clusters that hold most of the top eigenvector of P M P F_H.
@@ -38,6 +38,7 @@
 #include <string>
 #include <vector>
 
+#include "SubdomainClusters.hpp"
 #include "tribos/core/Parallel.hpp"
 #include "tribos/core/Parameters.hpp"
 #include "tribos/core/XmlParameters.hpp"
@@ -45,7 +46,6 @@
 #include "tribos/feti/ProjectedCg.hpp"
 #include "tribos/feti/SubdomainSolver.hpp"
 #include "tribos/feti/TotalFeti.hpp"
-#include "tribos/mesh/SubdomainClusters.hpp"
 #include "tribos/stack/LinearFetiSolve.hpp"
 #include "tribos/stack/Scene.hpp"
 #include "tribos/stack/SceneParameters.hpp"

@@ -2,11 +2,12 @@
 /// \file SubdomainClusters.hpp
 /// Face neighbours of subdomains, and compact clusters of them: the groups whose subdomains
 /// hybrid T-FETI glues by face averages so that the coarse problem has six rows per cluster
-/// instead of six per subdomain (doc/coarse_problem.md, "Hybrid T-FETI"). Measured there with
-/// perf/htfeti_conditioning.cpp: the conditioning of the glued cluster is set by its shape
-/// (slender clusters bend), and k-means clusters of the subdomain centroids are the most
-/// compact of the builders tried on irregular decompositions. The solver does not use clusters
-/// yet; the measurement tool does.
+/// instead of six per subdomain (doc/measurements/coarse_problem.md, "Hybrid T-FETI").
+/// Measured there with perf/prototypes/htfeti_conditioning.cpp: the conditioning of the glued
+/// cluster is set by its shape (slender clusters bend), and k-means clusters of the subdomain
+/// centroids are the most compact of the builders tried on irregular decompositions. A
+/// prototype beside that tool, not library code: the solver does not use clusters yet
+/// (perf/prototypes/CMakeLists.txt).
 #include <array>
 #include <vector>
 

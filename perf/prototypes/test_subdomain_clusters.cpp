@@ -1,4 +1,4 @@
-// Face neighbours and compact clusters of subdomains (mesh/SubdomainClusters.hpp): the
+// Face neighbours and compact clusters of subdomains (perf/prototypes/SubdomainClusters.hpp): the
 // neighbours of a structured decomposition are its grid neighbours in the same brick; clusters
 // cover every subdomain once, stay in one body, are face-connected and not too small, and
 // depend on nothing but the decomposition.
@@ -10,8 +10,8 @@
 #include <set>
 #include <vector>
 
+#include "SubdomainClusters.hpp"
 #include "tribos/mesh/Decomposition.hpp"
-#include "tribos/mesh/SubdomainClusters.hpp"
 #include "tribos/mesh/TwoBricks.hpp"
 
 using namespace tribos;
@@ -107,7 +107,7 @@ TEST(SubdomainClusters, clustersOfOneAreTheSubdomainsAndOneClusterPerBodyWhenLar
 
 TEST(SubdomainClusters, clustersOfTheBricksAreCompact) {
   // No bars: every cluster of about 8 spans at most 3 subdomains along each axis (a bar of 4
-  // costs 6 times the kappa of a cube of 8, doc/coarse_problem.md), on a grid that divides
+  // costs 6 times the kappa of a cube of 8, doc/measurements/coarse_problem.md), on a grid that divides
   // evenly (8x4x4) and on one that does not (10x5x5).
   for (const BrickGrid grid : {BrickGrid{8, 4, 4}, BrickGrid{10, 5, 5}}) {
     const Bricks b = bricks(grid, 2);
