@@ -1,0 +1,156 @@
+#include "DualContactProblem.hpp"
+
+#include <Teuchos_CommHelpers.hpp>
+#include <Tpetra_Vector.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "tribos/core/ReproducibleSum.hpp"
+
+namespace tribos::contact {
+
+namespace {
+LocalContact localContact(const feti::ConstraintMatrix& B, int rank) {
+  LocalContact lc;
+  const GO first = B.firstRowOfRank[rank], end = B.firstRowOfRank[rank + 1];
+  for (size_t i = 0; i < B.contact.size(); ++i) {
+    const auto& c = B.contact[i];
+    if (c.normalRow < first || c.normalRow >= end) continue;
+    lc.node.push_back(static_cast<int>(i));
+    lc.normalRow.push_back(static_cast<LO>(c.normalRow - first));
+    std::array<LO, 2> t{-1, -1};
+    std::array<double, 2> s{1.0, 1.0};
+    for (int j = 0; j < 2; ++j)
+      if (c.hasTangential[j]) {
+        t[j] = static_cast<LO>(c.tangentialRow(j) - first);
+        s[j] = c.rowScale / c.tangentialScale[j];
+      }
+    lc.tangentialRow.push_back(t);
+    lc.axisScale.push_back(s);
+    lc.ellipse.push_back(-1);
+  }
+  return lc;
+}
+}  // namespace
+
+FrictionState frictionState(const std::array<double, 2>& lambdaT, const std::array<LO, 2>& rows,
+                            const std::array<double, 2>& axisScale, const std::array<double, 2>& F, double g,
+                            double tinyForce) {
+  FrictionState s;
+  double scaled2 = 0.0, unitBound2 = 0.0;
+  for (int j = 0; j < 2; ++j) {
+    if (rows[j] < 0) continue;
+    s.axes[j] = F[j] * axisScale[j] * g;
+    if (!(s.axes[j] > tinyForce)) {
+      s.degenerate = true;
+      s.excess += std::abs(lambdaT[j]) / axisScale[j];
+      continue;
+    }
+    scaled2 += (lambdaT[j] / s.axes[j]) * (lambdaT[j] / s.axes[j]);
+    unitBound2 += (lambdaT[j] / (F[j] * axisScale[j])) * (lambdaT[j] / (F[j] * axisScale[j]));
+  }
+  s.normalised = std::sqrt(scaled2);
+  s.excess += std::max(std::sqrt(unitBound2) - g, 0.0);
+  return s;
+}
+
+double globalSum(const Teuchos::Comm<int>& comm, const std::vector<double>& terms, long long count) {
+  return core::reproducibleSum(&comm, terms.data(), terms.size(), count);
+}
+
+double globalMax(const Teuchos::Comm<int>& comm, double v) {
+  double out = 0.0;
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, 1, &v, &out);
+  return out;
+}
+
+DualContactProblem::DualContactProblem(const feti::TotalFeti& feti, const feti::ConstraintMatrix& B,
+                                       const FrictionSettings& friction)
+    : feti_(feti),
+      B_(B),
+      comm_(*feti.comm()),
+      lc_(localContact(B, feti.comm()->getRank())),
+      F_{friction.F1, friction.F2} {
+  buildRightHandSide();
+  buildOmega(friction);
+}
+
+// (1) The homogenised dual problem (paper (19)): c = P h, h = d~ - F lambda_Im.
+void DualContactProblem::buildRightHandSide() {
+  c_ = feti_.createDualVector();
+  feti_.applyF(feti_.lambdaIm(), *c_);
+  c_->update(1.0, feti_.dTilde(), -1.0);
+  // Exactly: a single-precision coarse factor leaves about its relative error times h's part
+  // in Im G^T in c, and that part is not bounded by c's (the loads' rigid-body part; on the
+  // bricks ||h|| / ||P h|| is below 3, elsewhere it need not be). One exact solve.
+  feti_.projectExactly(*c_, *c_);
+}
+
+// (2) Omega: mu_nu >= -lambda_Im,nu; ||F^-1 (mu_t + lambda_Im,t)|| <= g (an ellipse with
+// semi-axes F_j g centred at -lambda_Im,t). g lives in multiplier units: a nodal force f
+// corresponds to the multiplier f / rowScale (rows of B are scaled to unit norm).
+void DualContactProblem::buildOmega(const FrictionSettings& friction) {
+  const bool frictional = friction.model != "None";
+  const auto lIm = feti_.lambdaIm().getLocalViewHost(Tpetra::Access::ReadOnly);
+  slip_.assign(lc_.node.size(), 0.0);
+  for (size_t k = 0; k < lc_.node.size(); ++k) {
+    const LO r = lc_.normalRow[k];
+    omega_.addBound(r, -lIm(r, 0));
+    const auto& t = lc_.tangentialRow[k];
+    if (!frictional || (t[0] < 0 && t[1] < 0)) continue;
+    if (friction.model == "Tresca") slip_[k] = friction.slipBound / B_.contact[lc_.node[k]].rowScale;
+    lc_.ellipse[k] = omega_.numEllipses();
+    omega_.addEllipse(t, {t[0] >= 0 ? -lIm(t[0], 0) : 0.0, t[1] >= 0 ? -lIm(t[1], 0) : 0.0}, semiAxes(k, slip_[k]));
+  }
+}
+
+std::array<double, 2> DualContactProblem::semiAxes(size_t k, double g) const {
+  return {F_[0] * lc_.axisScale[k][0] * g, F_[1] * lc_.axisScale[k][1] * g};
+}
+
+void DualContactProblem::setSlipBounds(const std::vector<double>& g) {
+  slip_ = g;
+  for (size_t k = 0; k < g.size(); ++k)
+    if (lc_.ellipse[k] >= 0) omega_.setSemiAxes(lc_.ellipse[k], semiAxes(k, g[k]));
+}
+
+std::vector<double> DualContactProblem::impliedSlip(const qp::Vector& mu) const {
+  const auto m = mu.getLocalViewHost(Tpetra::Access::ReadOnly);
+  const auto lIm = feti_.lambdaIm().getLocalViewHost(Tpetra::Access::ReadOnly);
+  std::vector<double> g(lc_.node.size());
+  for (size_t k = 0; k < g.size(); ++k) g[k] = std::max(m(lc_.normalRow[k], 0) + lIm(lc_.normalRow[k], 0), 0.0);
+  return g;
+}
+
+double DualContactProblem::relativeChange(const std::vector<double>& gNew, const std::vector<double>& gOld) const {
+  std::vector<double> dTerms(gNew.size()), nTerms(gNew.size());
+  for (size_t k = 0; k < gNew.size(); ++k) {
+    dTerms[k] = (gNew[k] - gOld[k]) * (gNew[k] - gOld[k]);
+    nTerms[k] = gOld[k] * gOld[k];
+  }
+  const double d = globalSum(comm_, dTerms, B_.numRows), n = globalSum(comm_, nTerms, B_.numRows);
+  return n > 0.0 ? std::sqrt(d / n) : (d > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
+}
+
+double DualContactProblem::coulombExcess(const qp::Vector& current) const {
+  const auto m = current.getLocalViewHost(Tpetra::Access::ReadOnly);
+  const auto lIm = feti_.lambdaIm().getLocalViewHost(Tpetra::Access::ReadOnly);
+  double excess = 0.0, normalMax = 0.0;
+  for (size_t k = 0; k < lc_.node.size(); ++k) {
+    const double lambdaNu = m(lc_.normalRow[k], 0) + lIm(lc_.normalRow[k], 0);
+    normalMax = std::max(normalMax, std::abs(lambdaNu));
+    if (lc_.ellipse[k] < 0) continue;
+    std::array<double, 2> lambdaT{0.0, 0.0};
+    for (int j = 0; j < 2; ++j)
+      if (const LO t = lc_.tangentialRow[k][j]; t >= 0) lambdaT[j] = m(t, 0) + lIm(t, 0);
+    const auto state =
+        frictionState(lambdaT, lc_.tangentialRow[k], lc_.axisScale[k], F_, std::max(lambdaNu, 0.0), 0.0);
+    excess = std::max(excess, state.excess);
+  }
+  normalMax = globalMax(comm_, normalMax);
+  return normalMax > 0.0 ? globalMax(comm_, excess) / normalMax : 0.0;
+}
+
+}  // namespace tribos::contact
