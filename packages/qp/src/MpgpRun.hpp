@@ -42,6 +42,7 @@ class MpgpRun {
   void projectedStep(const Vector& direction);
   void startSliding();
   void gradientProjectionStep();
+  bool tentativeProjectedStep(double alpha, const Vector& d);
   void choppedGradientStep();
   bool slidingCgStep(double alphaCg, double pAp);
   void cgStep(double alphaCg, double pAp);

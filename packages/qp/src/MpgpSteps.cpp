@@ -97,6 +97,18 @@ bool MpgpRun::optimalExpansionStep() {
   return true;
 }
 
+// x := P(x - alpha d) with the previous x and g kept (to undo the step); whether the
+// projection moved x (one reduction: every rank alike).
+bool MpgpRun::tentativeProjectedStep(double alpha, const Vector& d) {
+  previousX_.assign(x_);
+  previousG_.assign(g_);
+  x_.update(-alpha, d, 1.0);
+  trial_.assign(x_);
+  omega_.project(x_);
+  trial_.update(1.0, x_, -1.0);
+  return trial_.normInf() != 0.0;
+}
+
 // Gradient projection step x = P(x - alpha g) (proportioning, and the fallback when A is not
 // positive along p).
 void MpgpRun::gradientProjectionStep() {
@@ -129,13 +141,7 @@ void MpgpRun::choppedGradientStep() {
     return;
   }
   const double f0 = objective(x_, g_);
-  previousX_.assign(x_);
-  previousG_.assign(g_);
-  x_.update(-alpha, beta_, 1.0);
-  trial_.assign(x_);
-  omega_.project(x_);
-  trial_.update(1.0, x_, -1.0);
-  if (trial_.normInf() == 0.0) {
+  if (!tentativeProjectedStep(alpha, beta_)) {
     g_.update(-alpha, Ap_, 1.0);  // the projection did not move x: g = A x - b exactly
   } else {
     gradient();
@@ -162,13 +168,7 @@ void MpgpRun::choppedGradientStep() {
 // and g restored) and the caller takes a gradient projection step. True without a projection
 // correction too (then it is the plain CG step).
 bool MpgpRun::slidingCgStep(double alphaCg, double pAp) {
-  previousX_.assign(x_);
-  previousG_.assign(g_);
-  x_.update(-alphaCg, p_, 1.0);
-  trial_.assign(x_);
-  omega_.project(x_);
-  trial_.update(1.0, x_, -1.0);
-  if (trial_.normInf() == 0.0) {
+  if (!tentativeProjectedStep(alphaCg, p_)) {
     if (settings_.cgStep) settings_.cgStep(alphaCg, p_);
     g_.update(-alphaCg, Ap_, 1.0);
   } else {
