@@ -12,21 +12,29 @@
 namespace tribos::driver {
 
 namespace {
-/// Runs `work` on rank 0 and makes every rank throw the InputError it threw there.
+/// Runs `work` on rank 0 and makes every rank throw what it threw there: an InputError as
+/// such, anything else as an internal error with its message.
 void onRootForEveryRank(int rank, const std::function<void()>& work) {
   std::string error;
+  int kind = 0;  // 0 ok, 1 bad input, 2 anything else
   if (rank == 0) {
     try {
       work();
     } catch (const core::InputError& e) {
       error = e.what();
+      kind = 1;
+    } catch (const std::exception& e) {
+      error = e.what();
+      kind = 2;
     }
   }
+  MPI_Bcast(&kind, 1, MPI_INT, 0, MPI_COMM_WORLD);
   int length = static_cast<int>(error.size());
   MPI_Bcast(&length, 1, MPI_INT, 0, MPI_COMM_WORLD);
   error.resize(static_cast<size_t>(length));
   MPI_Bcast(error.data(), length, MPI_CHAR, 0, MPI_COMM_WORLD);
-  if (length > 0) throw core::InputError(error);
+  if (kind == 1) throw core::InputError(error);
+  if (kind == 2) throw std::runtime_error(error);
 }
 
 /// An output that is an input would be destroyed by the result.

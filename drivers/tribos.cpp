@@ -49,7 +49,6 @@
 #include "tribos/stack/Results.hpp"
 #include "tribos/stack/Scene.hpp"
 #include "tribos/stack/SceneParameters.hpp"
-#include "tribos/stack/SameMeshOnEveryRank.hpp"
 #include "tribos/stack/SceneSize.hpp"
 
 namespace {
@@ -253,18 +252,9 @@ std::vector<long> gatherPeakRssKb(int rank) {
 stack::Scene buildSceneOnEveryRank(const Teuchos::ParameterList& params, const std::string& input,
                                    const std::string& meshFile) {
   stack::Scene scene;
-  std::exception_ptr failure;
-  try {
-    scene = stack::buildScene(params, input);
-  } catch (const core::InputError&) {
-    failure = std::current_exception();
-  }
-  int failed = failure ? 1 : 0;
-  MPI_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-  if (failure) std::rethrow_exception(failure);
-  if (failed)
-    throw core::InputError((meshFile.empty() ? input : meshFile) + ": another rank could not read the scene");
-  if (!meshFile.empty()) stack::requireSameMeshOnEveryRank(scene.mesh, meshFile, MPI_COMM_WORLD);
+  core::onEveryRankOrNone([&] { scene = stack::buildScene(params, input, MPI_COMM_WORLD); },
+                          (meshFile.empty() ? input : meshFile) + ": another rank could not build the scene",
+                          MPI_COMM_WORLD);
   return scene;
 }
 
@@ -326,7 +316,11 @@ int run(int argc, char** argv, int rank) {
   try {
     return solveAndReport(argc, argv, rank, start);
   } catch (const core::LimitReached& e) {  // thrown on every rank together
-    if (rank == 0 && start.files.summary) writeStoppedSummary(start, e.what());
+    try {
+      if (rank == 0 && start.files.summary) writeStoppedSummary(start, e.what());
+    } catch (const core::IoError& io) {
+      throw core::IoError(std::string(e.what()) + "; and the summary: " + io.what());
+    }
     throw;
   }
 }
@@ -388,7 +382,7 @@ int solveAndReport(int argc, char** argv, int rank, const RunStart& start) {
   std::array<double, 3> appliedLoad{};
 
   // (4) Solve: linear T-FETI for bonded / contact-free scenes.
-  const bool linearProblem = !scene.contact.hasContact() || scene.contact.frictionModel == "Bonded";
+  const bool linearProblem = !scene.contact.hasContact() || scene.contact.frictionModel == contact::FrictionModel::Bonded;
   if (cl.dryRun) {
     summary["solver"] = "dry run: not solved";
   } else if (!linearProblem) {
@@ -599,6 +593,9 @@ int main(int argc, char** argv) {
   // A file size limit (ulimit -f) makes a write fail with EFBIG, an I/O error the run reports
   // (exit 4, nothing partial left), instead of killing the process in the middle of a write.
   std::signal(SIGXFSZ, SIG_IGN);
+  // A pipe or FIFO whose reader went away makes the write fail with EPIPE (exit 4, said as
+  // such) instead of killing rank 0 without a word.
+  std::signal(SIGPIPE, SIG_IGN);
   MPI_Init(&argc, &argv);
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);

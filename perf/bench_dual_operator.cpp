@@ -28,6 +28,7 @@
 #include "tribos/core/Parameters.hpp"
 #include "tribos/feti/ConstraintMatrix.hpp"
 #include "tribos/feti/TotalFeti.hpp"
+#include "tribos/stack/FetiSettings.hpp"
 #include "tribos/stack/LinearFetiSolve.hpp"
 #include "tribos/stack/Scene.hpp"
 #include "tribos/stack/SceneParameters.hpp"
@@ -96,10 +97,8 @@ int main(int argc, char** argv) {
     std::vector<fem::SubdomainSystem> systems;
     stack::assembleOwnedSubdomains(scene, MPI_COMM_WORLD, systems);
     const auto B = feti::buildConstraintMatrix(scene.mesh, scene.decomposition, stack::constraintSpec(scene), size);
-    feti::TotalFetiSettings settings;
-    settings.factorization = params.sublist("FETI").get<std::string>("Factorization");
+    feti::TotalFetiSettings settings = stack::totalFetiSettings(params.sublist("FETI"), false);
     settings.dirichletPreconditioner = true;  // MPGP's default preconditioner in face
-    settings.coarsePrecision = params.sublist("FETI").get<std::string>("Coarse Factor Precision");
     const feti::TotalFeti feti(scene.mesh, scene.decomposition, std::move(systems), B,
                                Teuchos::rcp(new Teuchos::MpiComm<int>(MPI_COMM_WORLD)), settings);
 

@@ -93,7 +93,7 @@ int main(int argc, char** argv) {
     std::vector<double> x(n, 1.0), y(n);
     for (const auto& name : feti::sparseCholeskyNames()) {
       feti::SubdomainSolver solver;
-      const double tCompute = best(reps, [&] { solver.compute(system, coords, name); });
+      const double tCompute = best(reps, [&] { solver.compute(system, coords, core::valueOf(feti::kFactorizationNames, name)); });
       const double tSolve = best(reps * 4, [&] { solver.applyGeneralizedInverse(x.data(), y.data()); });
       std::printf("| %d | %d | %s | %.2e | %.2e | %lld |\n", hOverH, n, name.c_str(), tCompute, tSolve,
                   solver.factor().factorNonzeros());

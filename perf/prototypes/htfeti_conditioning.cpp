@@ -373,7 +373,7 @@ int main(int argc, char** argv) {
     for (int s = 0; s < S; ++s) {
       std::vector<std::array<double, 3>> xs;
       for (LO node : D.subdomains[s].nodes) xs.push_back(coords[node]);
-      solvers[s].compute(systems[s], xs, "CHOLMOD");
+      solvers[s].compute(systems[s], xs, feti::Factorization::Cholmod);
     }
     // Clusters: subdomain grid index from the centroid within its body's bounding box.
     std::map<int, std::array<double, 6>> box;  // body -> lo, hi

@@ -208,7 +208,7 @@ void reportKkt(const feti::TotalFeti& feti, const feti::ConstraintMatrix& B, con
   const double uScale = equalityResiduals(feti, B, *recovered.lambda, bu, result);
   const double lScale = std::max(recovered.lambdaNuMax, recovered.tinyForce);
   const NodeContext context{lc,  problem.coefficients(), problem.slipBounds(), lam,     bu,
-                            recovered.tau, recovered.tinyForce, uScale, lScale, friction.model == "Coulomb"};
+                            recovered.tau, recovered.tinyForce, uScale, lScale, friction.model == FrictionModel::Coulomb};
   ContactResiduals res;
   for (size_t k = 0; k < lc.node.size(); ++k) {
     const auto out = contactNodeResult(context, B.contact[lc.node[k]], first, k, B, res);

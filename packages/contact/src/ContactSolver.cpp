@@ -46,16 +46,10 @@ class RunTally {
   long long applicationsBefore_ = 0;
 };
 
+// Bonded contact is a linear problem (stack/LinearFetiSolve), never a contact solve.
 void requireFrictionModel(const FrictionSettings& friction) {
-  if (friction.model != "None" && friction.model != "Tresca" && friction.model != "Coulomb")
-    throw core::InputError("Contact/Friction Model: \"" + friction.model +
-                           "\" is not a contact model (None, Tresca, Coulomb)");
-}
-
-void requirePreconditioner(const std::string& preconditioner) {
-  if (preconditioner != "None" && preconditioner != "Lumped" && preconditioner != "Dirichlet")
-    throw core::InputError("FETI/Preconditioner: \"" + preconditioner + "\" is not a preconditioner (None, Lumped, "
-                           "Dirichlet)");
+  if (friction.model == FrictionModel::Bonded)
+    throw core::InputError("Contact/Friction Model: \"Bonded\" is not a contact model (None, Tresca, Coulomb)");
 }
 
 /// SMALSE-M's settings for this solve: the preconditioner in face and the progress reports
@@ -79,12 +73,11 @@ qp::SmalseSettings smalseSettingsFor(const qp::SmalseSettings& given, const Fric
 
 ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMatrix& B,
                            const FrictionSettings& friction, const qp::SmalseSettings& smalseSettings,
-                           const std::string& preconditioner) {
+                           feti::DualPreconditioner preconditioner) {
   requireFrictionModel(friction);
   ContactResult result;
   // (1), (2) The homogenised dual problem (paper (19)) and Omega(g) (DualContactProblem).
   DualContactProblem problem(feti, B, friction);
-  requirePreconditioner(preconditioner);
 
   // (3) Solve: SMALSE-M runs on A = P F P and Q = I - P, the slip bound found as the friction
   // law asks (SlipBoundStrategy).
@@ -95,7 +88,8 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
   ProjectedDualOperator A(feti);
   CoarseSpaceProjector Q(feti);
   std::unique_ptr<ProjectedDualPreconditioner> M;
-  if (preconditioner != "None") M = std::make_unique<ProjectedDualPreconditioner>(feti, preconditioner == "Dirichlet");
+  if (preconditioner != feti::DualPreconditioner::None)
+    M = std::make_unique<ProjectedDualPreconditioner>(feti, preconditioner == feti::DualPreconditioner::Dirichlet);
   RunTally tally(result.counters);
   const qp::SmalseM smalse(smalseSettingsFor(smalseSettings, friction, M.get(), tally, result));
   auto mu = feti.createDualVector();

@@ -92,7 +92,7 @@ void DualContactProblem::buildRightHandSide() {
 // semi-axes F_j g centred at -lambda_Im,t). g lives in multiplier units: a nodal force f
 // corresponds to the multiplier f / rowScale (rows of B are scaled to unit norm).
 void DualContactProblem::buildOmega(const FrictionSettings& friction) {
-  const bool frictional = friction.model != "None";
+  const bool frictional = friction.model != FrictionModel::None;
   const auto lIm = feti_.lambdaIm().getLocalViewHost(Tpetra::Access::ReadOnly);
   slip_.assign(lc_.node.size(), 0.0);
   for (size_t k = 0; k < lc_.node.size(); ++k) {
@@ -100,7 +100,7 @@ void DualContactProblem::buildOmega(const FrictionSettings& friction) {
     omega_.addBound(r, -lIm(r, 0));
     const auto& t = lc_.tangentialRow[k];
     if (!frictional || (t[0] < 0 && t[1] < 0)) continue;
-    if (friction.model == "Tresca") slip_[k] = friction.slipBound / B_.contact[lc_.node[k]].rowScale;
+    if (friction.model == FrictionModel::Tresca) slip_[k] = friction.slipBound / B_.contact[lc_.node[k]].rowScale;
     lc_.ellipse[k] = omega_.numEllipses();
     omega_.addEllipse(t, {t[0] >= 0 ? -lIm(t[0], 0) : 0.0, t[1] >= 0 ? -lIm(t[1], 0) : 0.0}, semiAxes(k, slip_[k]));
   }

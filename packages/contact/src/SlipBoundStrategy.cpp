@@ -73,7 +73,7 @@ class InexactCoulomb final : public SlipBoundStrategy {
   /// not the first update from g = 0 (change infinite): a stop there would return the
   /// frictionless solution. Collective (coulombExcess) only when the change settled.
   bool mayStop(const DualContactProblem& problem, const qp::Vector& current, double change) const {
-    const bool settled = change <= eps_ || (friction_.slipBoundTest == "Paper" && std::isfinite(change));
+    const bool settled = change <= eps_ || (friction_.slipBoundTest == SlipBoundTest::Paper && std::isfinite(change));
     return settled && !(problem.coulombExcess(current) > 0.5 * kktTolerance_);
   }
 
@@ -130,8 +130,8 @@ class ExactCoulomb final : public SlipBoundStrategy {
 
 std::unique_ptr<SlipBoundStrategy> makeSlipBoundStrategy(const FrictionSettings& friction, double eps,
                                                          double kktTolerance) {
-  if (friction.model != "Coulomb") return std::make_unique<GivenSlipBound>();
-  if (friction.fixedPoint == "Inexact") return std::make_unique<InexactCoulomb>(friction, eps, kktTolerance);
+  if (friction.model != FrictionModel::Coulomb) return std::make_unique<GivenSlipBound>();
+  if (friction.fixedPoint == FixedPoint::Inexact) return std::make_unique<InexactCoulomb>(friction, eps, kktTolerance);
   return std::make_unique<ExactCoulomb>(friction, eps);
 }
 

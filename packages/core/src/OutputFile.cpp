@@ -1,6 +1,7 @@
 #include "tribos/core/OutputFile.hpp"
 
 #include <fcntl.h>
+#include <poll.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -9,6 +10,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iostream>
 #include <vector>
 
 #include "tribos/core/Errors.hpp"
@@ -18,63 +21,86 @@ namespace tribos::core {
 namespace {
 std::string lastError() { return std::strerror(errno); }
 
-/// Every byte of `text` to `fd`; false (errno set) on failure.
+/// A reader that takes nothing for this long is taken for gone (a FIFO whose reader hangs).
+constexpr int kStreamTimeoutMs = 60 * 1000;
+
+/// Every byte of `text` to `fd`; false (errno set) on failure. A non-blocking descriptor (a
+/// FIFO) waits for its reader at most kStreamTimeoutMs per chunk (errno ETIMEDOUT).
 bool writeAll(int fd, const std::string& text) {
   size_t done = 0;
   while (done < text.size()) {
     const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
     if (n < 0 && errno == EINTR) continue;
+    if (n < 0 && errno == EAGAIN) {
+      pollfd wait{fd, POLLOUT, 0};
+      const int ready = ::poll(&wait, 1, kStreamTimeoutMs);
+      if (ready == 0) errno = ETIMEDOUT;
+      if (ready <= 0) return false;
+      continue;
+    }
+    if (n == 0) errno = EIO;
     if (n <= 0) return false;
     done += static_cast<size_t>(n);
   }
   return true;
 }
 
-/// The mode of a new file under the process's umask (umask can only be read by setting it).
+/// The mode of a new file under the process's umask, read from /proc (setting the umask to
+/// read it would change it for every thread a moment); 0644 where /proc does not say.
 mode_t newFileMode() {
-  const mode_t mask = ::umask(0);
-  ::umask(mask);
-  return 0666 & ~mask;
+  std::ifstream status("/proc/self/status");
+  for (std::string line; std::getline(status, line);)
+    if (line.rfind("Umask:", 0) == 0) return 0666 & ~static_cast<mode_t>(std::strtol(line.c_str() + 6, nullptr, 8));
+  return 0644;
 }
 
-/// One of this process's open descriptors (--summary /dev/stdout): whatever it leads to, it is
-/// written in place and appended to; renaming over its target would replace, say, the log
-/// file that standard output is redirected to.
-bool isDescriptorPath(const std::string& path) {
-  for (const char* prefix : {"/dev/stdout", "/dev/stderr", "/dev/fd/", "/proc/self/fd/"})
-    if (path.rfind(prefix, 0) == 0) return true;
-  return false;
+/// The descriptor of this process that `path` names (/dev/stdout, /dev/fd/2, a link to the
+/// file standard output goes to), or -1: written in place through a copy of it, at its
+/// offset, so that the summary follows what the run printed there instead of replacing the
+/// log that standard output is redirected to.
+int processDescriptor(const std::string& path) {
+  for (const char* prefix : {"/dev/fd/", "/proc/self/fd/"})
+    if (path.rfind(prefix, 0) == 0) return std::atoi(path.c_str() + std::strlen(prefix));
+  if (path == "/dev/stdout") return 1;
+  if (path == "/dev/stderr") return 2;
+  struct stat target {}, open {};
+  if (::stat(path.c_str(), &target) != 0) return -1;
+  for (int fd : {1, 2})
+    if (::fstat(fd, &open) == 0 && S_ISREG(open.st_mode) && open.st_dev == target.st_dev &&
+        open.st_ino == target.st_ino)
+      return fd;
+  return -1;
+}
+
+/// `path` with its symbolic links followed, even to a target that does not exist yet
+/// (weakly_canonical would stop at a dangling link, and the rename would replace the link).
+std::string followLinks(std::string path) {
+  std::error_code error;
+  for (int hop = 0; hop < 40 && std::filesystem::is_symlink(path, error); ++hop) {
+    std::filesystem::path target = std::filesystem::read_symlink(path, error);
+    if (error) break;
+    if (target.is_relative()) target = std::filesystem::path(path).parent_path() / target;
+    path = target.lexically_normal().string();
+  }
+  return path;
 }
 }  // namespace
 
 OutputFile::OutputFile(std::string path, std::string option, bool streamAllowed)
     : path_(std::move(path)), option_(std::move(option)) {
   const std::string where = path_ + " (" + option_ + ")";
-  if (isDescriptorPath(path_)) {
-    if (!streamAllowed) throw InputError(where + ": is a file descriptor; this result needs a regular file");
-    streamFd_ = ::open(path_.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
+  if (const int fd = processDescriptor(path_); fd >= 0) {
+    if (!streamAllowed) throw InputError(where + ": is a descriptor of this process; this result needs a regular file");
+    streamFd_ = ::fcntl(fd, F_DUPFD_CLOEXEC, 3);
     if (streamFd_ < 0) throw InputError(where + ": cannot write to it (" + lastError() + ")");
     return;
   }
-  std::error_code error;
-  if (std::filesystem::is_symlink(path_, error)) {
-    const auto target = std::filesystem::weakly_canonical(path_, error);
-    if (!error) path_ = target.string();
-  }
+  path_ = followLinks(path_);
   struct stat info {};
   if (::stat(path_.c_str(), &info) == 0) {
     if (S_ISDIR(info.st_mode)) throw InputError(where + ": is a directory; give a file name");
     if (S_ISCHR(info.st_mode) || S_ISFIFO(info.st_mode)) {
-      const std::string kind = S_ISFIFO(info.st_mode) ? "a FIFO" : "a character device";
-      if (!streamAllowed)
-        throw InputError(where + ": is " + kind + "; this result needs a regular file (leave " + option_ +
-                         " out to write none)");
-      // Without O_NONBLOCK, opening a FIFO waits for a reader; with it, ENXIO says there is none.
-      streamFd_ = ::open(path_.c_str(), O_WRONLY | O_NONBLOCK | O_CLOEXEC);
-      if (streamFd_ < 0)
-        throw InputError(where + ": cannot write to " + kind + " (" +
-                         (errno == ENXIO ? std::string("no process reads it") : lastError()) + ")");
-      ::fcntl(streamFd_, F_SETFL, ::fcntl(streamFd_, F_GETFL) & ~O_NONBLOCK);
+      openStream(where, S_ISFIFO(info.st_mode) ? "a FIFO" : "a character device", streamAllowed);
       return;
     }
     if (!S_ISREG(info.st_mode)) throw InputError(where + ": is not a regular file, a device or a FIFO");
@@ -82,28 +108,44 @@ OutputFile::OutputFile(std::string path, std::string option, bool streamAllowed)
   // A trial file where the result will be written, removed at once: an unwritable directory
   // is found now, not after the solve.
   try {
-    ::unlink(createTemporary().c_str());
+    const auto [trial, fd] = createTemporary();
+    ::close(fd);
+    ::unlink(trial.c_str());
   } catch (const IoError& e) {
     throw InputError(std::string(e.what()) + ": check that its directory exists and is writable");
   }
+}
+
+void OutputFile::openStream(const std::string& where, const std::string& kind, bool streamAllowed) {
+  if (!streamAllowed)
+    throw InputError(where + ": is " + kind + "; this result needs a regular file (leave " + option_ +
+                     " out to write none)");
+  // Without O_NONBLOCK, opening a FIFO waits for a reader; with it, ENXIO says there is none.
+  // It stays non-blocking: writeAll waits for a slow reader, but not for ever.
+  streamFd_ = ::open(path_.c_str(), O_WRONLY | O_NONBLOCK | O_CLOEXEC);
+  if (streamFd_ < 0)
+    throw InputError(where + ": cannot write to " + kind + " (" +
+                     (errno == ENXIO ? std::string("no process reads it") : lastError()) + ")");
 }
 
 OutputFile::~OutputFile() {
   if (streamFd_ >= 0) ::close(streamFd_);
 }
 
-std::string OutputFile::createTemporary() const {
+std::pair<std::string, int> OutputFile::createTemporary() const {
   std::string name = path_ + ".tribos-partial-XXXXXX";
   std::vector<char> buffer(name.begin(), name.end());
   buffer.push_back('\0');
   const int fd = ::mkstemp(buffer.data());  // O_EXCL: a name no other run holds
   if (fd < 0) throw IoError(path_ + " (" + option_ + "): cannot create a file next to it (" + lastError() + ")");
-  ::close(fd);
-  return buffer.data();
+  return {buffer.data(), fd};
 }
 
 void OutputFile::commit(const std::string& temporary) const {
-  if (::chmod(temporary.c_str(), newFileMode()) != 0) fail(temporary, "cannot set its permissions: " + lastError());
+  // The mode of the file it replaces, or a new file's.
+  struct stat old {};
+  const mode_t mode = ::stat(path_.c_str(), &old) == 0 ? (old.st_mode & 07777) : newFileMode();
+  if (::chmod(temporary.c_str(), mode) != 0) fail(temporary, "cannot set its permissions: " + lastError());
   if (::rename(temporary.c_str(), path_.c_str()) != 0) fail(temporary, "cannot rename it into place: " + lastError());
 }
 
@@ -113,28 +155,34 @@ void OutputFile::fail(const std::string& temporary, const std::string& why) cons
 }
 
 void OutputFile::writeWith(const std::function<void(const std::string& path)>& write) {
-  const std::string temporary = createTemporary();
+  const auto [temporary, fd] = createTemporary();
+  ::close(fd);  // the writer opens it by name (netCDF)
   try {
     write(temporary);
-  } catch (const std::exception& e) {
+  } catch (const IoError& e) {
     fail(temporary, e.what());
+  } catch (const InputError& e) {  // the Exodus writer's failed calls (a full disk among them)
+    fail(temporary, e.what());
+  } catch (...) {  // not a write failure: no partial file, and the error stays what it is
+    ::unlink(temporary.c_str());
+    throw;
   }
   commit(temporary);
 }
 
 void OutputFile::writeText(const std::string& text) {
   if (streamFd_ >= 0) {
+    std::cout.flush();  // a descriptor shared with standard output: what was printed comes first
+    std::fflush(stdout);
     if (!writeAll(streamFd_, text)) fail("", lastError());
     return;
   }
-  writeWith([&](const std::string& temporary) {
-    const int fd = ::open(temporary.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
-    if (fd < 0) throw IoError(lastError());
-    const bool written = writeAll(fd, text);
-    const std::string why = written ? "" : lastError();
-    if (::close(fd) != 0 && written) throw IoError(lastError());
-    if (!written) throw IoError(why);
-  });
+  const auto [temporary, fd] = createTemporary();
+  const bool written = writeAll(fd, text);
+  const std::string why = written ? "" : lastError();
+  if (::close(fd) != 0 && written) fail(temporary, lastError());
+  if (!written) fail(temporary, why);
+  commit(temporary);
 }
 
 }  // namespace tribos::core

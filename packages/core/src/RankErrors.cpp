@@ -1,6 +1,8 @@
 #include "tribos/core/RankErrors.hpp"
 
 #include <chrono>
+#include <exception>
+#include <stdexcept>
 #include <cstdlib>
 #include <iostream>
 #include <sstream>
@@ -39,6 +41,25 @@ std::string rankList(const std::vector<int>& ranks, int size) {
   return text + " of " + std::to_string(size);
 }
 }  // namespace
+
+void onEveryRankOrNone(const std::function<void()>& work, const std::string& othersWhat, MPI_Comm comm) {
+  std::exception_ptr failure;
+  int mine = 0;  // 0 ok, 1 bad input, 2 anything else
+  try {
+    work();
+  } catch (const InputError&) {
+    failure = std::current_exception();
+    mine = 1;
+  } catch (...) {
+    failure = std::current_exception();
+    mine = 2;
+  }
+  int worst = 0;
+  MPI_Allreduce(&mine, &worst, 1, MPI_INT, MPI_MAX, comm);
+  if (failure) std::rethrow_exception(failure);
+  if (worst == 1) throw InputError(othersWhat);
+  if (worst == 2) throw std::runtime_error(othersWhat);
+}
 
 RankErrors::RankErrors(double graceSeconds) : graceSeconds_(graceSeconds) {
   MPI_Comm_dup(MPI_COMM_WORLD, &comm_);

@@ -192,11 +192,8 @@ ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decom
                          spec.slaveSideSet + "\", master \"" + spec.masterSideSet + "\")");
   if (!spec.slaveSideSet.empty()) {
     const auto search = mesh::searchContactPairs(mesh, spec.slaveSideSet, spec.masterSideSet, spec.searchDistance);
-    core::requireInput(spec.discretization == "Mortar" || spec.discretization == "Node To Surface",
-                       "Contact/Discretization: \"" + spec.discretization +
-                           "\" is not one of \"Mortar\", \"Node To Surface\"");
     std::vector<mesh::MortarRow> masterSides;
-    if (spec.discretization == "Mortar") {
+    if (spec.discretization == ContactDiscretization::Mortar) {
       const mesh::MasterSurface master(mesh, spec.masterSideSet);
       masterSides = mesh::dualMortarRows(mesh, spec.slaveSideSet, master, search, spec.searchDistance);
     } else {

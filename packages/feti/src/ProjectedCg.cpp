@@ -38,21 +38,19 @@ std::pair<double, double> lanczosExtremes(const std::vector<double>& alpha, cons
 }
 
 ProjectedCgResult solveProjectedCg(const TotalFeti& feti, DualVector& lambda, const ProjectedCgSettings& settings) {
-  const auto& pc = settings.preconditioner;
-  if (pc != "None" && pc != "Lumped" && pc != "Dirichlet")
-    throw core::InputError("FETI/Preconditioner: \"" + pc + "\" is not one of \"None\", \"Lumped\", \"Dirichlet\"");
+  const DualPreconditioner pc = settings.preconditioner;
   ProjectedCgResult result;
   const long long fStart = feti.fApplications();
   auto w = feti.createDualVector(), z = feti.createDualVector(), p = feti.createDualVector(),
        q = feti.createDualVector();
   // z = P M P w: the preconditioner acts on projected residuals and returns a vector of Ker G.
   auto precondition = [&](const DualVector& in, DualVector& out) {
-    if (pc == "None") {
+    if (pc == DualPreconditioner::None) {
       out.assign(in);
       return;
     }
     DualVector tmp(in.getMap());
-    if (pc == "Lumped") feti.applyLumped(in, tmp);
+    if (pc == DualPreconditioner::Lumped) feti.applyLumped(in, tmp);
     else feti.applyDirichlet(in, tmp);
     feti.project(tmp, out);
   };

@@ -44,7 +44,7 @@ std::array<LO, 3> chooseFixingNodes(const std::vector<std::array<double, 3>>& co
 }
 
 void SubdomainSolver::compute(const fem::SubdomainSystem& system, const std::vector<std::array<double, 3>>& coords,
-                              const std::string& factorization, const SparseCholeskyOptions& options) {
+                              Factorization factorization, const SparseCholeskyOptions& options) {
   const fem::CsrMatrix& K = system.K;
   n_ = K.n;
   R_ = system.R;

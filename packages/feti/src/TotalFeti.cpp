@@ -320,7 +320,7 @@ KBlock extractBlock(const fem::CsrMatrix& K, const std::vector<LO>& rows, const 
 }
 
 // K_bb (both preconditioners) and, for the Dirichlet one (`interiorToo`), K_ii's factor and K_ib.
-void buildPreconditionerBlocks(TotalFeti::Local& L, bool interiorToo, const std::string& factorization,
+void buildPreconditionerBlocks(TotalFeti::Local& L, bool interiorToo, Factorization factorization,
                                const SparseCholeskyOptions& options) {
   DirichletBlocks& D = L.dirichlet;
   std::vector<char> touched(L.n(), 0);
@@ -463,6 +463,8 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
   buildCoarsePattern();
   measureTraffic();  // before factorizeCoarse: "Auto" compares the coarse solve with it
   factorizeCoarse();
+  if (settings_.deadline) settings_.deadline->check("the coarse problem", rawComm(*comm));
+  settings_.deadline = nullptr;  // the caller's: not kept beyond the set-up
 
   // (5) e = R^T f, d~ = B K^dagger f - c, lambda_Im = G^T (G G^T)^{-1} e.
   e_.assign(numCoarse(), 0.0);
@@ -1146,11 +1148,11 @@ bool TotalFeti::singleCoarsePays(double coarseToFBytes) const {
   // paper's bricks) pairs of constraints reach their bounds in the same step only with it,
   // and any perturbation of P beyond ~1e-11 costs up to 20 % more F applications there
   // (doc/measurements/coarse_problem.md, "The coarse factor in single precision").
-  if (settings_.coarsePrecision == "Single") return true;
-  if (settings_.coarsePrecision == "Double") return false;
-  TEUCHOS_TEST_FOR_EXCEPTION(settings_.coarsePrecision != "Auto", std::invalid_argument,
-                             "tribos::feti::TotalFeti: coarsePrecision must be \"Auto\", \"Single\" or \"Double\", not \""
-                                 << settings_.coarsePrecision << "\"");
+  switch (settings_.coarsePrecision) {
+    case CoarsePrecision::Single: return true;
+    case CoarsePrecision::Double: return false;
+    case CoarsePrecision::Auto: break;
+  }
   return coarseToFBytes >= 1.0;
 }
 

@@ -80,7 +80,7 @@ class PenalisedPreconditioner : public SymmetricOperator {
 /// rho growth; not once the equality test holds (r is then round-off and inner accuracy).
 double rhoFactor(const SmalseSettings& s, double r, bool equalityMet) {
   if (s.rhoGrowth <= 1.0 || !(r > s.rhoTargetRatio)) return 1.0;
-  if (s.rhoUpdate != "Model") return s.rhoGrowth;
+  if (s.rhoUpdate != RhoUpdate::Model) return s.rhoGrowth;
   if (equalityMet) return 1.0;
   if (r >= 1.0) return s.rhoGrowth;
   return std::min(s.rhoGrowth, (1.0 / s.rhoTargetRatio - 1.0) / (1.0 / r - 1.0));
@@ -154,7 +154,7 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
   betaT.putScalar(0.0);
   double previousL = 0.0, previousGmu = 0.0;
   MultiplierRelaxation relaxation;
-  const bool relaxed = s.multiplierStep == "Relaxed";
+  const bool relaxed = s.multiplierStep == MultiplierStep::Relaxed;
   // The outer iteration in progress, the last inner ||G mu|| and the inner stopping bound,
   // for the progress of long inner solves.
   int outer = 0;
@@ -192,7 +192,7 @@ SmalseCounters SmalseM::solve(const SymmetricOperator& A, const EqualityProjecto
   // test ||Q mu|| <= eps M0 ||mu|| is scale-free as printed.
   const double normA = counters.normA;
   auto equalityMet = [&](double gmu, const Vector& x) {
-    if (s.equalityTest == "Paper") return gmu <= s.tolerance * s.M0 * norm2(x);
+    if (s.equalityTest == EqualityTest::Paper) return gmu <= s.tolerance * s.M0 * norm2(x);
     return normA * gmu <= eps;
   };
   auto smalseConverged = [&](double gp, double gmu, const Vector& x) { return gp <= eps && equalityMet(gmu, x); };

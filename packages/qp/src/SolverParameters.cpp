@@ -51,7 +51,7 @@ const core::ParameterTable<SmalseSettings>& smalseTable() {
           .add("equality test", &SmalseSettings::equalityTest,
                "outer test on ||G mu|| = ||Q mu||: \"Conventional\" (||A|| ||Q mu|| <= epsilon ||c||) or \"Paper\" "
                "(||Q mu|| <= epsilon M_0 ||mu||)",
-               {"Conventional", "Paper"})
+               kEqualityTestNames)
           .add("rho growth", &SmalseSettings::rhoGrowth,
                "rho is multiplied by it (rho update Ratio; Model: by at most it) after an outer iteration that "
                "reduced ||G mu|| by less than the rho target ratio (1: fixed rho, the paper's algorithm)",
@@ -64,12 +64,12 @@ const core::ParameterTable<SmalseSettings>& smalseTable() {
                "ratio t (rho growth > 1 only): \"Ratio\" multiplies it by rho growth; \"Model\" by (1/t - 1) / "
                "(1/r - 1), at most rho growth, while the equality test fails (the augmented-Lagrangian rate r = 1 / "
                "(1 + rho s) solved for the rho that gives t; doc/parameters.md)",
-               {"Ratio", "Model"})
+               kRhoUpdateNames)
           .add("multiplier step", &SmalseSettings::multiplierStep,
                "Step 3, beta += omega rho G mu: \"Fixed\" omega = 1 (the paper's); \"Relaxed\" omega = 2 / (2 - r0) "
                "in [1, 5/3], r0 the contraction of ||G mu|| per outer iteration that omega = 1 would give, measured "
                "(omega = 1 while r0 <= 0.3 or G mu turns; doc/parameters.md)",
-               {"Relaxed", "Fixed"})
+               kMultiplierStepNames)
           .add("norm estimate steps", &SmalseSettings::normEstimateSteps,
                "cap on the Lanczos steps (products with A, counted in the PFP applications) that estimate ||A|| "
                "(8-15 on Table 1 at the default tolerance, 9-25 at 1e-4; the power method needed about 25 for 1e-4)",

@@ -35,14 +35,19 @@ std::string describeContactChain(const Teuchos::ParameterList& tribos) {
   chain << "T-FETI (" << fetiList.get<std::string>("Factorization") << " K_reg, "
         << fetiList.get<std::string>("Dual Operator") << " F, coarse projector P = I - G^T (G G^T)^-1 G) -> SMALSE-M (eps "
         << smalse.tolerance << ", rho " << smalse.rho << " ||PFP||, M0 " << smalse.M0 << " ||PFP||, eta " << smalse.eta
-        << " ||Ph||, beta " << smalse.betaM << ", " << smalse.equalityTest << " test) -> MPGP (alpha_bar "
+        << " ||Ph||, beta " << smalse.betaM << ", " << core::nameOf(qp::kEqualityTestNames, smalse.equalityTest)
+        << " test) -> MPGP (alpha_bar "
         << smalse.mpgp.stepScale << "/||A||, Gamma " << smalse.mpgp.gamma << ", preconditioned in face: "
         << fetiList.get<std::string>("Preconditioner") << (smalse.mpgp.choppedProportioning ? ", chopped proportioning" : "")
-        << ") -> " << friction.model;
-  if (friction.model == "Coulomb")
-    chain << " (" << friction.fixedPoint << " successive approximations, F1 " << friction.F1 << ", F2 " << friction.F2
-          << (friction.fixedPoint == "Inexact" ? ", slip-bound test " + friction.slipBoundTest : std::string()) << ")";
-  if (friction.model == "Tresca") chain << " (g = " << friction.slipBound << ", F1 " << friction.F1 << ", F2 "
+        << ") -> " << core::nameOf(contact::kFrictionModelNames, friction.model);
+  if (friction.model == contact::FrictionModel::Coulomb)
+    chain << " (" << core::nameOf(contact::kFixedPointNames, friction.fixedPoint) << " successive approximations, F1 "
+          << friction.F1 << ", F2 " << friction.F2
+          << (friction.fixedPoint == contact::FixedPoint::Inexact
+                  ? std::string(", slip-bound test ") + core::nameOf(contact::kSlipBoundTestNames, friction.slipBoundTest)
+                  : std::string())
+          << ")";
+  if (friction.model == contact::FrictionModel::Tresca) chain << " (g = " << friction.slipBound << ", F1 " << friction.F1 << ", F2 "
                                         << friction.F2 << ")";
   return chain.str();
 }
@@ -127,7 +132,8 @@ std::string relativeResiduals(const qp::SmalseCounters& c, double eps) {
 void nameTheLimit(const WallClockBudget& budget, const RunRecord& runs, const qp::SmalseSettings& smalse,
                   const contact::FrictionSettings& friction, contact::ContactResult& result) {
   if (result.converged || result.counters.nonFinite) return;
-  const bool exact = friction.model == "Coulomb" && friction.fixedPoint == "Exact";
+  const bool exact =
+      friction.model == contact::FrictionModel::Coulomb && friction.fixedPoint == contact::FixedPoint::Exact;
   std::string message;
   if (budget.ranOut()) {
     message = budget.message();
@@ -201,7 +207,7 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
   MPI_Comm_rank(comm, &rank);
   const auto& fetiList = tribos.sublist("FETI");
   feti::TotalFetiSettings settings = totalFetiSettings(fetiList, false);
-  const std::string preconditioner = fetiList.get<std::string>("Preconditioner");
+  const feti::DualPreconditioner preconditioner = dualPreconditioner(fetiList);
   auto friction = frictionSettings(tribos);
   auto smalse = smalseSettings(tribos);
   const core::Deadline deadline(tribos.sublist("Solver").get<double>("Max Seconds"), runStart);

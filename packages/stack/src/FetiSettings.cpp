@@ -6,27 +6,25 @@
 
 namespace tribos::stack {
 
-namespace {
-feti::CholmodMode cholmodMode(const std::string& name) {
-  if (name == "Simplicial") return feti::CholmodMode::Simplicial;
-  if (name == "Supernodal") return feti::CholmodMode::Supernodal;
-  return feti::CholmodMode::Auto;  // the validator admits nothing else
-}
-}  // namespace
-
 feti::TotalFetiSettings totalFetiSettings(const Teuchos::ParameterList& feti, bool exactProjector) {
   feti::TotalFetiSettings settings;
-  settings.factorization = feti.get<std::string>("Factorization");
-  settings.explicitF = feti.get<std::string>("Dual Operator") == "Explicit";
-  const std::string preconditioner = feti.get<std::string>("Preconditioner");
-  settings.dirichletPreconditioner = preconditioner == "Dirichlet";
-  settings.lumpedPreconditioner = preconditioner == "Lumped";
-  if (!exactProjector) settings.coarsePrecision = feti.get<std::string>("Coarse Factor Precision");
-  settings.factorOptions.cholmodMode = cholmodMode(feti.get<std::string>("CHOLMOD Mode"));
+  settings.factorization = core::valueOf(feti::kFactorizationNames, feti.get<std::string>("Factorization"));
+  settings.explicitF = core::valueOf(feti::kDualOperatorNames, feti.get<std::string>("Dual Operator")) ==
+                       feti::DualOperator::Explicit;
+  const auto preconditioner = dualPreconditioner(feti);
+  settings.dirichletPreconditioner = preconditioner == feti::DualPreconditioner::Dirichlet;
+  settings.lumpedPreconditioner = preconditioner == feti::DualPreconditioner::Lumped;
+  if (!exactProjector)
+    settings.coarsePrecision = core::valueOf(feti::kCoarsePrecisionNames, feti.get<std::string>("Coarse Factor Precision"));
+  settings.factorOptions.cholmodMode = core::valueOf(feti::kCholmodModeNames, feti.get<std::string>("CHOLMOD Mode"));
   settings.factorOptions.subtreeSolveFromValues = feti.get<int>("Subtree Solve From");
   settings.distributedCoarseFromValues = feti.get<int>("Distributed Coarse From");
   settings.singleCoarseGate = feti.get<double>("Single Coarse Gate");
   return settings;
+}
+
+feti::DualPreconditioner dualPreconditioner(const Teuchos::ParameterList& feti) {
+  return core::valueOf(feti::kDualPreconditionerNames, feti.get<std::string>("Preconditioner"));
 }
 
 }  // namespace tribos::stack

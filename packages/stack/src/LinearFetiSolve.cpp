@@ -24,7 +24,7 @@ feti::ConstraintSpec constraintSpec(const Scene& scene) {
     spec.slaveSideSet = scene.contact.slaveSideSet;
     spec.masterSideSet = scene.contact.masterSideSet;
   }
-  spec.tangentialRows = scene.contact.frictionModel != "None";
+  spec.tangentialRows = scene.contact.frictionModel != contact::FrictionModel::None;
   spec.t1Direction = scene.contact.t1Direction;
   spec.searchDistance = scene.contact.searchDistance;
   spec.discretization = scene.contact.discretization;
@@ -71,7 +71,7 @@ LinearFetiResult solveLinearFeti(const Scene& scene, std::vector<fem::SubdomainS
   feti::ProjectedCgSettings cg;
   cg.tolerance = tolerance;
   cg.maxIterations = fetiList.get<int>("Max Iterations");
-  cg.preconditioner = fetiList.get<std::string>("Preconditioner");
+  cg.preconditioner = dualPreconditioner(fetiList);
   cg.stopRequested = budget.stopRequest();
   auto lambda = feti.createDualVector();
   const auto solve = feti::solveProjectedCg(feti, *lambda, cg);

@@ -4,6 +4,8 @@
 #include <vector>
 
 #include "tribos/core/Errors.hpp"
+#include "tribos/core/RankErrors.hpp"
+#include "tribos/mesh/ExodusIO.hpp"
 
 namespace tribos::stack {
 
@@ -75,6 +77,14 @@ void requireSameMeshOnEveryRank(const mesh::Mesh& mesh, const std::string& file,
             " nodes, " + std::to_string(all[3 * r + 2]) + " elements";
   throw core::InputError(file + ": the ranks read different meshes (" + what +
                          "): was the file replaced while the job started? Run again once it is complete");
+}
+
+mesh::Mesh readMeshOnEveryRank(const std::string& file, MPI_Comm comm) {
+  mesh::Mesh mesh;
+  core::onEveryRankOrNone([&] { mesh = mesh::readExodus(file).mesh; }, file + ": another rank could not read it",
+                          comm);
+  requireSameMeshOnEveryRank(mesh, file, comm);
+  return mesh;
 }
 
 }  // namespace tribos::stack

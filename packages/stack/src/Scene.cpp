@@ -12,6 +12,7 @@
 #include "tribos/mesh/BoundaryFaces.hpp"
 #include "tribos/mesh/ExodusIO.hpp"
 #include "tribos/mesh/TwoBricks.hpp"
+#include "tribos/stack/SameMeshOnEveryRank.hpp"
 
 namespace tribos::stack {
 
@@ -59,7 +60,7 @@ std::array<double, 3> vector3(const ParameterList& pl, const std::string& name, 
 }
 
 std::string meshPath(const ParameterList& meshList, const std::string& source) {
-  if (meshList.get<std::string>("Generator") == "Two Bricks") return "";
+  if (meshGenerator(meshList) == MeshGenerator::TwoBricks) return "";
   auto file = meshList.get<std::string>("File");
   core::requireInput(!file.empty(), source + ": Mesh/Generator is \"Exodus\" but Mesh/File is empty");
   // A relative path is relative to the scene file, so scenes can travel with their meshes.
@@ -69,12 +70,11 @@ std::string meshPath(const ParameterList& meshList, const std::string& source) {
   return file;
 }
 
-void readMesh(const ParameterList& meshList, const std::string& source, Scene& scene) {
+void readMesh(const ParameterList& meshList, const std::string& source, MPI_Comm comm, Scene& scene) {
   core::Stopwatch watch;
-  const auto generator = meshList.get<std::string>("Generator");
-  const auto decomposition = meshList.get<std::string>("Decomposition");
+  const auto decomposition = core::valueOf(kMeshDecompositionNames, meshList.get<std::string>("Decomposition"));
   std::vector<int> parts;
-  if (generator == "Two Bricks") {
+  if (meshGenerator(meshList) == MeshGenerator::TwoBricks) {
     mesh::TwoBricksSpec spec;
     spec.subdomainsPerBrick =
         mesh::BrickGrid::parse(meshList.get<std::string>("Subdomains Per Brick"), "Mesh/Subdomains Per Brick");
@@ -83,11 +83,11 @@ void readMesh(const ParameterList& meshList, const std::string& source, Scene& s
     scene.mesh = mesh::generateTwoBricks(spec);
     scene.meshSeconds = watch.seconds();
     watch.restart();
-    parts = decomposition == "Structured" ? mesh::structuredPartition(scene.mesh, spec)
+    parts = decomposition == MeshDecomposition::Structured ? mesh::structuredPartition(scene.mesh, spec)
                                           : mesh::metisPartition(scene.mesh, meshList.get<int>("Subdomains"));
   } else {
     const std::string file = meshPath(meshList, source);
-    scene.mesh = mesh::readExodus(file).mesh;
+    scene.mesh = comm == MPI_COMM_NULL ? mesh::readExodus(file).mesh : readMeshOnEveryRank(file, comm);
     scene.meshSeconds = watch.seconds();
     watch.restart();
     parts = mesh::metisPartition(scene.mesh, meshList.get<int>("Subdomains"));
@@ -226,25 +226,26 @@ void readBoundary(const ParameterList& list, const std::string& source, bool pap
 }
 }  // namespace
 
-Scene buildScene(const ParameterList& tribos, const std::string& source) {
+Scene buildScene(const ParameterList& tribos, const std::string& source, MPI_Comm comm) {
   Scene scene;
   scene.source = source;
   const ParameterList& meshList = tribos.sublist("Mesh");
-  const bool twoBricks = meshList.get<std::string>("Generator") == "Two Bricks";
-  readMesh(meshList, source, scene);
+  const bool twoBricks = meshGenerator(meshList) == MeshGenerator::TwoBricks;
+  readMesh(meshList, source, comm, scene);
   readMaterials(tribos.sublist("Materials"), source, twoBricks, scene);
   readLoads(tribos.sublist("Loads"), source, twoBricks, scene);
 
   readBoundary(tribos.sublist("Boundary"), source, twoBricks, scene);
   const ParameterList& contact = tribos.sublist("Contact");
-  scene.contact.frictionModel = contact.get<std::string>("Friction Model");
+  scene.contact.frictionModel = core::valueOf(contact::kFrictionModelNames, contact.get<std::string>("Friction Model"));
   scene.contact.F1 = contact.get<double>("F1");
   scene.contact.F2 = contact.get<double>("F2");
   scene.contact.slaveSideSet = contact.get<std::string>("Slave Side Set");
   scene.contact.masterSideSet = contact.get<std::string>("Master Side Set");
   scene.contact.t1Direction = vector3(contact, "T1 Direction", source + ": Contact");
   scene.contact.searchDistance = contact.get<double>("Search Distance");
-  scene.contact.discretization = contact.get<std::string>("Discretization");
+  scene.contact.discretization =
+      core::valueOf(feti::kContactDiscretizationNames, contact.get<std::string>("Discretization"));
   core::requireInput(scene.contact.slaveSideSet.empty() == scene.contact.masterSideSet.empty(),
                      source + ": Contact: give both \"Slave Side Set\" and \"Master Side Set\", or "
                               "neither (no contact)");
@@ -261,6 +262,10 @@ Scene buildScene(const ParameterList& tribos, const std::string& source) {
 
 std::string meshFilePath(const ParameterList& tribos, const std::string& source) {
   return meshPath(tribos.sublist("Mesh"), source);
+}
+
+MeshGenerator meshGenerator(const ParameterList& meshList) {
+  return core::valueOf(kMeshGeneratorNames, meshList.get<std::string>("Generator"));
 }
 
 }  // namespace tribos::stack

@@ -8,7 +8,9 @@
 #include "tribos/contact/ContactSolver.hpp"
 #include "tribos/core/ParameterTable.hpp"
 #include "tribos/core/Validators.hpp"
+#include "tribos/feti/TotalFeti.hpp"
 #include "tribos/qp/SolverParameters.hpp"
+#include "tribos/stack/Scene.hpp"
 
 namespace tribos::stack {
 
@@ -33,7 +35,7 @@ const core::ParameterTable<contact::FrictionSettings>& frictionTable() {
           .add("Friction Model", &F::model,
                "\"None\" (frictionless), \"Tresca\" (given slip bound), \"Coulomb\" (successive "
                "approximations on the slip bound), \"Bonded\" (contact rows as equalities)",
-               {"None", "Tresca", "Coulomb", "Bonded"})
+               contact::kFrictionModelNames)
           .add("F1", &F::F1, "friction coefficient along t1 (isotropic when F1 = F2)",
                core::closedInterval(0.0, core::kMaxMagnitude))
           .add("F2", &F::F2, "friction coefficient along t2", core::closedInterval(0.0, core::kMaxMagnitude))
@@ -42,13 +44,13 @@ const core::ParameterTable<contact::FrictionSettings>& frictionTable() {
           .add("Fixed Point", &F::fixedPoint,
                "Coulomb: \"Inexact\" updates the slip bound g := lambda_nu after every SMALSE-M outer iteration "
                "(the paper's choice); \"Exact\" solves every Tresca problem to Solver/Tolerance first",
-               {"Inexact", "Exact"})
+               contact::kFixedPointNames)
           .add("Slip Bound Test", &F::slipBoundTest,
                "Coulomb, Inexact: \"Epsilon\" stops only when the last update moved the slip bound by at most "
                "Solver/Tolerance (relative); \"Paper\" on SMALSE-M's criteria alone, as the paper's Section 5 "
                "(its Table 1 counts), which may stop with g a few epsilon from lambda_nu and Coulomb's law broken at "
                "that bound: the KKT gate then reports the run as not converged (doc/parameters.md)",
-               {"Epsilon", "Paper"})
+               contact::kSlipBoundTestNames)
           .add("Max Fixed Point Iterations", &F::maxFixedPointIterations,
                "Coulomb, Exact: cap on the Tresca solves; reaching it ends the solve as not converged (exit 3)",
                core::intRange(1, kMaxCount));
@@ -60,7 +62,7 @@ void meshParameters(ParameterList& pl) {
       "Generator", "Two Bricks",
       "\"Two Bricks\": the paper's model problem (Section 6), generated; \"Exodus\": read "
       "Mesh/File (element blocks = bodies, node sets / side sets name the boundary parts)",
-      Teuchos::tuple<std::string>("Two Bricks", "Exodus"), &pl);
+      Teuchos::Array<std::string>(core::namesOf(kMeshGeneratorNames)), &pl);
   pl.set("Subdomains Per Brick", std::string("2x1x1"),
          "Two Bricks: subdomain grid NXxNYxNZ of each brick, cubic subdomains (NX = 2 NY = 2 NZ); "
          "the paper's s = NX*NY*NZ (Table 1: 2x1x1, 4x2x2, 6x3x3, 8x4x4, 10x5x5)");
@@ -83,7 +85,7 @@ void meshParameters(ParameterList& pl) {
       "Decomposition", "Structured",
       "\"Structured\": the brick grid of Subdomains Per Brick (Two Bricks only); \"METIS\": "
       "METIS_PartMeshDual per body into Mesh/Subdomains parts (always used for Exodus meshes)",
-      Teuchos::tuple<std::string>("Structured", "METIS"), &pl);
+      Teuchos::Array<std::string>(core::namesOf(kMeshDecompositionNames)), &pl);
 }
 
 void materialParameters(ParameterList& pl) {
@@ -149,7 +151,7 @@ void contactParameters(ParameterList& pl) {
       "contact rows of a slave node: \"Mortar\" (dual mortar weights of the master nodes, integrated over the "
       "slave surface: no pressure oscillation on non-matching meshes; node-to-node on matching ones) or "
       "\"Node To Surface\" (the master displacement interpolated at the node's projection)",
-      Teuchos::tuple<std::string>("Mortar", "Node To Surface"), &pl);
+      Teuchos::Array<std::string>(core::namesOf(feti::kContactDiscretizationNames)), &pl);
   pl.set("Search Distance", 1e-6,
          "contact search: a slave node is projected on the nearest master face within this distance [length] "
          "(set it above the largest initial gap that may close); a slave node with no master face that near "
@@ -168,7 +170,7 @@ void fetiTuningParameters(ParameterList& pl) {
       "faster from about 2000 rows on one thread, but it holds the BLAS lock, so in a team of two threads it "
       "catches up with two concurrent simplicial ones only at 4000-6500 rows), \"Simplicial\" or \"Supernodal\" "
       "(doc/factorization.md); the solves cost the same in both modes",
-      Teuchos::tuple<std::string>("Auto", "Simplicial", "Supernodal"), &pl);
+      Teuchos::Array<std::string>(core::namesOf(feti::kCholmodModeNames)), &pl);
   pl.set("Subtree Solve From", 500000,
          "the factor of G G^T (solved on one rank's threads) splits its elimination tree for concurrent solves "
          "when it stores at least this many values (doc/measurements/coarse_problem.md)",
@@ -190,18 +192,18 @@ void fetiParameters(ParameterList& pl) {
   Teuchos::setStringToIntegralParameter<int>(
       "Factorization", "CHOLMOD",
       "sparse Cholesky of the regularised subdomain stiffness K_reg and of G G^T (doc/factorization.md)",
-      Teuchos::tuple<std::string>("CHOLMOD", "Tacho"), &pl);
+      Teuchos::Array<std::string>(core::namesOf(feti::kFactorizationNames)), &pl);
   Teuchos::setStringToIntegralParameter<int>(
       "Dual Operator", "Implicit",
       "F = B K^dagger B^T: \"Implicit\" (two triangular solves per subdomain and application) or "
       "\"Explicit\" (dense local F_s assembled once, then dense matrix-vector products)",
-      Teuchos::tuple<std::string>("Implicit", "Explicit"), &pl);
+      Teuchos::Array<std::string>(core::namesOf(feti::kDualOperatorNames)), &pl);
   Teuchos::setStringToIntegralParameter<int>(
       "Preconditioner", "Dirichlet",
       "dual preconditioner P D P: \"None\", \"Lumped\" (D = B K B^T) or \"Dirichlet\" (D = B S B^T, S the "
       "Schur complement on the constrained dofs); linear solves: projected CG; contact: MPGP's CG steps "
       "preconditioned in face (restricted to the free set)",
-      Teuchos::tuple<std::string>("None", "Lumped", "Dirichlet"), &pl);
+      Teuchos::Array<std::string>(core::namesOf(feti::kDualPreconditionerNames)), &pl);
   Teuchos::setStringToIntegralParameter<int>(
       "Coarse Factor Precision", "Auto",
       "contact solves: the factor of G G^T that SMALSE-M's projections use: \"Single\" (rounded to 4 bytes per "
@@ -211,7 +213,7 @@ void fetiParameters(ParameterList& pl) {
       "read at least as many bytes as the subdomain solves of one F application: many small subdomains). Linear "
       "solves: always double "
       "(projected CG needs the exact projector). doc/measurements/coarse_problem.md",
-      Teuchos::tuple<std::string>("Auto", "Single", "Double"), &pl);
+      Teuchos::Array<std::string>(core::namesOf(feti::kCoarsePrecisionNames)), &pl);
   pl.set("Max Iterations", 1000,
          "linear solves: cap on projected CG iterations; reaching it ends the solve as not converged (exit 3)",
          core::intRange(1, kMaxCount));

@@ -11,9 +11,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cctype>
+#include <filesystem>
 #include <fstream>
 
 #include "tribos/core/Errors.hpp"
+#include "tribos/stack/Scene.hpp"
 #include "tribos/mesh/TwoBricks.hpp"
 
 namespace tribos::stack {
@@ -37,16 +39,42 @@ double physicalMemoryBytes() {
   return pages > 0 && pageSize > 0 ? static_cast<double>(pages) * static_cast<double>(pageSize) : HUGE_VAL;
 }
 
-/// The memory limit of this process's cgroup (v2 memory.max, or v1 memory.limit_in_bytes);
+/// A number in a cgroup file ("max", absent or unreadable: HUGE_VAL).
+double cgroupValue(const std::string& path) {
+  std::ifstream in(path);
+  std::string text;
+  if (in >> text && !text.empty() && std::isdigit(static_cast<unsigned char>(text[0])))
+    return std::strtod(text.c_str(), nullptr);
+  return HUGE_VAL;
+}
+
+/// The least memory limit of this process's cgroup and the cgroups above it (v2 memory.max,
+/// v1 memory.limit_in_bytes): a job step of a batch system sits in a cgroup of its own.
 /// HUGE_VAL when there is none or it cannot be read.
 double cgroupLimitBytes() {
-  for (const char* path : {"/sys/fs/cgroup/memory.max", "/sys/fs/cgroup/memory/memory.limit_in_bytes"}) {
-    std::ifstream in(path);
-    std::string text;
-    if (in >> text && !text.empty() && std::isdigit(static_cast<unsigned char>(text[0])))
-      return std::strtod(text.c_str(), nullptr);
+  std::ifstream self("/proc/self/cgroup");
+  double least = HUGE_VAL;
+  for (std::string line; std::getline(self, line);) {
+    // "0::/path" (v2) or "N:memory:/path" (v1; possibly among other controllers).
+    const auto first = line.find(':'), second = line.find(':', first + 1);
+    if (first == std::string::npos || second == std::string::npos) continue;
+    const std::string controllers = line.substr(first + 1, second - first - 1);
+    std::filesystem::path root, file;
+    if (controllers.empty()) {
+      root = "/sys/fs/cgroup";
+      file = "memory.max";
+    } else if (("," + controllers + ",").find(",memory,") != std::string::npos) {
+      root = "/sys/fs/cgroup/memory";
+      file = "memory.limit_in_bytes";
+    } else {
+      continue;
+    }
+    for (std::filesystem::path dir = root / line.substr(second + 2);; dir = dir.parent_path()) {
+      least = std::min(least, cgroupValue((dir / file).string()));
+      if (dir == root || !dir.has_relative_path() || dir.string().size() <= root.string().size()) break;
+    }
   }
-  return HUGE_VAL;
+  return least;
 }
 
 /// What this process may still map under its address-space limit (ulimit -v): the limit less
@@ -83,7 +111,7 @@ double SceneSize::bytesPerMachine(int ranksHere, int ranks, bool solving) const 
 SceneSize estimateSceneSize(const Teuchos::ParameterList& tribos) {
   const auto& meshList = tribos.sublist("Mesh");
   SceneSize size;
-  if (meshList.get<std::string>("Generator") != "Two Bricks") return size;
+  if (meshGenerator(meshList) != MeshGenerator::TwoBricks) return size;
   const auto grid =
       mesh::BrickGrid::parse(meshList.get<std::string>("Subdomains Per Brick"), "Mesh/Subdomains Per Brick");
   const double h = meshList.get<int>("H Over h");

@@ -118,10 +118,18 @@ TEST_F(Files, aFailedWriteKeepsTheOldFileAndLeavesNoPartial) {
   const auto why = messageOf<IoError>([&] {
     out.writeWith([](const std::string& temporary) {
       std::ofstream(temporary) << "half a file";
-      throw std::runtime_error("disk full");
+      throw IoError("disk full");
     });
   });
   EXPECT_NE(why.find("result.exo (--output): could not write the results: disk full"), std::string::npos) << why;
+  EXPECT_EQ(read(target), "the earlier result");
+  EXPECT_TRUE(leftovers({"result.exo"}).empty());
+  // Not a write failure (a bug in the writer): it stays what it is, nothing partial either.
+  EXPECT_THROW(out.writeWith([](const std::string& temporary) {
+    std::ofstream(temporary) << "half a file";
+    throw std::logic_error("inconsistent fields");
+  }),
+               std::logic_error);
   EXPECT_EQ(read(target), "the earlier result");
   EXPECT_TRUE(leftovers({"result.exo"}).empty());
 }
@@ -169,7 +177,11 @@ TEST_F(Files, devicesAndFifosAreWrittenInPlaceNeverReplaced) {
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
     }
   }
-  ASSERT_TRUE(out);
+  if (!out) {
+    std::ofstream(pipe) << "";  // lets the reader's open return, so that it can be joined
+    reader.join();
+    FAIL() << "the FIFO never had a reader";
+  }
   out->writeText("{\"converged\": true}\n");
   out.reset();  // closes: the reader sees the end
   reader.join();
@@ -177,24 +189,41 @@ TEST_F(Files, devicesAndFifosAreWrittenInPlaceNeverReplaced) {
   EXPECT_TRUE(fs::is_fifo(pipe));
 }
 
-TEST_F(Files, aDescriptorIsAppendedToNotReplaced) {
-  // Standard output redirected to a log: --summary /dev/stdout must add to the log, not
-  // rename a new file over it.
-  const auto log = write("run.log", "progress\n");
-  const int saved = ::dup(1);
-  const int fd = ::open(log.c_str(), O_WRONLY | O_APPEND);
-  ASSERT_GE(fd, 0);
-  ::dup2(fd, 1);
-  ::close(fd);
-  {
-    OutputFile out("/dev/stdout", "--summary", true);
-    out.writeText("{}\n");
+TEST_F(Files, aDescriptorIsWrittenInPlaceAfterWhatWasPrinted) {
+  // Standard output redirected to a log as a shell does it (truncated, not appending):
+  // --summary /dev/stdout, or the log's own name, must go into the log after what the run
+  // printed, and what it prints afterwards after the summary; never a new file renamed over it.
+  for (const std::string name : {"/dev/stdout", "run.log"}) {
+    SCOPED_TRACE(name);
+    const auto log = path("run.log");
+    const int saved = ::dup(1);
+    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ASSERT_GE(fd, 0);
+    ::dup2(fd, 1);
+    ::close(fd);
+    ASSERT_EQ(::write(1, "progress\n", 9), 9);
+    {
+      OutputFile out(name == "run.log" ? log : name, "--summary", true);
+      out.writeText("{}\n");
+    }
+    ASSERT_EQ(::write(1, "wrote\n", 6), 6);
+    ::dup2(saved, 1);
+    ::close(saved);
+    EXPECT_EQ(read(log), "progress\n{}\nwrote\n");
+    EXPECT_TRUE(leftovers({"run.log"}).empty());
   }
-  ::dup2(saved, 1);
-  ::close(saved);
-  EXPECT_EQ(read(log), "progress\n{}\n");
-  EXPECT_TRUE(leftovers({"run.log"}).empty());
   EXPECT_THROW(OutputFile("/dev/stdout", "--output", false), InputError);
+}
+
+TEST_F(Files, aReplacedFileKeepsItsPermissionsAndADanglingLinkIsWrittenThrough) {
+  const auto target = write("private.json", "old");
+  fs::permissions(target, static_cast<fs::perms>(0600));
+  OutputFile(target, "--summary", true).writeText("new");
+  EXPECT_EQ(fs::status(target).permissions(), static_cast<fs::perms>(0600));
+  fs::create_symlink("later.json", path("link.json"));  // its target does not exist yet
+  OutputFile(path("link.json"), "--summary", true).writeText("through");
+  EXPECT_TRUE(fs::is_symlink(path("link.json")));
+  EXPECT_EQ(read(path("later.json")), "through");
 }
 
 TEST_F(Files, anOutputInAMissingDirectoryIsRefusedBeforeAnyWork) {

@@ -75,7 +75,7 @@ feti::DisplacementCondition condition(const std::string& set, const std::string&
 /// y0 faces, u_z = 0 under the lower body), frictionless (normal rows only).
 feti::ConstraintSpec patchSpec(const std::string& discretization = "Node To Surface") {
   feti::ConstraintSpec spec;
-  spec.discretization = discretization;
+  spec.discretization = core::valueOf(feti::kContactDiscretizationNames, discretization);
   spec.displacementConditions = {condition("lower_x0", "x"), condition("upper_x0", "x"), condition("lower_y0", "y"),
                                  condition("upper_y0", "y"), condition("lower_z0", "z")};
   spec.slaveSideSet = "lower_z1";
@@ -94,7 +94,7 @@ feti::ConstraintSpec patchSpec(const std::string& discretization = "Node To Surf
 /// edge (u_x prescribed on both sides), T2 (along y) on the y = 0 edge.
 feti::ConstraintSpec droppingSpec(const std::string& discretization = "Node To Surface") {
   feti::ConstraintSpec spec;
-  spec.discretization = discretization;
+  spec.discretization = core::valueOf(feti::kContactDiscretizationNames, discretization);
   spec.displacementConditions = {condition("lower_x0", "x"),
                                  condition("upper_x0", "x"),
                                  condition("lower_y0", "y"),

@@ -49,7 +49,7 @@ TEST_P(SubdomainSolverTest, generalizedInverseSatisfiesKKplusKEqualsK) {
   for (int hOverH : {2, 3}) {
     const auto f = floatingSubdomain(hOverH);
     feti::SubdomainSolver solver;
-    solver.compute(f.system, f.coords, GetParam());
+    solver.compute(f.system, f.coords, core::valueOf(feti::kFactorizationNames, GetParam()));
     const size_t n = f.system.K.n;
     // Non-collinear fixing nodes.
     const auto& [a, b, c] = solver.fixingNodes();
@@ -71,7 +71,7 @@ TEST_P(SubdomainSolverTest, generalizedInverseSatisfiesKKplusKEqualsK) {
 TEST_P(SubdomainSolverTest, pseudoInverseSatisfiesMoorePenroseConditions) {
   const auto f = floatingSubdomain(2);
   feti::SubdomainSolver solver;
-  solver.compute(f.system, f.coords, GetParam());
+  solver.compute(f.system, f.coords, core::valueOf(feti::kFactorizationNames, GetParam()));
   const size_t n = f.system.K.n;
   // Dense K and K^dagger (n = 81).
   std::vector<double> K(n * n, 0.0), Kd(n * n, 0.0), e(n, 0.0);
@@ -116,7 +116,7 @@ TEST_P(SubdomainSolverTest, concurrentFactorizationsEqualSequentialOnes) {
     std::vector<feti::SubdomainSolver> solvers(16);
     core::forEachSubdomain(16, [&](int i) {
       const auto& f = subs[i % 4];
-      solvers[i].compute(f.system, f.coords, GetParam());
+      solvers[i].compute(f.system, f.coords, core::valueOf(feti::kFactorizationNames, GetParam()));
       const auto x = randomVector(f.system.K.n, i);
       out[i].resize(x.size());
       solvers[i].applyPseudoInverse(x.data(), out[i].data());
@@ -139,7 +139,7 @@ TEST_P(SubdomainSolverTest, pseudoInverseIsOrthogonalToTheKernel) {
   // kernel R is orthonormal, as (I - R R^T) being a projector needs.
   const auto f = floatingSubdomain(3, 1);
   feti::SubdomainSolver solver;
-  solver.compute(f.system, f.coords, GetParam());
+  solver.compute(f.system, f.coords, core::valueOf(feti::kFactorizationNames, GetParam()));
   const size_t n = f.system.K.n;
   const auto& R = solver.kernel();
   for (int a = 0; a < 6; ++a)

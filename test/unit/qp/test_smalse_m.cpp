@@ -144,7 +144,7 @@ qp::SmalseSettings slowRhoSettings() {
   qp::SmalseSettings s = tunedSettings();
   s.rho = 0.2;
   s.maxOuterIterations = 2000;
-  s.multiplierStep = "Fixed";
+  s.multiplierStep = qp::MultiplierStep::Fixed;
   return s;
 }
 }  // namespace
@@ -154,7 +154,7 @@ qp::SmalseSettings slowRhoSettings() {
 // outer iterations, summed over the seeds, must be fewer than with the small rho kept fixed.
 TEST(SmalseM, modelRhoUpdateKeepsTheSolutionAndNeedsFewerOuterIterations) {
   qp::SmalseSettings model = slowRhoSettings();
-  model.rhoUpdate = "Model";
+  model.rhoUpdate = qp::RhoUpdate::Model;
   model.rhoGrowth = 8.0;
   model.rhoTargetRatio = 0.25;
   const int fixedOuter = outerIterationsOverSeeds(slowRhoSettings()), modelOuter = outerIterationsOverSeeds(model);
@@ -167,7 +167,7 @@ TEST(SmalseM, modelRhoUpdateKeepsTheSolutionAndNeedsFewerOuterIterations) {
 // over the seeds, than the paper's step ("Fixed").
 TEST(SmalseM, relaxedMultiplierStepKeepsTheSolutionAndNeedsFewerOuterIterations) {
   qp::SmalseSettings relaxed = slowRhoSettings();
-  relaxed.multiplierStep = "Relaxed";
+  relaxed.multiplierStep = qp::MultiplierStep::Relaxed;
   const int fixedOuter = outerIterationsOverSeeds(slowRhoSettings()), relaxedOuter = outerIterationsOverSeeds(relaxed);
   EXPECT_LT(relaxedOuter, 0.9 * fixedOuter);  // measured 418 against 494: omega <= 5/3 where r0 > 0.8
   std::printf("outer iterations over 16 seeds: rho 0.2, Fixed step %d, Relaxed step %d\n", fixedOuter, relaxedOuter);
@@ -247,7 +247,7 @@ TEST(SmalseM, satisfiesKktAndMatchesAdmmWithBoundsEllipsesAndEquality) {
     // The Paper test ||Q mu|| <= eps M0 ||mu|| needs eps M0 above round-off: with M0 = 1.
     if (seed % 3 == 0) {
       settings = tunedSettings();
-      settings.equalityTest = "Paper";
+      settings.equalityTest = qp::EqualityTest::Paper;
     }
     const auto run = runSmalse(qp, blocks, settings);
     const double scale = test::norm2(qp.c);
@@ -497,23 +497,21 @@ TEST(SmalseM, parametersAreDocumentedAndValidated) {
   pl.sublist("MPGP").set("Gamma", 2.0);
   const auto s = qp::SmalseM::settingsFromParameters(pl);
   EXPECT_EQ(s.rho, 10.0);
-  EXPECT_EQ(s.equalityTest, "Paper");
+  EXPECT_EQ(s.equalityTest, qp::EqualityTest::Paper);
   EXPECT_EQ(s.mpgp.gamma, 2.0);
-  EXPECT_EQ(defaults.rhoUpdate, "Ratio");
-  EXPECT_EQ(defaults.multiplierStep, "Relaxed");
-  // The string choices: a valid value is read, another is an input error.
-  struct Choice {
-    const char* name;
-    std::string qp::SmalseSettings::*field;
-    const char *valid, *invalid;
-  };
-  for (const Choice& c : {Choice{"rho update", &qp::SmalseSettings::rhoUpdate, "Model", "Fast"},
-                          Choice{"multiplier step", &qp::SmalseSettings::multiplierStep, "Fixed", "Doubled"}}) {
-    Teuchos::ParameterList valid, invalid;
-    valid.sublist("SMALSE-M").set(c.name, c.valid);
-    invalid.sublist("SMALSE-M").set(c.name, c.invalid);
-    EXPECT_EQ(qp::SmalseM::settingsFromParameters(valid).*c.field, c.valid);
-    EXPECT_THROW(qp::SmalseM::settingsFromParameters(invalid), core::InputError) << c.name;
+  EXPECT_EQ(defaults.rhoUpdate, qp::RhoUpdate::Ratio);
+  EXPECT_EQ(defaults.multiplierStep, qp::MultiplierStep::Relaxed);
+  // The options: a valid name is read as its value, another is an input error.
+  Teuchos::ParameterList model, fixed;
+  model.sublist("SMALSE-M").set("rho update", "Model");
+  fixed.sublist("SMALSE-M").set("multiplier step", "Fixed");
+  EXPECT_EQ(qp::SmalseM::settingsFromParameters(model).rhoUpdate, qp::RhoUpdate::Model);
+  EXPECT_EQ(qp::SmalseM::settingsFromParameters(fixed).multiplierStep, qp::MultiplierStep::Fixed);
+  for (const auto& [name, invalid] : {std::pair<const char*, const char*>{"rho update", "Fast"},
+                                      std::pair<const char*, const char*>{"multiplier step", "Doubled"}}) {
+    Teuchos::ParameterList list;
+    list.sublist("SMALSE-M").set(name, invalid);
+    EXPECT_THROW(qp::SmalseM::settingsFromParameters(list), core::InputError) << name;
   }
   Teuchos::ParameterList bad;
   bad.sublist("SMALSE-M").set("beta", 1.0);

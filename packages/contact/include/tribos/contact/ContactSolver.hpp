@@ -17,19 +17,20 @@
 #include <string>
 #include <vector>
 
+#include "tribos/contact/FrictionModel.hpp"
 #include "tribos/feti/TotalFeti.hpp"
 #include "tribos/qp/SmalseM.hpp"
 
 namespace tribos::contact {
 
 struct FrictionSettings {
-  std::string model = "Coulomb";   ///< "None" | "Tresca" | "Coulomb"
+  FrictionModel model = FrictionModel::Coulomb;
   double F1 = 0.3, F2 = 0.3;       ///< friction coefficients along t1, t2
   double slipBound = 0.0;          ///< Tresca: g as a nodal force [force]
-  std::string fixedPoint = "Inexact";  ///< Coulomb: "Inexact" (update g every outer iteration) | "Exact"
-  /// Coulomb, Inexact: "Epsilon" stops only once an update moved g by at most eps (relative);
-  /// "Paper" on SMALSE-M's criteria alone, as the paper's Section 5 (its Table 1 counts).
-  std::string slipBoundTest = "Epsilon";
+  FixedPoint fixedPoint = FixedPoint::Inexact;
+  /// Coulomb, Inexact: Epsilon stops only once an update moved g by at most eps (relative);
+  /// Paper on SMALSE-M's criteria alone, as the paper's Section 5 (its Table 1 counts).
+  SlipBoundTest slipBoundTest = SlipBoundTest::Epsilon;
   int maxFixedPointIterations = 50;    ///< Exact variant: cap on Tresca solves
   /// Divergence: the fixed-point change grew in this many consecutive updates (after the
   /// first few) -> stop and report "fixed point diverges".
@@ -88,10 +89,10 @@ struct ContactResult {
 };
 
 /// Solves the contact problem. B's contact rows must have tangential rows unless model is
-/// "None". `preconditioner`: "None", "Lumped" or "Dirichlet" (then feti must have been built
-/// with dirichletPreconditioner): MPGP's preconditioning in face by P D P. Collective.
+/// None. `preconditioner` other than None (then feti must have been built with its blocks):
+/// MPGP's preconditioning in face by P D P. Collective.
 ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMatrix& B,
                            const FrictionSettings& friction, const qp::SmalseSettings& smalse,
-                           const std::string& preconditioner = "None");
+                           feti::DualPreconditioner preconditioner = feti::DualPreconditioner::None);
 
 }  // namespace tribos::contact

@@ -8,11 +8,15 @@
 ///   the temporary file, so no partial file is left and the earlier file stays.
 /// - A character device or a FIFO (/dev/null, a pipe to another program) is written in place,
 ///   never replaced; a FIFO is opened when checked, without blocking, so that one with no
-///   reader is refused before any work instead of hanging at the end.
-/// - A symbolic link is followed: the file it points to is written. A descriptor of the process
-///   (/dev/stdout, /dev/fd/N) is written in place, appended to.
+///   reader is refused before any work instead of hanging at the end, and a reader that stops
+///   reading for a minute is a failed write, not a hang.
+/// - A symbolic link is followed (a dangling one too): the file it points to is written. A
+///   descriptor of the process (/dev/stdout, /dev/fd/N, or a name of the file standard output
+///   goes to) is written in place through a copy of it, after what the run printed.
+/// - A replaced file keeps its permissions.
 #include <functional>
 #include <string>
+#include <utility>
 
 namespace tribos::core {
 
@@ -32,15 +36,20 @@ class OutputFile {
 
   /// The whole file through `write(p)`, which writes a complete file at the path `p` it is
   /// given (a temporary name next to the target). Regular targets only. Throws IoError naming
-  /// the file and the option when `write` throws, with nothing partial left.
+  /// the file and the option when `write` throws IoError or InputError (a failed write), with
+  /// nothing partial left; anything else `write` throws passes through, nothing left either.
   void writeWith(const std::function<void(const std::string& path)>& write);
   /// `text` as the whole file. Throws IoError naming the file and the option on failure.
   void writeText(const std::string& text);
 
  private:
-  /// A new, empty file with a name unique to this run in the target's directory: its path.
-  std::string createTemporary() const;
-  /// Renames the completed `temporary` over the target (permissions as a new file's).
+  /// A new, empty file with a name unique to this run in the target's directory: its path and
+  /// an open descriptor of it.
+  std::pair<std::string, int> createTemporary() const;
+  /// A device or FIFO target, opened for writing in place.
+  void openStream(const std::string& where, const std::string& kind, bool streamAllowed);
+  /// Renames the completed `temporary` over the target (with the replaced file's permissions,
+  /// or a new file's).
   void commit(const std::string& temporary) const;
   [[noreturn]] void fail(const std::string& temporary, const std::string& why) const;
 

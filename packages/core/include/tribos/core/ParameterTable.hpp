@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "tribos/core/EnumNames.hpp"
 #include "tribos/core/Validators.hpp"
 
 namespace tribos::core {
@@ -50,6 +51,21 @@ class ParameterTable {
                                                                      Teuchos::Array<std::string>(choices), &pl);
                         },
                         reader(name, field)});
+    return *this;
+  }
+
+  /// One of the names of an option (core/EnumNames.hpp): declared as its names, read back as
+  /// the value.
+  template <class E, std::size_t N>
+  ParameterTable& add(const std::string& name, E Settings::*field, const std::string& doc,
+                      const EnumNames<E, N>& names) {
+    entries_.push_back({[=](Teuchos::ParameterList& pl, const Settings& defaults) {
+                          Teuchos::setStringToIntegralParameter<int>(name, nameOf(names, defaults.*field), doc,
+                                                                     Teuchos::Array<std::string>(namesOf(names)), &pl);
+                        },
+                        [=](const Teuchos::ParameterList& pl, Settings& s) {
+                          if (pl.isParameter(name)) s.*field = valueOf(names, pl.get<std::string>(name));
+                        }});
     return *this;
   }
 

@@ -15,11 +15,18 @@
 /// match a collective of the program (or of Trilinos) on another rank.
 #include <mpi.h>
 
+#include <functional>
 #include <string>
 
 #include "tribos/core/Errors.hpp"
 
 namespace tribos::core {
+
+/// Runs `work` on every rank of `comm` and makes the outcome collective: when it throws on
+/// some ranks, every rank throws (those ranks their own exception; the others an InputError
+/// `othersWhat` when every failure was bad input, else a std::runtime_error with it), so that
+/// no rank goes on into a collective the failed ones never reach. Collective.
+void onEveryRankOrNone(const std::function<void()>& work, const std::string& othersWhat, MPI_Comm comm);
 
 /// What one rank knows when its work ends.
 struct RankOutcome {

@@ -30,6 +30,7 @@
 #include <string>
 #include <vector>
 
+#include "tribos/core/EnumNames.hpp"
 #include "tribos/mesh/Decomposition.hpp"
 
 namespace tribos::feti {
@@ -44,6 +45,12 @@ struct DisplacementCondition {
   std::array<double, 3> value{0.0, 0.0, 0.0};
 };
 
+/// Contact/Discretization: dual mortar weights (mesh/MortarCoupling.hpp; node-to-node on
+/// matching meshes), or the barycentric weights of the slave node's projection.
+enum class ContactDiscretization { Mortar, NodeToSurface };
+inline constexpr core::EnumNames<ContactDiscretization, 2> kContactDiscretizationNames{
+    {{"Mortar", ContactDiscretization::Mortar}, {"Node To Surface", ContactDiscretization::NodeToSurface}}};
+
 struct ConstraintSpec {
   std::vector<std::string> dirichletNodeSets;  ///< node sets with u = 0 (all components)
   std::vector<DisplacementCondition> displacementConditions;
@@ -53,9 +60,7 @@ struct ConstraintSpec {
   /// A slave node is projected on the master surface within this distance (the mesh's
   /// units); a slave node farther from every master face gets no contact rows.
   double searchDistance = 1e-6;
-  /// "Mortar" (dual mortar weights, mesh/MortarCoupling.hpp; node-to-node on matching
-  /// meshes) or "Node To Surface" (the barycentric weights of the slave node's projection).
-  std::string discretization = "Mortar";
+  ContactDiscretization discretization = ContactDiscretization::Mortar;
 };
 
 /// One slave contact node r with its projection and frame (DESIGN.md conventions).

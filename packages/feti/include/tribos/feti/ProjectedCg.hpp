@@ -18,7 +18,7 @@ namespace tribos::feti {
 struct ProjectedCgSettings {
   double tolerance = 1e-8;          ///< stop when ||P r|| <= tolerance ||P h||, h = d~ - F lambda_Im
   int maxIterations = 1000;
-  std::string preconditioner = "None";  ///< "None" | "Lumped" | "Dirichlet"
+  DualPreconditioner preconditioner = DualPreconditioner::None;
   /// A budget asked before every iteration; true stops the iterations (not converged).
   /// Called on every rank at the same iterations (it may communicate). May be empty.
   std::function<bool()> stopRequested;

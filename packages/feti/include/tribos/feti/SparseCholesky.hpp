@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "tribos/core/EnumNames.hpp"
 #include "tribos/fem/SubdomainSystem.hpp"
 
 namespace tribos::feti {
@@ -80,6 +81,8 @@ class SparseCholesky {
 /// How CHOLMOD factorises a matrix (FETI/CHOLMOD Mode): by its size (Auto: supernodal from
 /// 4000 rows, CholmodCholesky.cpp), or always one way (for measurements, doc/factorization.md).
 enum class CholmodMode { Auto, Simplicial, Supernodal };
+inline constexpr core::EnumNames<CholmodMode, 3> kCholmodModeNames{
+    {{"Auto", CholmodMode::Auto}, {"Simplicial", CholmodMode::Simplicial}, {"Supernodal", CholmodMode::Supernodal}}};
 
 /// The tuning of a factorisation, validated parameters of the FETI list (one declaration:
 /// stack/SceneParameters.cpp). Each depends on the matrix alone, never on the layout.
@@ -90,10 +93,17 @@ struct SparseCholeskyOptions {
   long long subtreeSolveFromValues = 500000;
 };
 
+/// FETI/Factorization: the implementations of SparseCholesky.
+enum class Factorization { Cholmod, Tacho };
+inline constexpr core::EnumNames<Factorization, 2> kFactorizationNames{
+    {{"CHOLMOD", Factorization::Cholmod}, {"Tacho", Factorization::Tacho}}};
+
 /// Names accepted by makeSparseCholesky.
 std::vector<std::string> sparseCholeskyNames();
-/// Creates a factorisation by name ("CHOLMOD" or "Tacho"); throws core::InputError naming
-/// the parameter "FETI/Factorization" and the valid names otherwise. Tacho ignores `options`.
+/// Creates a factorisation (Tacho ignores `options`).
+std::unique_ptr<SparseCholesky> makeSparseCholesky(Factorization kind, const SparseCholeskyOptions& options = {});
+/// The same by name ("CHOLMOD" or "Tacho"); throws core::InputError naming the parameter
+/// "FETI/Factorization" and the valid names otherwise.
 std::unique_ptr<SparseCholesky> makeSparseCholesky(const std::string& name, const SparseCholeskyOptions& options = {});
 
 }  // namespace tribos::feti

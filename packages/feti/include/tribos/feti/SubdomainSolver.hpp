@@ -21,7 +21,7 @@ class SubdomainSolver {
   /// orthonormal kernel basis of system.K. The solver keeps references to nothing: it
   /// copies R. Safe to call concurrently for different objects.
   void compute(const fem::SubdomainSystem& system, const std::vector<std::array<double, 3>>& coords,
-               const std::string& factorization, const SparseCholeskyOptions& options = {});
+               Factorization factorization, const SparseCholeskyOptions& options = {});
 
   /// y = K^+ x for nrhs column-major vectors of length n (Lemma 1's generalised inverse).
   void applyGeneralizedInverse(const double* x, double* y, int nrhs = 1) const;

@@ -29,6 +29,7 @@
 #include <utility>
 #include <vector>
 
+#include "tribos/core/EnumNames.hpp"
 #include "tribos/feti/ConstraintMatrix.hpp"
 #include "tribos/feti/SparseCholesky.hpp"
 #include "tribos/feti/SubdomainSolver.hpp"
@@ -50,23 +51,38 @@ struct RigidMotionsUndetermined : std::runtime_error {
 using DualMap = Tpetra::Map<LO, GO>;
 using DualVector = Tpetra::Vector<Scalar, LO, GO>;
 
+/// FETI/Dual Operator: F applied by two solves per subdomain, or as dense local blocks.
+enum class DualOperator { Implicit, Explicit };
+inline constexpr core::EnumNames<DualOperator, 2> kDualOperatorNames{
+    {{"Implicit", DualOperator::Implicit}, {"Explicit", DualOperator::Explicit}}};
+/// FETI/Preconditioner: the dual preconditioner D of P D P.
+enum class DualPreconditioner { None, Lumped, Dirichlet };
+inline constexpr core::EnumNames<DualPreconditioner, 3> kDualPreconditionerNames{
+    {{"None", DualPreconditioner::None}, {"Lumped", DualPreconditioner::Lumped},
+     {"Dirichlet", DualPreconditioner::Dirichlet}}};
+/// FETI/Coarse Factor Precision (TotalFetiSettings::coarsePrecision).
+enum class CoarsePrecision { Auto, Single, Double };
+inline constexpr core::EnumNames<CoarsePrecision, 3> kCoarsePrecisionNames{
+    {{"Auto", CoarsePrecision::Auto}, {"Single", CoarsePrecision::Single}, {"Double", CoarsePrecision::Double}}};
+
 struct TotalFetiSettings {
   /// Solver/Max Seconds: the factorisation stops between subdomains once it has passed, and
-  /// the constructor then throws core::LimitReached on every rank. Null: no deadline.
+  /// the constructor then throws core::LimitReached on every rank; checked again after the
+  /// coarse factorisation. Read by the constructor only. Null: no deadline.
   const core::Deadline* deadline = nullptr;
-  std::string factorization = "CHOLMOD";  ///< SparseCholesky for K_reg and G G^T
+  Factorization factorization = Factorization::Cholmod;  ///< SparseCholesky for K_reg and G G^T
   bool explicitF = false;                 ///< dense local F_s assembled once vs two solves per apply
   bool dirichletPreconditioner = false;   ///< factorise K_ii per subdomain for applyDirichlet
   bool lumpedPreconditioner = false;      ///< keep K_bb per subdomain for applyLumped (also kept with Dirichlet)
   /// Precision of G G^T's factor for project(), coarseCoordinates() and solveCoarse():
-  /// "Double"; "Single" (rounded: half the bytes per coarse solve) where it is accurate
-  /// enough (singleCoarseGate in the .cpp), lambda_Im and rigidBodyCoefficients(lambda) then
-  /// refined to double; "Auto": single where two coarse solves read at least as many bytes
+  /// Double; Single (rounded: half the bytes per coarse solve) where it is accurate
+  /// enough (singleCoarseGate), lambda_Im and rigidBodyCoefficients(lambda) then
+  /// refined to double; Auto: single where two coarse solves read at least as many bytes
   /// as the subdomain solves of one F application. Single only for callers that enforce
   /// G x = 0 themselves (SMALSE-M's penalty): P is then I - G^T C~^{-1} G, the identity on
   /// Ker G but not an exact projector (doc/measurements/coarse_problem.md, "The coarse factor in single
   /// precision"); projected CG needs the exact one.
-  std::string coarsePrecision = "Double";
+  CoarsePrecision coarsePrecision = CoarsePrecision::Double;
   /// The subdomain factors' and G G^T's tuning (FETI/CHOLMOD Mode, FETI/Subtree Solve From).
   SparseCholeskyOptions factorOptions;
   /// The single-precision coarse factor is kept when one solve with it differs from the double

@@ -13,6 +13,7 @@
 
 #include <Teuchos_RCP.hpp>
 
+#include "tribos/core/EnumNames.hpp"
 #include "tribos/qp/Mpgp.hpp"
 
 namespace tribos::qp {
@@ -28,6 +29,16 @@ struct SmalseProgress {
   double innerTarget = 0.0;         ///< the inner stopping bound / ||c|| (innerMonitor only)
 };
 
+/// SMALSE-M's options (their names: the parameter list's, SolverParameters.cpp).
+enum class EqualityTest { Conventional, Paper };
+inline constexpr core::EnumNames<EqualityTest, 2> kEqualityTestNames{
+    {{"Conventional", EqualityTest::Conventional}, {"Paper", EqualityTest::Paper}}};
+enum class RhoUpdate { Ratio, Model };
+inline constexpr core::EnumNames<RhoUpdate, 2> kRhoUpdateNames{{{"Ratio", RhoUpdate::Ratio}, {"Model", RhoUpdate::Model}}};
+enum class MultiplierStep { Relaxed, Fixed };
+inline constexpr core::EnumNames<MultiplierStep, 2> kMultiplierStepNames{
+    {{"Relaxed", MultiplierStep::Relaxed}, {"Fixed", MultiplierStep::Fixed}}};
+
 /// The defaults are the solver stack's (measured, doc/parameters.md), not the paper's (rho 1,
 /// M0 1e-6, betaM 0.1); src/SolverParameters.cpp declares each value below (not the
 /// callbacks) as a parameter.
@@ -42,9 +53,9 @@ struct SmalseSettings {
   double M0 = 1.0;             ///< M_0 > 0, relative to ||A|| (M has the units of A); paper: 1e-6
   double betaM = 0.9;          ///< M_{k+1} = betaM M_k when the Lagrangian does not grow enough (paper: 0.1)
   int maxOuterIterations = 100;
-  /// "Conventional": ||A|| ||Q mu|| <= eps ||c||;  "Paper": ||Q mu|| <= eps M_0 ||mu||
+  /// Conventional: ||A|| ||Q mu|| <= eps ||c||;  Paper: ||Q mu|| <= eps M_0 ||mu||
   /// (M_0 relative, so the paper's eps M_0 = 1e-11 needs a tolerance above round-off).
-  std::string equalityTest = "Conventional";
+  EqualityTest equalityTest = EqualityTest::Conventional;
   MpgpSettings mpgp;
   /// Preconditioning in face for the inner CG steps: M^-1 ~ A^+ on Ker G (T-FETI: P D P with
   /// the lumped or Dirichlet D). SMALSE-M preconditions A_rho = A + rho Q by M^-1 + Q / rho
@@ -56,12 +67,12 @@ struct SmalseSettings {
   double normEstimateTolerance = 1e-3;
   double rhoGrowth = 1.0;      ///< > 1: rho *= rhoGrowth when ||G mu|| fell by less than rhoTargetRatio
   double rhoTargetRatio = 0.5;
-  /// "Ratio": rho *= rhoGrowth; "Model": rho *= min(rhoGrowth, (1/t - 1)/(1/r - 1)) for the
+  /// Ratio: rho *= rhoGrowth; Model: rho *= min(rhoGrowth, (1/t - 1)/(1/r - 1)) for the
   /// measured ratio r and the target t, while the equality test fails (SmalseM.cpp, rhoFactor).
-  std::string rhoUpdate = "Ratio";
-  /// Step 3, beta += omega rho G mu: "Fixed" omega = 1 (the paper's); "Relaxed" omega in
-  /// [1, 5/3] from the measured contraction of ||G mu|| (src/MultiplierRelaxation.hpp).
-  std::string multiplierStep = "Relaxed";
+  RhoUpdate rhoUpdate = RhoUpdate::Ratio;
+  /// Step 3, beta += omega rho G mu: Fixed omega = 1 (the paper's); Relaxed omega in [1, 5/3]
+  /// from the measured contraction of ||G mu|| (src/MultiplierRelaxation.hpp).
+  MultiplierStep multiplierStep = MultiplierStep::Relaxed;
   double innerFloor = 0.1;     ///< inner solves stop at ||g^P|| <= innerFloor eps ||c|| at the latest
   /// Called on every rank after each outer iteration (after the hook, so that it sees what
   /// the hook changed; not when the hook throws); may be empty.

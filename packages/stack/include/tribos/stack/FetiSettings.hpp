@@ -9,6 +9,7 @@ class ParameterList;
 
 namespace tribos::feti {
 struct TotalFetiSettings;
+enum class DualPreconditioner;
 }
 
 namespace tribos::stack {
@@ -18,5 +19,8 @@ namespace tribos::stack {
 /// caller's. `exactProjector`: the linear solve's projected CG needs the exact projector, so
 /// the coarse factor stays double whatever Coarse Factor Precision says.
 feti::TotalFetiSettings totalFetiSettings(const Teuchos::ParameterList& feti, bool exactProjector);
+
+/// FETI/Preconditioner as its value.
+feti::DualPreconditioner dualPreconditioner(const Teuchos::ParameterList& feti);
 
 }  // namespace tribos::stack

@@ -21,4 +21,9 @@ std::uint64_t meshChecksum(const mesh::Mesh& mesh);
 /// rank read, unless every rank's `mesh` has the same checksum.
 void requireSameMeshOnEveryRank(const mesh::Mesh& mesh, const std::string& file, MPI_Comm comm);
 
+/// The Exodus mesh `file`, read by every rank of `comm` or none (a rank that cannot read it
+/// stops them all, core::onEveryRankOrNone), then compared (requireSameMeshOnEveryRank).
+/// Collective.
+mesh::Mesh readMeshOnEveryRank(const std::string& file, MPI_Comm comm);
+
 }  // namespace tribos::stack

@@ -4,10 +4,13 @@
 /// parts, built from a validated parameter list. Every rank builds the whole (global) mesh
 /// and decomposition — cheap next to the subdomain work — and then works on its own
 /// subdomains (mesh::firstSubdomain); stack::keepRankData frees what the solve does not need.
+#include <mpi.h>
+
 #include <array>
 #include <string>
 #include <vector>
 
+#include "tribos/contact/FrictionModel.hpp"
 #include "tribos/feti/ConstraintMatrix.hpp"
 #include "tribos/fem/SubdomainSystem.hpp"
 #include "tribos/mesh/Decomposition.hpp"
@@ -19,13 +22,24 @@ class ParameterList;
 
 namespace tribos::stack {
 
+/// Mesh/Generator and Mesh/Decomposition.
+enum class MeshGenerator { TwoBricks, Exodus };
+inline constexpr core::EnumNames<MeshGenerator, 2> kMeshGeneratorNames{
+    {{"Two Bricks", MeshGenerator::TwoBricks}, {"Exodus", MeshGenerator::Exodus}}};
+enum class MeshDecomposition { Structured, Metis };
+inline constexpr core::EnumNames<MeshDecomposition, 2> kMeshDecompositionNames{
+    {{"Structured", MeshDecomposition::Structured}, {"METIS", MeshDecomposition::Metis}}};
+
+/// The validated Mesh list's generator.
+MeshGenerator meshGenerator(const Teuchos::ParameterList& meshList);
+
 struct ContactSettings {
-  std::string frictionModel;  ///< None | Tresca | Coulomb | Bonded
+  contact::FrictionModel frictionModel = contact::FrictionModel::None;
   double F1 = 0.0, F2 = 0.0;  ///< friction coefficients along t1, t2
   std::string slaveSideSet, masterSideSet;
   std::array<double, 3> t1Direction{1.0, 0.0, 0.0};
   double searchDistance = 1e-6;
-  std::string discretization = "Mortar";  ///< Mortar | Node To Surface
+  feti::ContactDiscretization discretization = feti::ContactDiscretization::Mortar;
   bool hasContact() const { return !slaveSideSet.empty(); }
 };
 
@@ -44,7 +58,9 @@ struct Scene {
 /// Builds the scene from the "Tribos" list, which must already be validated against
 /// sceneValidParameters() (defaults filled in). Throws core::InputError naming the
 /// parameter, file or mesh entity on bad input. `source` names the XML file in messages.
-Scene buildScene(const Teuchos::ParameterList& tribos, const std::string& source);
+/// With `comm`, a mesh read from a file is read on every rank of it or none, and compared
+/// over them before it is partitioned (readMeshOnEveryRank): collective then.
+Scene buildScene(const Teuchos::ParameterList& tribos, const std::string& source, MPI_Comm comm = MPI_COMM_NULL);
 
 /// The mesh file the validated "Tribos" list reads (Mesh/File, a relative path taken from the
 /// scene file's directory); empty for a generated mesh.
