@@ -1,0 +1,34 @@
+#pragma once
+/// \file RunReport.hpp
+/// What a run reports, built from its results: the JSON summary (DESIGN.md's keys) and the
+/// console lines, for the linear and the contact stack alike (SceneSolveResult). Rank 0
+/// prints them and writes the summary; nothing here communicates.
+#include <nlohmann/json.hpp>
+
+#include <string>
+
+#include "tribos/stack/Results.hpp"
+#include "tribos/stack/SceneSolve.hpp"
+#include "tribos/stack/SubdomainSetup.hpp"
+
+namespace tribos::stack {
+
+/// The summary of the set-up: dimensions, counts of the contact search, the set-up's times.
+nlohmann::json setupSummary(const Scene& scene, const SetupReport& report, const feti::ConstraintMatrix& B,
+                            const std::string& input, bool dryRun);
+/// The console lines of the set-up.
+std::string setupReport(const std::string& input, const Scene& scene, const SetupReport& report,
+                        const feti::ConstraintMatrix& B, double setupSeconds, double constraintSeconds);
+
+/// The solve's part of the summary: the chain, convergence, counts, KKT residuals, times
+/// and (contact) the history, statuses and operator profile.
+void addSolveSummary(const SceneSolveResult& result, const Teuchos::ParameterList& tribos, nlohmann::json& summary);
+/// The console lines of the solve.
+std::string solveReport(const SceneSolveResult& result);
+/// The table of the phase times in `summary`.
+std::string timingTable(const nlohmann::json& summary);
+
+/// Stresses, strain energy, reactions and the force balance (rank 0) into the summary.
+void addResultsToSummary(const StressResults& stress, const ForceBalance& balance, nlohmann::json& summary);
+
+}  // namespace tribos::stack

@@ -1,0 +1,51 @@
+#pragma once
+/// \file SceneSolve.hpp
+/// The one place that builds the solver stack of a scene from its validated list: linear
+/// T-FETI (projected CG) for scenes without contact or with bonded contact, T-FETI +
+/// SMALSE-M + MPGP (+ the Coulomb fixed point) for contact scenes; the result as one object
+/// whatever was built (the driver's report reads it, stack/RunReport.hpp).
+#include <mpi.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "tribos/core/Timer.hpp"
+#include "tribos/stack/ContactSolve.hpp"
+#include "tribos/stack/LinearFetiSolve.hpp"
+
+namespace tribos::stack {
+
+struct SceneSolveResult {
+  bool contactProblem = false;     ///< which stack ran: contactSolve, else linear
+  ContactSolveResult contactSolve;
+  LinearFetiResult linear;
+  std::string chain;               ///< the solver chain built, in words
+
+  bool converged() const { return contactProblem ? contactSolve.contact.converged : linear.converged; }
+  const std::string& message() const { return contactProblem ? contactSolve.contact.message : linear.message; }
+  /// Per global node, rank 0 only.
+  const std::vector<std::array<double, 3>>& displacement() const {
+    return contactProblem ? contactSolve.displacement.value : linear.displacement;
+  }
+  const std::vector<std::array<double, 3>>& reaction() const {
+    return contactProblem ? contactSolve.reaction : linear.reaction;
+  }
+  const std::array<double, 3>& appliedLoad() const {
+    return contactProblem ? contactSolve.appliedLoad : linear.appliedLoad;
+  }
+};
+
+/// Whether the scene is solved as a contact problem (a contact pair that is not bonded).
+bool isContactProblem(const Scene& scene);
+
+/// The chain solveScene builds, in words.
+std::string describeSolverChain(const Scene& scene, const Teuchos::ParameterList& tribos);
+
+/// Builds the stack the scene needs and solves it. `owned`: this rank's assembled systems,
+/// consumed. Solver/Max Seconds counts from `runStart`. Collective over `comm`.
+SceneSolveResult solveScene(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
+                            const feti::ConstraintMatrix& B, const Teuchos::ParameterList& tribos, MPI_Comm comm,
+                            core::Stopwatch runStart);
+
+}  // namespace tribos::stack

@@ -1,0 +1,266 @@
+#include "tribos/stack/RunReport.hpp"
+
+#include <Teuchos_ParameterList.hpp>
+
+#include <cstdio>
+#include <iomanip>
+#include <sstream>
+
+namespace tribos::stack {
+
+namespace {
+/// Rank 0's operator counts and times (TotalFeti::profile; doc/measurements/coarse_problem.md).
+nlohmann::json profileJson(const feti::OperatorProfile& p) {
+  return {{"f_applications", p.fApplications},
+          {"projections", p.projections},
+          {"coarse_solves", p.coarseSolves},
+          {"coarse_solves_reused", p.coarseSolvesReused},
+          {"projections_reused", p.projectionsReused},
+          {"coarse_coordinates", p.coarseCoordinates},
+          {"coarse_coordinates_reused", p.coarseCoordinatesReused},
+          {"preconditioner_applications", p.preconditionerApplications},
+          {"f_s", p.fSeconds},
+          {"g_s", p.gSeconds},
+          {"coarse_reduce_s", p.coarseReduceSeconds},
+          {"coarse_solve_s", p.coarseSolveSeconds},
+          {"preconditioner_s", p.preconditionerSeconds},
+          {"coarse_factor_s", p.coarseFactorSeconds},
+          {"rigid_coefficients_s", p.rigidCoefficientsSeconds},
+          {"coarse_factor_nonzeros", p.coarseFactorNonzeros},
+          {"coarse_subtrees", p.coarseSubtrees},
+          {"coarse_rank_subtrees", p.coarseRankSubtrees},
+          {"coarse_split_depth", p.coarseSplitDepth},
+          {"coarse_values_per_solve", p.coarseValuesPerSolve},
+          {"coarse_single", p.coarseSingle},
+          {"coarse_single_error", p.coarseSingleError},
+          {"coarse_refinement_steps", p.coarseRefinementSteps},
+          {"coarse_to_f_bytes", p.coarseToFBytes},
+          {"g_entries", p.gEntries},
+          {"g_rows", p.gRows},
+          {"projection_bytes", p.projectionBytes},
+          {"preconditioner_bytes", p.preconditionerBytes}};
+}
+
+/// The coarse factor's precision when it is not plain double (FETI/Coarse Factor
+/// Precision): a progress line for the user, empty otherwise.
+std::string coarseFactorLine(const feti::OperatorProfile& p) {
+  std::ostringstream line;
+  if (p.coarseSingleError > 0.0)
+    line << "  coarse factor: "
+         << (p.coarseSingle ? "single precision" : "double (the single one was not accurate enough)")
+         << ", one solve " << p.coarseSingleError << " from the double one (relative)\n";
+  // Measured on the bricks at n = 324 000 (doc/measurements/scalability.md): 4 000 subdomains (ratio 3.8)
+  // take 2.3 times as long as 500 (ratio 0.10).
+  if (p.coarseToFBytes >= 2.0)
+    line << "  note: the coarse problem dominates (two coarse solves read " << std::setprecision(2)
+         << p.coarseToFBytes << std::setprecision(6)
+         << "x the bytes of an F application's subdomain solves): fewer, larger subdomains would be faster "
+            "(doc/measurements/coarse_problem.md)\n";
+  return line.str();
+}
+
+// One object per SMALSE-M outer iteration: what the progress lines showed.
+nlohmann::json historyJson(const std::vector<OuterIterationRecord>& history) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& h : history)
+    list.push_back({{"outer", h.outer},
+                    {"inner", h.inner},
+                    {"projected_gradient", h.projectedGradient},
+                    {"equality_residual", h.equalityResidual},
+                    {"M", h.M},
+                    {"slip_bound_change", h.slipBoundChange},
+                    {"pfp_applications", h.pfpApplications},
+                    {"elapsed_s", h.elapsedSeconds}});
+  return list;
+}
+
+// The contact solve's part of the summary.
+void addContactSummary(const ContactSolveResult& contactSolve, double tolerance, nlohmann::json& summary) {
+  const auto& r = contactSolve.contact;
+  summary["solver"] = contactSolve.chain;
+  summary["converged"] = r.converged;
+  summary["message"] = r.message;
+  summary["tolerance"] = tolerance;
+  summary["outer_iterations"] = r.counters.outerIterations;
+  summary["inner_iterations"] = r.counters.innerIterations;
+  summary["cg_steps"] = r.counters.cgSteps;
+  summary["expansion_steps"] = r.counters.expansionSteps;
+  summary["proportioning_steps"] = r.counters.proportioningSteps;
+  summary["pfp_applications"] = r.counters.operatorApplications;
+  summary["f_applications"] = contactSolve.fApplications;
+  summary["factor_nonzeros"] = contactSolve.factorNonzeros;
+  summary["bytes_per_f_application"] = contactSolve.bytesPerFApplication;
+  summary["fixed_point_iterations"] = r.fixedPointIterations;
+  summary["fixed_point_change"] = r.fixedPointChange;
+  summary["energy"] = r.energy;
+  summary["kkt"] = {{"projected_gradient", r.counters.projectedGradient},
+                    {"equality_constraint", r.counters.equalityResidual},
+                    {"equilibrium", r.kkt.equilibrium},
+                    {"gluing_dirichlet", r.kkt.equality},
+                    {"non_penetration", r.kkt.nonPenetration},
+                    {"complementarity", r.kkt.complementarity},
+                    {"normal_sign", r.kkt.normalSign},
+                    {"friction_admissibility", r.kkt.frictionAdmissibility},
+                    {"slip_rule", r.kkt.slipRule},
+                    {"stick_rule", r.kkt.stickRule},
+                    {"max_copy_jump", contactSolve.displacement.maxCopyJump},
+                    {"tolerance", r.kktTolerance}};
+  summary["contact_nodes"] = {{"no_contact", r.statusCounts[0]}, {"stick", r.statusCounts[1]},
+                              {"slip", r.statusCounts[2]}};
+  summary["history"] = historyJson(contactSolve.history);
+  summary["total_normal_force"] = contactSolve.totalNormalForce;
+  summary["total_contact_force"] = contactSolve.totalContactForce;
+  summary["contact_force_on_master"] = contactSolve.totalContactForce;
+  summary["times"]["factorization_s"] = contactSolve.factorizationSeconds;
+  summary["times"]["solve_s"] = contactSolve.solveSeconds;
+  // Of solve_s: the SMALSE-M runs, and of them the work outside A, M^-1, Q and the
+  // Coulomb hook (MPGP's vector updates, projections onto Omega, reductions; issue 9).
+  summary["times"]["smalse_s"] = r.counters.seconds;
+  summary["times"]["vector_s"] = r.counters.seconds - r.counters.operatorSeconds;
+  // Of smalse_s: the products with A_rho = PFP + rho Q (pfp_applications of them, the norm
+  // estimate's included) and the inner preconditioner's applications, each with its
+  // projections: issue 9's time per PFP application is products_s / pfp_applications.
+  summary["times"]["products_s"] = r.counters.productSeconds;
+  summary["times"]["preconditioning_s"] = r.counters.preconditionerSeconds;
+  summary["operator_profile"] = profileJson(contactSolve.profile);
+}
+
+// The linear solve's part of the summary.
+void addLinearSummary(const LinearFetiResult& linear, const std::string& chain, double tolerance,
+                      nlohmann::json& summary) {
+  summary["solver"] = chain;
+  summary["converged"] = linear.converged;
+  summary["message"] = linear.message;
+  summary["tolerance"] = tolerance;
+  summary["outer_iterations"] = linear.iterations;
+  summary["pfp_applications"] = linear.fApplications;
+  summary["factor_nonzeros"] = linear.factorNonzeros;
+  summary["bytes_per_f_application"] = linear.bytesPerFApplication;
+  summary["condition_estimate"] = linear.conditionEstimate;
+  summary["kkt"] = {{"projected_residual", linear.relativeResidual},
+                    {"equilibrium", linear.equilibriumResidual},
+                    {"equality_constraints", linear.constraintResidual},
+                    {"max_copy_jump", linear.maxCopyJump}};
+  summary["times"]["factorization_s"] = linear.factorizationSeconds;
+  summary["times"]["solve_s"] = linear.solveSeconds;
+}
+
+std::string contactReport(const ContactSolveResult& contactSolve) {
+  const auto& r = contactSolve.contact;
+  std::ostringstream out;
+  out << "  SMALSE-M: " << (r.converged ? "converged" : "NOT CONVERGED (" + r.message + ")") << ": "
+      << r.counters.outerIterations << " outer, " << r.counters.innerIterations << " inner iterations, "
+      << r.counters.operatorApplications << " PFP applications, " << r.fixedPointIterations
+      << " slip-bound updates\n"
+      << "  contact nodes: " << r.statusCounts[0] << " no contact, " << r.statusCounts[1] << " stick, "
+      << r.statusCounts[2] << " slip; total normal force " << contactSolve.totalNormalForce << "\n"
+      << "  KKT (each <= " << r.kktTolerance << " for \"converged\"): equilibrium " << r.kkt.equilibrium
+      << ", gluing/Dirichlet " << r.kkt.equality << ", penetration " << r.kkt.nonPenetration
+      << ", complementarity " << r.kkt.complementarity << ", normal sign " << r.kkt.normalSign
+      << ", friction " << r.kkt.frictionAdmissibility << ", slip rule " << r.kkt.slipRule << ", stick rule "
+      << r.kkt.stickRule << "\n"
+      << coarseFactorLine(contactSolve.profile)
+      << "  times: factorization " << contactSolve.factorizationSeconds << " s, solve "
+      << contactSolve.solveSeconds << " s\n";
+  return out.str();
+}
+
+std::string linearReport(const LinearFetiResult& linear) {
+  std::ostringstream out;
+  out << "  projected CG: " << (linear.converged ? "converged" : "NOT CONVERGED (" + linear.message + ")") << " in "
+      << linear.iterations << " iterations (" << linear.fApplications << " F applications), "
+      << "||Pr||/||Ph|| = " << linear.relativeResidual << ", kappa ~ " << linear.conditionEstimate
+      << "\n  KKT: equilibrium " << linear.equilibriumResidual << ", ||Bu - c||/||u|| "
+      << linear.constraintResidual << "\n  times: factorization " << linear.factorizationSeconds
+      << " s, solve " << linear.solveSeconds << " s\n";
+  return out.str();
+}
+}  // namespace
+
+nlohmann::json setupSummary(const Scene& scene, const SetupReport& report, const feti::ConstraintMatrix& B,
+                            const std::string& input, bool dryRun) {
+  nlohmann::json j;
+  j["input"] = input;
+  j["dry_run"] = dryRun;
+  j["n_primal"] = report.nPrimal;
+  j["n_dual"] = B.numRows;
+  j["removed_redundant_rows"] = B.removedRedundantRows;
+  j["n_rigid"] = report.nRigid;
+  j["n_subdomains"] = report.nSubdomains;
+  j["n_ranks"] = report.nRanks;
+  j["n_threads"] = report.nThreads;
+  j["n_nodes"] = scene.mesh.numNodes();
+  j["n_elements"] = scene.mesh.numElements();
+  j["stiffness_nonzeros"] = report.nnz;
+  j["contact_nodes_paired"] = B.contact.size();
+  j["contact_nodes_unpaired"] = B.unpairedSlaveNodes;
+  j["contact_initial_overlaps"] = B.overlappingPairs;
+  j["contact_largest_initial_overlap"] = B.largestOverlap;
+  j["times"] = {{"mesh_s", scene.meshSeconds},
+                {"decomposition_s", scene.decompositionSeconds},
+                {"assembly_s", report.assemblySeconds}};
+  return j;
+}
+
+std::string setupReport(const std::string& input, const Scene& scene, const SetupReport& report,
+                        const feti::ConstraintMatrix& B, double setupSeconds, double constraintSeconds) {
+  std::ostringstream out;
+  out << "tribos: " << input << "\n"
+      << "  mesh: " << scene.mesh.numNodes() << " nodes, " << scene.mesh.numElements() << " tetrahedra, "
+      << scene.mesh.numBlocks() << " bodies\n"
+      << "  subdomains: " << report.nSubdomains << " on " << report.nRanks << " rank(s) x " << report.nThreads
+      << " thread(s)\n"
+      << "  n_primal = " << report.nPrimal << ", n_dual = " << B.numRows << " (removed " << B.removedRedundantRows
+      << " redundant rows), n_rigid = " << report.nRigid << "\n"
+      << (scene.contact.hasContact()
+              ? "  contact: " + std::to_string(B.contact.size()) + " slave nodes paired, " +
+                    std::to_string(B.unpairedSlaveNodes) +
+                    " out of reach (no master face facing them within Contact/Search Distance: no rows), " +
+                    std::to_string(B.overlappingPairs) + " with initial overlap" +
+                    (B.overlappingPairs > 0 ? " (largest " + std::to_string(B.largestOverlap) + ")" : "") + "\n"
+              : std::string("  contact: none (linear T-FETI)\n"))
+      << "  set-up: " << setupSeconds << " s (assembly " << report.assemblySeconds << " s, B " << constraintSeconds
+      << " s)\n";
+  return out.str();
+}
+
+void addSolveSummary(const SceneSolveResult& result, const Teuchos::ParameterList& tribos, nlohmann::json& summary) {
+  const double tolerance = tribos.sublist("Solver").get<double>("Tolerance");
+  if (result.contactProblem)
+    addContactSummary(result.contactSolve, tolerance, summary);
+  else
+    addLinearSummary(result.linear, result.chain, tolerance, summary);
+}
+
+std::string solveReport(const SceneSolveResult& result) {
+  return result.contactProblem ? contactReport(result.contactSolve) : linearReport(result.linear);
+}
+
+std::string timingTable(const nlohmann::json& summary) {
+  // The timing table of the run (slowest rank where the phase is parallel).
+  std::string table;
+  char line[96];
+  std::snprintf(line, sizeof line, "  %-16s %10s\n", "phase", "seconds");
+  table += line;
+  for (const char* phase : {"mesh_s", "decomposition_s", "assembly_s", "constraints_s", "factorization_s", "solve_s",
+                            "total_s"})
+    if (summary["times"].contains(phase)) {
+      std::snprintf(line, sizeof line, "  %-16s %10.4f\n", std::string(phase).substr(0, std::string(phase).size() - 2).c_str(),
+                    summary["times"][phase].get<double>());
+      table += line;
+    }
+  return table;
+}
+
+/// Stresses, strain energy, reactions and the force balance (rank 0) into the summary.
+void addResultsToSummary(const StressResults& stress, const ForceBalance& balance,
+                         nlohmann::json& summary) {
+  summary["strain_energy"] = stress.strainEnergy;
+  summary["reactions"] = nlohmann::json::object();
+  for (const auto& r : balance.reactions) summary["reactions"][r.name] = r.force;
+  summary["reaction_total"] = balance.totalReaction;
+  summary["applied_load"] = balance.appliedLoad;
+  summary["force_balance"] = balance.relativeImbalance;
+}
+
+}  // namespace tribos::stack
