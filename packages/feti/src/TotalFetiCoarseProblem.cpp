@@ -1,0 +1,380 @@
+// TotalFeti's coarse problem: G G^T assembled and factorised on rank 0, its precision, its solves.
+#include "TotalFetiParts.hpp"
+
+namespace tribos::feti {
+
+void TotalFeti::buildCoarsePattern() {
+  // Block (s, t) of G G^T is present when a row of B touches both s and t. Every row is owned
+  // by one rank, which holds all its entries g_{s,r} (buildCoarseRows): the pairs of its owned
+  // rows, gathered from every rank, are the whole pattern. The gathered lists are as long as
+  // the pattern itself (which every rank holds in any case), not as long as B.
+  const CoarseRows& G = *G_;
+  std::vector<long long> pairs;  // s * numSubdomains + t, sorted and unique
+  for (LO r = 0; r < G.numRows; ++r)
+    for (LO e = G.rowStart[r]; e < G.rowStart[r + 1]; ++e)
+      for (LO f = G.rowStart[r]; f < G.rowStart[r + 1]; ++f)
+        pairs.push_back(static_cast<long long>(G.rowSubdomain[e]) * numSubdomains_ + G.rowSubdomain[f]);
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  if (comm_->getSize() > 1) pairs = allGather(*comm_, pairs);
+  std::vector<std::vector<int>> neighbours(numSubdomains_);
+  for (long long key : pairs) neighbours[key / numSubdomains_].push_back(static_cast<int>(key % numSubdomains_));
+  pairs.clear();
+  pairs.shrink_to_fit();
+  coarseBlockStart_.assign(numSubdomains_ + 1, 0);  // first block of block row s
+  coarseNeighbours_.clear();
+  for (int s = 0; s < numSubdomains_; ++s) {
+    auto& t = neighbours[s];
+    std::sort(t.begin(), t.end());
+    t.erase(std::unique(t.begin(), t.end()), t.end());
+    coarseBlockStart_[s + 1] = coarseBlockStart_[s] + static_cast<LO>(t.size());
+    coarseNeighbours_.insert(coarseNeighbours_.end(), t.begin(), t.end());
+  }
+}
+
+fem::CsrMatrix TotalFeti::assembleCoarse(const std::vector<char>* ownedRowMask) const {
+  // (G G^T)_{st} = sum over rows r touching both s and t of g_{s,r} g_{t,r}^T: 6x6 blocks
+  // for subdomains that share a row of B (buildCoarsePattern; with a mask the same pattern,
+  // the blocks of the rows left out stay zero). Each rank adds the products of its owned
+  // rows into the blocks they touch, in row order; rank 0 adds every rank's blocks into the
+  // whole pattern and builds the matrix, which only it factorises. No rank but 0 holds an
+  // array the size of the pattern (at 4 000 subdomains 62 MB of slots and a 47 MB matrix,
+  // which were the transient peak of every rank on 16 ranks, doc/measurements/scalability.md).
+  auto counted = [&](LO ownedRow) { return !ownedRowMask || (*ownedRowMask)[ownedRow]; };
+  const std::vector<LO>& blockStart = coarseBlockStart_;
+  auto blockOf = [&](int s, int t) {
+    const auto first = coarseNeighbours_.begin() + blockStart[s], last = coarseNeighbours_.begin() + blockStart[s + 1];
+    return blockStart[s] + static_cast<LO>(std::lower_bound(first, last, t) - first);
+  };
+  const CoarseRows& G = *G_;
+  // Only the blocks (s, t) with s <= t are summed: (t, s) is (s, t)^T, the same products
+  // (g_t[c] g_s[a] = g_s[a] g_t[c] exactly) in the same exact slot sums, so the matrix below
+  // reads them transposed with the bits of summing them itself. Each row's g_{s,r} are
+  // decoded once (rowG) for all its pairs.
+  const LO numBlocks = blockStart[numSubdomains_];
+  std::vector<LO> slotOf(static_cast<size_t>(numBlocks), -1);  // block -> its index among `touched`
+  std::vector<LO> touched;  // the upper blocks of this rank's counted rows, ascending
+  for (LO r = 0; r < G.numRows; ++r) {
+    if (!counted(r)) continue;
+    for (LO e = G.rowStart[r]; e < G.rowStart[r + 1]; ++e)
+      for (LO f = G.rowStart[r]; f < G.rowStart[r + 1]; ++f)
+        if (G.rowSubdomain[e] <= G.rowSubdomain[f]) slotOf[blockOf(G.rowSubdomain[e], G.rowSubdomain[f])] = 0;
+  }
+  for (LO k = 0; k < numBlocks; ++k)
+    if (slotOf[k] == 0) {
+      slotOf[k] = static_cast<LO>(touched.size());
+      touched.push_back(k);
+    }
+
+  // Reproducible sums (core::SumBins): the rows of a block are owned by different ranks on
+  // different layouts. |g_s[a] g_t[c]| <= gMax^2; at most one term per row of B. The slots
+  // hold exact sums, so rank 0 may add the ranks' slots in any order.
+  const core::SumBins bins(gMax_ * gMax_, static_cast<long long>(B_.numRows));
+  constexpr size_t kBlock = kSlots * 36;
+  std::vector<double> local(kBlock * touched.size(), 0.0);
+  std::vector<double> g;  // the row's g_{s,r}, 6 per entry
+  for (LO r = 0; r < G.numRows; ++r) {
+    if (!counted(r)) continue;
+    const LO first = G.rowStart[r], entries = G.rowStart[r + 1] - first;
+    g.resize(6 * static_cast<size_t>(entries));
+    for (LO e = 0; e < entries; ++e) G.rowG(first + e, &g[6 * static_cast<size_t>(e)]);
+    for (LO e = 0; e < entries; ++e)
+      for (LO f = 0; f < entries; ++f) {
+        const int s = G.rowSubdomain[first + e], t = G.rowSubdomain[first + f];
+        if (s > t) continue;
+        double* block = &local[kBlock * static_cast<size_t>(slotOf[blockOf(s, t)])];
+        const double* gs = &g[6 * static_cast<size_t>(e)];
+        const double* gt = &g[6 * static_cast<size_t>(f)];
+        for (int a = 0; a < 6; ++a)
+          for (int c = 0; c < 6; ++c) bins.deposit(gs[a] * gt[c], block + kSlots * (a * 6 + c));
+      }
+  }
+  std::vector<LO>().swap(slotOf);
+  std::vector<double> slots;  // rank 0: the whole pattern's (upper blocks filled)
+  addBlocksOnRoot(touched, local, slots);
+  fem::CsrMatrix GGt;
+  if (comm_->getRank() != 0) return GGt;
+
+  // Each value combined from its slots straight into the matrix (no array of the blocks in
+  // between).
+  GGt.n = numCoarse();
+  GGt.rowPtr.assign(GGt.n + 1, 0);
+  GGt.colInd.reserve(slots.size() / kSlots);
+  GGt.values.reserve(slots.size() / kSlots);
+  for (int s = 0; s < numSubdomains_; ++s)
+    for (int a = 0; a < 6; ++a) {
+      for (LO k = blockStart[s]; k < blockStart[s + 1]; ++k) {
+        const int t = coarseNeighbours_[k];
+        // (s, t) below the diagonal: entry (c, a) of the upper block (t, s).
+        const LO stored = s <= t ? k : blockOf(t, s);
+        for (int c = 0; c < 6; ++c) {
+          const int entry = s <= t ? a * 6 + c : c * 6 + a;
+          GGt.colInd.push_back(6 * t + c);
+          GGt.values.push_back(core::SumBins::combine(&slots[kSlots * (36 * static_cast<size_t>(stored) + entry)]));
+        }
+      }
+      GGt.rowPtr[6 * s + a + 1] = static_cast<LO>(GGt.colInd.size());
+    }
+  return GGt;
+}
+
+void TotalFeti::addBlocksOnRoot(const std::vector<LO>& blocks, std::vector<double>& values,
+                                std::vector<double>& sum) const {
+  // Rank 0 receives the ranks' blocks one rank at a time (its transient: one rank's share, not
+  // all of them at once) and adds them to its own.
+  constexpr size_t kBlock = kSlots * 36;
+  auto add = [&](const LO* which, size_t count, const double* v) {
+    for (size_t i = 0; i < count; ++i)
+      for (size_t j = 0; j < kBlock; ++j) sum[kBlock * static_cast<size_t>(which[i]) + j] += v[kBlock * i + j];
+  };
+  const int rank = comm_->getRank(), size = comm_->getSize();
+  if (rank == 0) {
+    sum.assign(kBlock * static_cast<size_t>(coarseBlockStart_.back()), 0.0);
+    add(blocks.data(), blocks.size(), values.data());
+    std::vector<double>().swap(values);
+  }
+  if (size == 1) return;
+  const MPI_Comm raw = rawComm(*comm_);
+  if (rank != 0) {
+    int count = static_cast<int>(blocks.size());
+    MPI_Send(&count, 1, MPI_INT, 0, 0, raw);
+    MPI_Send(blocks.data(), count, MPI_INT, 0, 1, raw);
+    // Block by block bounds the int count of one message (kBlock doubles each).
+    for (int i = 0; i < count; i += 1 << 20) {
+      const int n = std::min(count - i, 1 << 20);
+      MPI_Send(values.data() + kBlock * static_cast<size_t>(i), n * static_cast<int>(kBlock), MPI_DOUBLE, 0, 2, raw);
+    }
+    return;
+  }
+  std::vector<LO> theirs;
+  std::vector<double> theirValues;
+  for (int from = 1; from < size; ++from) {
+    int count = 0;
+    MPI_Recv(&count, 1, MPI_INT, from, 0, raw, MPI_STATUS_IGNORE);
+    theirs.resize(static_cast<size_t>(count));
+    theirValues.resize(kBlock * static_cast<size_t>(count));
+    MPI_Recv(theirs.data(), count, MPI_INT, from, 1, raw, MPI_STATUS_IGNORE);
+    for (int i = 0; i < count; i += 1 << 20) {
+      const int n = std::min(count - i, 1 << 20);
+      MPI_Recv(theirValues.data() + kBlock * static_cast<size_t>(i), n * static_cast<int>(kBlock), MPI_DOUBLE, from, 2,
+               raw, MPI_STATUS_IGNORE);
+    }
+    add(theirs.data(), theirs.size(), theirValues.data());
+  }
+}
+
+void TotalFeti::factorizeCoarse() const {
+  // G G^T is assembled on rank 0 from every rank's blocks and factorised there
+  // (onRootThenBroadcast): its assembled matrix lives only as long as the factorisation.
+  core::Stopwatch watch;
+  fem::CsrMatrix GGt = assembleCoarse(nullptr);
+  // Rounded to single (1), the gate's error, and two coarse solves' bytes over those of F's
+  // subdomain solves (with the double factor).
+  std::vector<double> single(3, 0.0);
+  onRootThenBroadcast(
+      single,
+      [&] {
+        auto factor = makeSparseCholesky(settings_.factorization, settings_.factorOptions);
+        factor->setSubtreeSolve(true);  // solved on the main thread of rank 0
+        try {
+          factor->factorizeConsuming(std::move(GGt));
+        } catch (const std::exception& e) {
+          throw core::InputError(std::string("the constraints do not fix every rigid body mode of every subdomain "
+                                             "(G G^T is singular: ") +
+                                 e.what() + "); check Boundary/Dirichlet Node Sets and the contact surfaces");
+        }
+        coarse_ = std::move(factor);
+        profile_.coarseFactorNonzeros = coarse_->factorNonzeros();
+        profile_.coarseSubtrees = coarse_->subtreeCount();
+        single[2] = 2.0 * static_cast<double>(coarse_->solveBytes()) / subdomainBytesPerF_;
+        if (singleCoarsePays(single[2]) && !coarseSingleRejected_) {
+          const auto [rounded, error] = roundCoarseToSingle();
+          single[0] = rounded ? 1.0 : 0.0;
+          single[1] = error;
+        }
+      },
+      [](const std::string& message) { throw core::InputError(message); });
+  profile_.coarseSingleError = single[1];
+  profile_.coarseToFBytes = single[2];
+  if (single[0] != 0.0 && !(single[1] <= settings_.singleCoarseGate)) {
+    // Too inaccurate for this G G^T (kappa ~ 1e4 and more; NaN too): factorised again in
+    // double, on every rank alike (the flags came from rank 0).
+    coarseSingleRejected_ = true;
+    coarse_.reset();
+    profile_.coarseFactorSeconds += watch.seconds();
+    factorizeCoarse();
+    profile_.coarseSingleError = single[1];  // the error that sent it back
+    return;
+  }
+  coarseSingle_ = single[0] != 0.0;
+  profile_.coarseSingle = coarseSingle_;
+  // Collective: the subtrees of its elimination tree to the ranks that will solve them.
+  distributedCoarse_ = DistributedCoarseSolve::create(rawComm(*comm_), coarse_.get(), settings_.distributedCoarseFromValues);
+  profile_.coarseRankSubtrees = distributedCoarse_ ? distributedCoarse_->numLeaves() : 0;
+  profile_.coarseSplitDepth = distributedCoarse_ ? distributedCoarse_->depth() : 0;
+  profile_.coarseValuesPerSolve =
+      distributedCoarse_ ? distributedCoarse_->valuesOnThisRank() : (coarse_ ? coarse_->factorNonzeros() : 0);
+  coarseFactored_ = true;
+  profile_.coarseFactorSeconds += watch.seconds();
+}
+
+bool TotalFeti::singleCoarsePays(double coarseToFBytes) const {
+  // Rank 0, with the factor: "Auto" rounds where the two coarse solves of an A_rho product
+  // read at least as many bytes as the subdomain solves of its F application
+  // (subdomainBytesPerF_: the same on every rank layout, so that the choice, and with it
+  // every bit of the run, is too): there the rounding saves a quarter or more of the
+  // product's traffic.
+  // Elsewhere the double factor keeps the exact projector's path: on symmetric scenes (the
+  // paper's bricks) pairs of constraints reach their bounds in the same step only with it,
+  // and any perturbation of P beyond ~1e-11 costs up to 20 % more F applications there
+  // (doc/measurements/coarse_problem.md, "The coarse factor in single precision").
+  switch (settings_.coarsePrecision) {
+    case CoarsePrecision::Single: return true;
+    case CoarsePrecision::Double: return false;
+    case CoarsePrecision::Auto: break;
+  }
+  return coarseToFBytes >= 1.0;
+}
+
+std::pair<bool, double> TotalFeti::roundCoarseToSingle() const {
+  // One solve of a fixed right-hand side before and after the rounding: the relative change
+  // is about kappa(G G^T) 1e-7, the size of the perturbation the rounding makes to P.
+  const LO n = coarse_->size();
+  std::vector<double> b(static_cast<size_t>(n)), exact(b.size()), rounded(b.size());
+  std::uint32_t state = 12345u;
+  for (double& v : b) {
+    state = 1664525u * state + 1013904223u;  // a fixed sequence (LCG), spread over [-1, 1)
+    v = static_cast<double>(state) / 2147483648.0 - 1.0;
+  }
+  coarse_->solve(b.data(), exact.data());
+  if (!coarse_->roundToSingle()) return {false, 0.0};
+  coarse_->solve(b.data(), rounded.data());
+  double difference = 0.0, norm = 0.0;
+  for (size_t i = 0; i < b.size(); ++i) {
+    difference += (rounded[i] - exact[i]) * (rounded[i] - exact[i]);
+    norm += exact[i] * exact[i];
+  }
+  return {true, std::sqrt(difference / norm)};  // NaN or Inf: rejected by the gate
+}
+
+void TotalFeti::solveCoarseExactly(std::vector<double>& a) const {
+  if (!coarseFactored_) factorizeCoarse();
+  if (!coarseSingle_) {
+    solveCoarse(a);
+    return;
+  }
+  // Iterative refinement: x += C~^{-1} (b - G G^T x) contracts by about the gate's error per
+  // step (at most 1e-3: 1e-16 in five steps); it stops when the correction reaches round-off
+  // (1e-16 of x) or stops shrinking, and is accepted when the last correction was below 1e-10
+  // of x. The same numbers on every rank (coarse vectors are replicated), so the same
+  // decisions.
+  const std::vector<double> b = a;
+  solveCoarse(a);
+  DualVector v(dualMap_);
+  std::vector<double> r;
+  double previous = std::numeric_limits<double>::infinity(), correction = 0.0, norm = 0.0;
+  for (int k = 0; k < kMaxCoarseRefinements; ++k) {
+    applyGt(a, v);
+    applyG(v, r);
+    for (size_t i = 0; i < r.size(); ++i) r[i] = b[i] - r[i];
+    solveCoarse(r);
+    ++profile_.coarseRefinementSteps;
+    correction = 0.0;
+    norm = 0.0;
+    for (size_t i = 0; i < r.size(); ++i) {
+      a[i] += r[i];
+      correction += r[i] * r[i];
+      norm += a[i] * a[i];
+    }
+    if (correction <= 1e-32 * norm || correction >= previous) break;
+    previous = correction;
+  }
+  if (correction <= 1e-20 * norm) return;
+  // Not refined to round-off (not seen): the double factor after all, for every later
+  // coarse solve too; the summary keeps the gate's error (coarse_single false with an error:
+  // sent back to double).
+  const double error = profile_.coarseSingleError;
+  coarseSingleRejected_ = true;
+  releaseCoarseFactor();
+  a = b;
+  solveCoarse(a);
+  profile_.coarseSingleError = error;
+}
+
+void TotalFeti::releaseCoarseFactor() const {
+  distributedCoarse_.reset();  // it reads coarse_'s factor on rank 0
+  coarse_.reset();
+  coarseFactored_ = false;
+  for (CoarseMemo& memo : coarseMemo_) memo = CoarseMemo{};
+  for (ProjectionMemo& memo : projectionMemo_) memo = ProjectionMemo{};
+}
+
+void TotalFeti::onRootThenBroadcast(std::vector<double>& v, const std::function<void()>& work,
+                                    const std::function<void(const std::string&)>& fail) const {
+  if (comm_->getSize() == 1) {
+    work();  // its exceptions as they are
+    return;
+  }
+  // Every rank reaches both broadcasts, also when rank 0's work failed: then every rank
+  // throws, with rank 0's message (a rank left waiting in a collective would hang the job).
+  int failed = 0;
+  std::string message;
+  if (comm_->getRank() == 0) {
+    try {
+      work();
+    } catch (const std::exception& e) {
+      failed = 1;
+      message = e.what();
+    }
+  }
+  Teuchos::broadcast(*comm_, 0, 1, &failed);
+  if (failed) {
+    int length = static_cast<int>(message.size());
+    Teuchos::broadcast(*comm_, 0, 1, &length);
+    message.resize(static_cast<size_t>(length));
+    if (length > 0) Teuchos::broadcast(*comm_, 0, length, message.data());
+    fail(message);
+    throw std::logic_error("tribos::feti::TotalFeti::onRootThenBroadcast: `fail` must throw");
+  }
+  if (!v.empty()) Teuchos::broadcast(*comm_, 0, static_cast<int>(v.size()), v.data());
+}
+
+
+void TotalFeti::solveCoarse(std::vector<double>& a) const {
+  core::Stopwatch watch;
+  ++profile_.coarseSolves;
+  // a is the same on every rank, so every rank finds the same memo entry (or none).
+  for (const CoarseMemo& memo : coarseMemo_)
+    if (memo.valid && std::equal(a.begin(), a.end(), memo.rhs.begin(), [](double x, double y) {
+          return std::memcmp(&x, &y, sizeof(double)) == 0;
+        })) {
+      std::copy(memo.solution.begin(), memo.solution.end(), a.begin());
+      ++profile_.coarseSolvesReused;
+      profile_.coarseSolveSeconds += watch.seconds();
+      return;
+    }
+  CoarseMemo& memo = coarseMemo_[coarseMemoNext_];
+  coarseMemoNext_ = 1 - coarseMemoNext_;
+  memo.valid = false;
+  memo.rhs.assign(a.begin(), a.end());
+  if (!coarseFactored_) factorizeCoarse();  // released (releaseCoarseFactor): the same factor again
+  // Over the ranks when the factor is large (the bits of the serial solve), else on rank 0
+  // alone, then broadcast: with every rank solving, the R ranks of a node streamed R copies
+  // of the factor at once (16 ranks at 4 000 subdomains: doc/measurements/scalability.md).
+  if (distributedCoarse_) {
+    distributedCoarse_->solve(memo.rhs.data(), a.data());
+    memo.solution.assign(a.begin(), a.end());
+    memo.valid = true;
+    profile_.coarseSolveSeconds += watch.seconds();
+    return;
+  }
+  onRootThenBroadcast(
+      a, [&] { coarse_->solve(memo.rhs.data(), a.data()); },
+      [](const std::string& message) { throw std::runtime_error(message); });
+  memo.solution.assign(a.begin(), a.end());
+  memo.valid = true;
+  profile_.coarseSolveSeconds += watch.seconds();
+}
+
+
+}  // namespace tribos::feti

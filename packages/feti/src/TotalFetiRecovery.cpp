@@ -1,0 +1,115 @@
+// TotalFeti's recovery: alpha from lambda (paper (14)), u, B u and the residuals of the discrete problem.
+#include "TotalFetiParts.hpp"
+
+namespace tribos::feti {
+
+std::vector<double> TotalFeti::rigidBodyCoefficients(const DualVector& lambda,
+                                                     const std::vector<char>& ownedRowMask) const {
+  const core::ScopedSeconds timed(profile_.rigidCoefficientsSeconds);
+  TEUCHOS_TEST_FOR_EXCEPTION(ownedRowMask.size() != static_cast<size_t>(G_->numRows), std::invalid_argument,
+                             "tribos::feti::TotalFeti::rigidBodyCoefficients: the mask has "
+                                 << ownedRowMask.size() << " entries, this rank owns " << G_->numRows << " rows");
+  DualVector residual(dualMap_);
+  applyF(lambda, residual);
+  residual.update(-1.0, *dTilde_, 1.0);
+  {
+    auto data = residual.getLocalViewHost(Tpetra::Access::ReadWrite);
+    for (size_t i = 0; i < data.extent(0); ++i)
+      if (!ownedRowMask[i]) data(i, 0) = 0.0;
+  }
+  std::vector<double> alpha;
+  applyG(residual, alpha);
+  // Assembled, factorised and solved on rank 0 (as G G^T: onRootThenBroadcast).
+  fem::CsrMatrix GiGit = assembleCoarse(&ownedRowMask);
+  onRootThenBroadcast(
+      alpha,
+      [&] {
+        auto factor = makeSparseCholesky(settings_.factorization, settings_.factorOptions);
+        try {
+          factor->factorizeConsuming(std::move(GiGit));
+        } catch (const std::exception& e) {
+          throw RigidMotionsUndetermined(
+              std::string("tribos::feti::TotalFeti::rigidBodyCoefficients: G_I G_I^T is singular "
+                          "(the inactive rows do not fix every rigid body mode): ") +
+              e.what());
+        }
+        std::vector<double> rhs = alpha;
+        factor->solve(rhs.data(), alpha.data());
+      },
+      [](const std::string& message) { throw RigidMotionsUndetermined(message); });
+  return alpha;
+}
+
+
+std::vector<double> TotalFeti::rigidBodyCoefficients(const DualVector& lambda) const {
+  const core::ScopedSeconds timed(profile_.rigidCoefficientsSeconds);
+  DualVector residual(dualMap_);
+  applyF(lambda, residual);
+  residual.update(-1.0, *dTilde_, 1.0);
+  std::vector<double> alpha;
+  applyG(residual, alpha);
+  solveCoarseExactly(alpha);
+  return alpha;
+}
+
+void TotalFeti::applyB(const std::vector<std::vector<double>>& u, DualVector& y) const {
+  applyBlockwise(y, y, [&u, this](Local& L, bool) {
+    applyBlock(*L.block, u[L.subdomain - firstOwned_].data(), L.out.data());
+  });
+}
+
+double TotalFeti::equilibriumResidual(const DualVector& lambda, const std::vector<std::vector<double>>& u) const {
+  const double* lo = overlapValues(lambda);
+  double worst = 0.0;
+  for (size_t i = 0; i < local_.size(); ++i) {
+    Local& L = *local_[i];
+    for (LO r = 0; r < L.m(); ++r) L.in[r] = lo[L.overlapIndex[r]];
+    applyBlockTranspose(*L.block, L.rowOrder, L.in.data(), L.x.data(), L.n());
+    L.system.K.apply(u[i].data(), L.y.data());
+    for (LO k = 0; k < L.n(); ++k) worst = std::max(worst, std::abs(L.y[k] - L.system.f[k] + L.x[k]));
+  }
+  double global = 0.0;
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 1, &worst, &global);
+  return global;
+}
+
+double TotalFeti::energy(const std::vector<std::vector<double>>& u) const {
+  // One term per dof, summed independently of the layout (core::ReproducibleSum.hpp).
+  std::vector<double> terms;
+  for (size_t i = 0; i < local_.size(); ++i) {
+    Local& L = *local_[i];
+    L.system.K.apply(u[i].data(), L.y.data());
+    for (LO k = 0; k < L.n(); ++k) terms.push_back(0.5 * u[i][k] * L.y[k] - L.system.f[k] * u[i][k]);
+  }
+  return core::reproducibleSum(comm_.get(), terms.data(), terms.size(), primalDofs_);
+}
+
+double TotalFeti::loadNormInf() const {
+  double local = 0.0;
+  for (const auto& L : local_)
+    for (double v : L->system.f) local = std::max(local, std::abs(v));
+  double global = 0.0;
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 1, &local, &global);
+  return global;
+}
+
+std::vector<std::vector<double>> TotalFeti::recoverDisplacements(const DualVector& lambda,
+                                                                 const std::vector<double>& alpha) const {
+  const double* lo = overlapValues(lambda);
+  std::vector<std::vector<double>> u(local_.size());
+  core::forEachSubdomain(numOwnedSubdomains(), [&](int i) {
+    Local& L = *local_[i];
+    const LO n = L.n();
+    for (LO r = 0; r < L.m(); ++r) L.in[r] = lo[L.overlapIndex[r]];
+    applyBlockTranspose(*L.block, L.rowOrder, L.in.data(), L.x.data(), n);
+    for (LO k = 0; k < n; ++k) L.x[k] = L.system.f[k] - L.x[k];
+    u[i].assign(n, 0.0);
+    L.solver.applyPseudoInverse(L.x.data(), u[i].data());
+    for (LO k = 0; k < n; ++k)
+      for (int j = 0; j < 6; ++j) u[i][k] += L.system.R[static_cast<size_t>(j) * n + k] * alpha[6 * L.subdomain + j];
+  });
+  return u;
+}
+
+
+}  // namespace tribos::feti
