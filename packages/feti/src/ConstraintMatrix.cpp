@@ -148,180 +148,197 @@ Prescribed prescribedComponents(const mesh::Mesh& mesh, const ConstraintSpec& sp
 }
 }  // namespace
 
-ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decomposition& decomposition,
-                                       const ConstraintSpec& spec, int numRanks, int keepForRank) {
-  core::requireInput(numRanks >= 1, "buildConstraintMatrix: numRanks must be >= 1, got " + std::to_string(numRanks));
-  core::requireInput(keepForRank < numRanks, "buildConstraintMatrix: keepForRank " + std::to_string(keepForRank) +
-                                                 " is not a rank of " + std::to_string(numRanks));
-  const int numSubdomains = decomposition.numSubdomains();
-  const LO numNodes = mesh.numNodes();
+namespace {
+/// The copies of every global node, in ascending subdomain order (ALGORITHMS.md 2): a CSR
+/// node -> copies built by counting, O(#copies).
+struct NodeCopies {
+  std::vector<LO> ptr;
+  std::vector<Copy> copies;
+  LO count(LO node) const { return ptr[node + 1] - ptr[node]; }
+  const Copy& of(LO node, LO j) const { return copies[ptr[node] + j]; }
+};
 
-  // (1) Copies of every global node, in ascending subdomain order (ALGORITHMS.md 2): a
-  // CSR node -> copies built by counting, O(#copies).
-  std::vector<LO> copyPtr(numNodes + 1, 0);
+NodeCopies nodeCopies(const mesh::Decomposition& decomposition, LO numNodes) {
+  NodeCopies c;
+  c.ptr.assign(numNodes + 1, 0);
   for (const auto& s : decomposition.subdomains)
-    for (LO n : s.nodes) copyPtr[n + 1]++;
-  for (LO n = 0; n < numNodes; ++n) copyPtr[n + 1] += copyPtr[n];
-  std::vector<Copy> copies(copyPtr[numNodes]);
-  {
-    std::vector<LO> fill(copyPtr.begin(), copyPtr.end() - 1);
-    for (int s = 0; s < numSubdomains; ++s) {
-      const auto& nodes = decomposition.subdomains[s].nodes;
-      for (LO k = 0; k < static_cast<LO>(nodes.size()); ++k) copies[fill[nodes[k]]++] = {s, k};
-    }
+    for (LO n : s.nodes) c.ptr[n + 1]++;
+  for (LO n = 0; n < numNodes; ++n) c.ptr[n + 1] += c.ptr[n];
+  c.copies.resize(c.ptr[numNodes]);
+  std::vector<LO> fill(c.ptr.begin(), c.ptr.end() - 1);
+  for (int s = 0; s < decomposition.numSubdomains(); ++s) {
+    const auto& nodes = decomposition.subdomains[s].nodes;
+    for (LO k = 0; k < static_cast<LO>(nodes.size()); ++k) c.copies[fill[nodes[k]]++] = {s, k};
   }
-  auto numCopies = [&](LO node) { return copyPtr[node + 1] - copyPtr[node]; };
+  return c;
+}
 
-  const Prescribed prescribed = prescribedComponents(mesh, spec);
-
-  // A row belongs to the rank that owns the lowest subdomain it touches (header).
-  auto ownerOf = [&](const Entry* entries, size_t count) {
+/// What every row builder reads: the copies, the prescribed components and the owner rule.
+struct RowContext {
+  const NodeCopies& copies;
+  const Prescribed& prescribed;
+  int numSubdomains, numRanks;
+  /// A row belongs to the rank that owns the lowest subdomain it touches (header).
+  int ownerOf(const Entry* entries, size_t count) const {
     int lowest = numSubdomains;
     for (size_t e = 0; e < count; ++e) lowest = std::min(lowest, entries[e].subdomain);
     return mesh::ownerRank(lowest, numSubdomains, numRanks);
-  };
+  }
+};
 
-  RowList list;
-  std::vector<Row>& rows = list.rows;
-  ConstraintMatrix B;
+/// The contact node of a slave node paired with `masterSide`: its master nodes and weights,
+/// gap and frame (nu, t1, t2), right-handed.
+ContactNode contactFrame(const mesh::ContactPair& pair, const mesh::MortarRow& masterSide, const ConstraintSpec& spec,
+                         const Prescribed& prescribed) {
+  ContactNode node;
+  node.slaveNode = pair.slaveNode;
+  node.masterNode = pair.nearestMasterNode();
+  node.masterNodes = masterSide.masterNodes;
+  node.masterWeights = masterSide.weights;
+  node.mortar = !masterSide.nodeToSurface;
+  node.normal = symmetryPlaneNormal(pair.normal, prescribed, pair.slaveNode);
+  node.gap = masterSide.gap;
+  node.t1 = tangent(spec.t1Direction, node.normal);
+  node.t2 = cross(node.normal, node.t1);  // right-handed (nu, t1, t2)
+  return node;
+}
 
-  // (2) Contact rows, node-to-surface: slave node minus the master displacement
-  // interpolated at its projection (paper Section 3, the transfer mapping chi; DESIGN.md).
-  core::requireInput(spec.slaveSideSet.empty() == spec.masterSideSet.empty(),
-                     "contact: give both the slave and the master side set, or neither (slave \"" +
-                         spec.slaveSideSet + "\", master \"" + spec.masterSideSet + "\")");
-  if (!spec.slaveSideSet.empty()) {
-    const auto search = mesh::searchContactPairs(mesh, spec.slaveSideSet, spec.masterSideSet, spec.searchDistance);
-    std::vector<mesh::MortarRow> masterSides;
-    if (spec.discretization == ContactDiscretization::Mortar) {
-      const mesh::MasterSurface master(mesh, spec.masterSideSet);
-      masterSides = mesh::dualMortarRows(mesh, spec.slaveSideSet, master, search, spec.searchDistance);
-    } else {
-      for (const auto& pair : search.pairs) masterSides.push_back(mesh::nodeToSurfaceRow(pair));
+/// The row of contact node `node` along direction d (0: nu, 1: t1, 2: t2) over its nodes
+/// `sides` (+1 on the slave, -w_i on master vertex i), its scale recorded in `node`; or
+/// false when it is dropped (the entries it appended are removed): a row (almost) entirely
+/// on prescribed components, or a tangential row of a slave held along that tangent.
+bool contactRow(int d, ContactNode& node, const std::vector<std::pair<LO, double>>& sides, const RowContext& ctx,
+                RowList& list, Row& row) {
+  const Vec3* directions[3] = {&node.normal, &node.t1, &node.t2};
+  const Vec3& dir = *directions[d];
+  const Prescribed& prescribed = ctx.prescribed;
+  row = list.begin();
+  row.kind = static_cast<RowKind>(d);
+  // Prescribed components leave the row; their known part moves to the right side.
+  // (The arithmetic repeats the node-to-node rows' exactly when nothing is prescribed.)
+  // Each node's weight is spread evenly over its copies (1/k each): the row is then
+  // orthogonal to every gluing row, which is orthogonal to the mean of the copies.
+  double known = 0.0, free2 = 0.0, full2 = 0.0, slaveFree2 = 1.0;
+  for (const auto& [global, weight] : sides) {
+    const LO k = ctx.copies.count(global);
+    const double perCopy = weight / k;
+    double freeDirection2 = 1.0;  // |dir|^2 over the free components (dir is a unit vector)
+    if (prescribed.any(global)) {
+      freeDirection2 = 0.0;
+      for (int c = 0; c < 3; ++c)
+        if (prescribed.fixed[3 * global + c]) known += weight * dir[c] * prescribed.value[3 * global + c];
+        else freeDirection2 += dir[c] * dir[c];
     }
-    B.unpairedSlaveNodes = static_cast<GO>(search.unpaired.size());
-    constexpr size_t kSample = 5;
-    B.unpairedSample.assign(search.unpaired.begin(), search.unpaired.begin() + std::min(kSample, search.unpaired.size()));
-    B.searchDistance = spec.searchDistance;
-    B.overlappingPairs = search.overlapping;
-    B.largestOverlap = search.largestOverlap;
-    const int numDirections = spec.tangentialRows ? 3 : 1;
-    rows.reserve(numDirections * search.pairs.size());
-
-    for (size_t p = 0; p < search.pairs.size(); ++p) {
-      const auto& pair = search.pairs[p];
-      const auto& masterSide = masterSides[p];
-      ContactNode node;
-      node.slaveNode = pair.slaveNode;
-      node.masterNode = pair.nearestMasterNode();
-      node.masterNodes = masterSide.masterNodes;
-      node.masterWeights = masterSide.weights;
-      node.mortar = !masterSide.nodeToSurface;
-      node.normal = symmetryPlaneNormal(pair.normal, prescribed, pair.slaveNode);
-      node.gap = masterSide.gap;
-      node.t1 = tangent(spec.t1Direction, node.normal);
-      node.t2 = cross(node.normal, node.t1);  // right-handed (nu, t1, t2)
-      // The nodes of the row with their weights: +1 on the slave, -w_i on master vertex i.
-      // Each node's weight is spread evenly over its copies (1/k each): the row is then
-      // orthogonal to every gluing row, which is orthogonal to the mean of the copies.
-      std::vector<std::pair<LO, double>> sides{{pair.slaveNode, 1.0}};
-      for (size_t v = 0; v < masterSide.masterNodes.size(); ++v)
-        sides.push_back({masterSide.masterNodes[v], -masterSide.weights[v]});
-      const Vec3* directions[3] = {&node.normal, &node.t1, &node.t2};
-      const int contactIndex = static_cast<int>(B.contact.size());
-      // The node's rows are added together, their entries consecutive in the list.
-      std::vector<Row> nodeRows;
-      for (int d = 0; d < numDirections; ++d) {
-        const Vec3& dir = *directions[d];
-        Row row = list.begin();
-        row.kind = static_cast<RowKind>(d);
-        // Prescribed components leave the row; their known part moves to the right side.
-        // (The arithmetic repeats the node-to-node rows' exactly when nothing is prescribed.)
-        double known = 0.0, free2 = 0.0, full2 = 0.0, slaveFree2 = 1.0;
-        for (const auto& [global, weight] : sides) {
-          const LO k = numCopies(global);
-          const double perCopy = weight / k;
-          double freeDirection2 = 1.0;  // |dir|^2 over the free components (dir is a unit vector)
-          if (prescribed.any(global)) {
-            freeDirection2 = 0.0;
-            for (int c = 0; c < 3; ++c)
-              if (prescribed.fixed[3 * global + c]) known += weight * dir[c] * prescribed.value[3 * global + c];
-              else freeDirection2 += dir[c] * dir[c];
-          }
-          if (global == pair.slaveNode) slaveFree2 = freeDirection2;
-          full2 += perCopy * perCopy * k;
-          free2 += perCopy * perCopy * k * freeDirection2;
-          for (int c = 0; c < 3; ++c) {
-            if (dir[c] == 0.0 || prescribed.fixed[3 * global + c]) continue;
-            for (LO j = copyPtr[global]; j < copyPtr[global + 1]; ++j)
-              list.append({copies[j].subdomain, 3 * copies[j].localNode + c, perCopy * dir[c]});
-          }
-        }
-        // A row (almost) entirely on prescribed components is redundant: removed, counted.
-        if (!(free2 > 1e-16 * full2)) {
-          list.drop(row);
-          if (d == 0) break;  // no normal row: the node cannot press, its tangential rows go too
-          continue;
-        }
-        // A slave node held along t_j but free otherwise (a symmetry plane with normal t_j) cannot
-        // slip along it: the friction force along t_j is the displacement condition's
-        // reaction. What would remain of the row (master nodes off the plane, through the
-        // mortar weights) is no physical slip; its multiplier, bounded by F g along an
-        // almost empty row, makes a needle-thin ellipse on which MPGP crawls (measured on
-        // the Hertz half models: 24:1 semi-axes, 20 000 proportioning steps).
-        // (A slave clamped in every component keeps its rows: the master slides on a fixed
-        // point, and the friction acts on the master alone.)
-        if (d > 0 && !(slaveFree2 > 1e-12) && !prescribed.all(pair.slaveNode)) {
-          list.drop(row);
-          continue;
-        }
-        const double scale = 1.0 / std::sqrt(free2);
-        Entry* entries = list.entriesOf(row);
-        const size_t count = list.openCount(row);
-        for (size_t e = 0; e < count; ++e) entries[e].value *= scale;
-        // N u <= d: scale ((u_s - chi u_m) . nu) <= scale (d - known part).
-        row.c = scale * ((d == 0 ? node.gap : 0.0) - known);
-        row.key = {0, pair.slaveNode, d, 0};
-        row.contact = d == 0 ? contactIndex : -1;
-        row.owner = ownerOf(entries, count);
-        row.numEntries = static_cast<LO>(count);
-        if (d == 0) node.rowScale = scale;
-        else {
-          node.hasTangential[d - 1] = true;
-          node.tangentialScale[d - 1] = scale;
-        }
-        nodeRows.push_back(row);
+    if (global == node.slaveNode) slaveFree2 = freeDirection2;
+    full2 += perCopy * perCopy * k;
+    free2 += perCopy * perCopy * k * freeDirection2;
+    for (int c = 0; c < 3; ++c) {
+      if (dir[c] == 0.0 || prescribed.fixed[3 * global + c]) continue;
+      for (LO j = 0; j < k; ++j) {
+        const Copy& copy = ctx.copies.of(global, j);
+        list.append({copy.subdomain, 3 * copy.localNode + c, perCopy * dir[c]});
       }
-      B.removedRedundantRows += numDirections - static_cast<GO>(nodeRows.size());
-      if (nodeRows.empty()) continue;
-      // All rows of a node go to the owner of its normal row (they are consecutive there).
-      for (auto& row : nodeRows) {
-        row.owner = nodeRows.front().owner;
-        rows.push_back(row);
-      }
-      B.contact.push_back(node);
     }
   }
+  // A row (almost) entirely on prescribed components is redundant: removed, counted.
+  // A slave node held along t_j but free otherwise (a symmetry plane with normal t_j) cannot
+  // slip along it: the friction force along t_j is the displacement condition's
+  // reaction. What would remain of the row (master nodes off the plane, through the
+  // mortar weights) is no physical slip; its multiplier, bounded by F g along an
+  // almost empty row, makes a needle-thin ellipse on which MPGP crawls (measured on
+  // the Hertz half models: 24:1 semi-axes, 20 000 proportioning steps).
+  // (A slave clamped in every component keeps its rows: the master slides on a fixed
+  // point, and the friction acts on the master alone.)
+  if (!(free2 > 1e-16 * full2) || (d > 0 && !(slaveFree2 > 1e-12) && !prescribed.all(node.slaveNode))) {
+    list.drop(row);
+    return false;
+  }
+  const double scale = 1.0 / std::sqrt(free2);
+  Entry* entries = list.entriesOf(row);
+  const size_t count = list.openCount(row);
+  for (size_t e = 0; e < count; ++e) entries[e].value *= scale;
+  // N u <= d: scale ((u_s - chi u_m) . nu) <= scale (d - known part).
+  row.c = scale * ((d == 0 ? node.gap : 0.0) - known);
+  row.key = {0, node.slaveNode, d, 0};
+  row.owner = ctx.ownerOf(entries, count);
+  row.numEntries = static_cast<LO>(count);
+  if (d == 0) {
+    node.rowScale = scale;
+  } else {
+    node.hasTangential[d - 1] = true;
+    node.tangentialScale[d - 1] = scale;
+  }
+  return true;
+}
 
-  // (3) Gluing (Helmert basis of the differences of the copies) per free component, and
-  // displacement rows per prescribed component.
+/// (2) Contact rows: slave node minus the master displacement weighted by the dual mortar
+/// or node-to-surface weights (paper Section 3, the transfer mapping chi; DESIGN.md).
+void addContactRows(const mesh::Mesh& mesh, const ConstraintSpec& spec, const RowContext& ctx, RowList& list,
+                    ConstraintMatrix& B) {
+  const auto search = mesh::searchContactPairs(mesh, spec.slaveSideSet, spec.masterSideSet, spec.searchDistance);
+  std::vector<mesh::MortarRow> masterSides;
+  if (spec.discretization == ContactDiscretization::Mortar) {
+    const mesh::MasterSurface master(mesh, spec.masterSideSet);
+    masterSides = mesh::dualMortarRows(mesh, spec.slaveSideSet, master, search, spec.searchDistance);
+  } else {
+    for (const auto& pair : search.pairs) masterSides.push_back(mesh::nodeToSurfaceRow(pair));
+  }
+  B.unpairedSlaveNodes = static_cast<GO>(search.unpaired.size());
+  constexpr size_t kSample = 5;
+  B.unpairedSample.assign(search.unpaired.begin(), search.unpaired.begin() + std::min(kSample, search.unpaired.size()));
+  B.searchDistance = spec.searchDistance;
+  B.overlappingPairs = search.overlapping;
+  B.largestOverlap = search.largestOverlap;
+  const int numDirections = spec.tangentialRows ? 3 : 1;
+  list.rows.reserve(numDirections * search.pairs.size());
+  for (size_t p = 0; p < search.pairs.size(); ++p) {
+    ContactNode node = contactFrame(search.pairs[p], masterSides[p], spec, ctx.prescribed);
+    std::vector<std::pair<LO, double>> sides{{node.slaveNode, 1.0}};
+    for (size_t v = 0; v < node.masterNodes.size(); ++v) sides.push_back({node.masterNodes[v], -node.masterWeights[v]});
+    // The node's rows are added together, their entries consecutive in the list.
+    std::vector<Row> nodeRows;
+    for (int d = 0; d < numDirections; ++d) {
+      Row row;
+      if (!contactRow(d, node, sides, ctx, list, row)) {
+        if (d == 0) break;  // no normal row: the node cannot press, its tangential rows go too
+        continue;
+      }
+      row.contact = d == 0 ? static_cast<int>(B.contact.size()) : -1;
+      nodeRows.push_back(row);
+    }
+    B.removedRedundantRows += numDirections - static_cast<GO>(nodeRows.size());
+    if (nodeRows.empty()) continue;
+    // All rows of a node go to the owner of its normal row (they are consecutive there).
+    for (auto& row : nodeRows) {
+      row.owner = nodeRows.front().owner;
+      list.rows.push_back(row);
+    }
+    B.contact.push_back(node);
+  }
+}
+}  // namespace
+
+namespace {
+/// (3) Gluing rows (Helmert basis of the differences of the copies) per free component, and
+/// displacement rows per prescribed component.
+void addGluingAndDirichletRows(LO numNodes, const RowContext& ctx, RowList& list) {
   for (LO n = 0; n < numNodes; ++n) {
-    const LO k = numCopies(n);
+    const LO k = ctx.copies.count(n);
     // Copies ascend by subdomain, so copy 1 is the lowest one: every gluing row at this
     // node touches it and has the same owner.
-    const int owner = k > 1 ? mesh::ownerRank(copies[copyPtr[n]].subdomain, numSubdomains, numRanks) : 0;
+    const int owner = k > 1 ? mesh::ownerRank(ctx.copies.of(n, 0).subdomain, ctx.numSubdomains, ctx.numRanks) : 0;
     for (int c = 0; c < 3; ++c) {
-      if (prescribed.fixed[3 * n + c]) {
+      if (ctx.prescribed.fixed[3 * n + c]) {
         // Every copy prescribed, no gluing rows: the paper's count (k-1 gluing + 1
         // Dirichlet per component) and B stays orthonormal (ALGORITHMS.md 2).
         for (LO j = 0; j < k; ++j) {
-          const Copy& cp = copies[copyPtr[n] + j];
+          const Copy& cp = ctx.copies.of(n, j);
           Row row = list.begin();
           row.kind = RowKind::Dirichlet;
           list.append({cp.subdomain, 3 * cp.localNode + c, 1.0});
-          row.c = prescribed.value[3 * n + c];
+          row.c = ctx.prescribed.value[3 * n + c];
           row.key = {2, n, j, c};
-          row.owner = mesh::ownerRank(cp.subdomain, numSubdomains, numRanks);
+          row.owner = mesh::ownerRank(cp.subdomain, ctx.numSubdomains, ctx.numRanks);
           list.add(row);
         }
         continue;
@@ -333,10 +350,10 @@ ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decom
         row.kind = RowKind::Gluing;
         const double scale = 1.0 / std::sqrt(1.0 + 1.0 / j);
         for (LO i = 0; i < j; ++i) {
-          const Copy& cp = copies[copyPtr[n] + i];
+          const Copy& cp = ctx.copies.of(n, i);
           list.append({cp.subdomain, 3 * cp.localNode + c, -scale / j});
         }
-        const Copy& cp = copies[copyPtr[n] + j];
+        const Copy& cp = ctx.copies.of(n, j);
         list.append({cp.subdomain, 3 * cp.localNode + c, scale});
         row.key = {1, n, c, j};
         row.owner = owner;
@@ -344,8 +361,13 @@ ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decom
       }
     }
   }
+}
 
-  // (4) Number the rows by (owner rank, key): rank p owns a contiguous range.
+/// (4) Numbers the rows by (owner rank, key) (rank p owns a contiguous range), scatters them
+/// into the per-subdomain blocks (of `keepForRank`'s subdomains and own rows only when >= 0),
+/// and gives every row its id in the numbering by key alone.
+void numberRows(RowList& list, int numSubdomains, int numRanks, int keepForRank, ConstraintMatrix& B) {
+  std::vector<Row>& rows = list.rows;
   std::vector<size_t> order(rows.size());
   std::iota(order.begin(), order.end(), size_t{0});
   std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
@@ -402,6 +424,26 @@ ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decom
   // Contact nodes in row order (the header's contract).
   std::sort(B.contact.begin(), B.contact.end(),
             [](const ContactNode& a, const ContactNode& b) { return a.normalRow < b.normalRow; });
+}
+}  // namespace
+
+ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decomposition& decomposition,
+                                       const ConstraintSpec& spec, int numRanks, int keepForRank) {
+  core::requireInput(numRanks >= 1, "buildConstraintMatrix: numRanks must be >= 1, got " + std::to_string(numRanks));
+  core::requireInput(keepForRank < numRanks, "buildConstraintMatrix: keepForRank " + std::to_string(keepForRank) +
+                                                 " is not a rank of " + std::to_string(numRanks));
+  // (1) Copies of every global node, in ascending subdomain order (ALGORITHMS.md 2).
+  const NodeCopies copies = nodeCopies(decomposition, mesh.numNodes());
+  const Prescribed prescribed = prescribedComponents(mesh, spec);
+  const RowContext ctx{copies, prescribed, decomposition.numSubdomains(), numRanks};
+  RowList list;
+  ConstraintMatrix B;
+  core::requireInput(spec.slaveSideSet.empty() == spec.masterSideSet.empty(),
+                     "contact: give both the slave and the master side set, or neither (slave \"" +
+                         spec.slaveSideSet + "\", master \"" + spec.masterSideSet + "\")");
+  if (!spec.slaveSideSet.empty()) addContactRows(mesh, spec, ctx, list, B);  // (2)
+  addGluingAndDirichletRows(mesh.numNodes(), ctx, list);                    // (3)
+  numberRows(list, decomposition.numSubdomains(), numRanks, keepForRank, B);  // (4)
   return B;
 }
 
