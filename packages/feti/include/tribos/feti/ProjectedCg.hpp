@@ -4,9 +4,10 @@
 /// rows treated as equalities: bonded bodies),
 ///     min 1/2 lambda^T F lambda - lambda^T d~   s.t.  G lambda = e,
 /// solved by preconditioned conjugate gradients on P F P from lambda_0 = lambda_Im
-/// (paper Section 4.2; Farhat-Mandel-Roux's projected CG). A Belos solver cannot carry
-/// the projector inside the preconditioner application the way the method needs (P M P
-/// with the projected residual), so this projected CG is our own.
+/// (paper Section 4.2; Farhat-Mandel-Roux's projected CG). Belos's CG can carry the
+/// projector (left preconditioner P D P, initial residual P h) and gives the same counts and
+/// condition estimates, but its sums are not layout-independent and its exact P F P costs a
+/// projection more per product; measured and kept out (doc/design.md, "Linear solve").
 #include <functional>
 #include <string>
 #include <vector>
