@@ -19,17 +19,31 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
   TEUCHOS_TEST_FOR_EXCEPTION(static_cast<int>(B.firstRowOfRank.size()) != size + 1, std::invalid_argument,
                              "tribos::feti::TotalFeti: B was built for " << B.firstRowOfRank.size() - 1
                                                                          << " ranks, the communicator has " << size);
+  buildMaps(numOwned);                                     // (1)
+  setUpSubdomains(mesh, decomposition, std::move(owned));  // (2) and (3)'s structures
+  factorizeSubdomains(mesh, decomposition);                // (3)
+  // (4) G on the owned rows; G G^T assembled and factorised once, on rank 0.
+  buildCoarseRows(mesh, decomposition);
+  buildCoarsePattern();
+  measureTraffic();  // before factorizeCoarse: "Auto" compares the coarse solve with it
+  factorizeCoarse();
+  if (settings_.deadline) settings_.deadline->check("the coarse problem", rawComm(*comm));
+  settings_.deadline = nullptr;  // the caller's: not kept beyond the set-up
+  buildDualData();  // (5)
+}
 
+void TotalFeti::buildMaps(int numOwned) {
   // (1) Maps: owned rows (contiguous per rank by construction of B) and the overlap = the
   // rows that touch this rank's subdomains, both in B's row order. Their global ids are
   // B.rowId, the numbering of one rank: the same id for the same row on any number of ranks.
-  const GO myFirst = B.firstRowOfRank[rank], myEnd = B.firstRowOfRank[rank + 1];
+  const int rank = comm_->getRank();
+  const GO myFirst = B_.firstRowOfRank[rank], myEnd = B_.firstRowOfRank[rank + 1];
   std::vector<GO> ids;
   for (GO r = myFirst; r < myEnd; ++r) ids.push_back(rowId(r));
-  dualMap_ = Teuchos::rcp(new DualMap(B.numRows, Teuchos::ArrayView<const GO>(ids.data(), ids.size()), 0, comm));
+  dualMap_ = Teuchos::rcp(new DualMap(B_.numRows, Teuchos::ArrayView<const GO>(ids.data(), ids.size()), 0, comm_));
   std::vector<GO> overlapRows;
   for (int i = 0; i < numOwned; ++i) {
-    const auto& rows = B.blocks[firstOwned_ + i].rows;
+    const auto& rows = B_.blocks[firstOwned_ + i].rows;
     overlapRows.insert(overlapRows.end(), rows.begin(), rows.end());
   }
   std::sort(overlapRows.begin(), overlapRows.end());
@@ -37,11 +51,15 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
   ids.clear();
   for (GO r : overlapRows) ids.push_back(rowId(r));
   overlapMap_ = Teuchos::rcp(new DualMap(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
-                                         Teuchos::ArrayView<const GO>(ids.data(), ids.size()), 0, comm));
+                                         Teuchos::ArrayView<const GO>(ids.data(), ids.size()), 0, comm_));
   importer_ = Teuchos::rcp(new Tpetra::Import<LO, GO>(dualMap_, overlapMap_));
   overlapIsOwned_ = overlapMap_->isSameAs(*dualMap_);
   xOverlap_ = Teuchos::rcp(new DualVector(overlapMap_));
+}
 
+void TotalFeti::setUpSubdomains(const mesh::Mesh& mesh, const mesh::Decomposition& decomposition,
+                                std::vector<fem::SubdomainSystem> owned) {
+  const int numOwned = static_cast<int>(owned.size());
   // (2) Rigid body modes of the owned subdomains (a rank needs no other R_s: the g_{s,r}
   // of foreign subdomains come from their owners, buildCoarseRows).
   std::vector<std::vector<double>> R(numOwned);
@@ -52,13 +70,12 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
     for (LO node : nodes) coords.push_back(mesh.coords[node]);
     R[i] = fem::rigidBodyModes(coords);
   });
-
-  // (3) Owned subdomains: factorise K_reg on threads.
+  // (3) Owned subdomains: their systems, rows of B and work buffers.
   local_.resize(numOwned);
   for (int i = 0; i < numOwned; ++i) {
     auto L = std::make_unique<Local>();
     L->subdomain = firstOwned_ + i;
-    L->block = &B.blocks[L->subdomain];
+    L->block = &B_.blocks[L->subdomain];
     L->system = std::move(owned[i]);
     L->system.R = std::move(R[i]);
     for (GO row : L->block->rows) L->overlapIndex.push_back(overlapMap_->getLocalElement(rowId(row)));
@@ -74,14 +91,32 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
     local_[i] = std::move(L);
   }
   gatherOverlapContributions();
-  {
-    long long mine = 0;
-    for (const auto& L : local_) mine += L->n();
-    Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, 1, &mine, &primalDofs_);
-  }
+  long long mine = 0;
+  for (const auto& L : local_) mine += L->n();
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, 1, &mine, &primalDofs_);
+}
+
+namespace {
+// F_s = B_s K^dagger B_s^T, column by column of B_s^T (ALGORITHMS.md 3, explicit F).
+void assembleExplicitF(TotalFeti::Local& L) {
+  const LO m = L.m(), n = L.n();
+  std::vector<double> Bt(static_cast<size_t>(n) * m, 0.0), Y(static_cast<size_t>(n) * m);
+  for (LO r = 0; r < m; ++r)
+    for (LO k = L.block->rowPtr[r]; k < L.block->rowPtr[r + 1]; ++k)
+      Bt[static_cast<size_t>(r) * n + L.block->dof[k]] = L.block->value[k];
+  L.solver.applyPseudoInverse(Bt.data(), Y.data(), m);
+  std::vector<double> full(static_cast<size_t>(m) * m);
+  for (LO c = 0; c < m; ++c) applyBlock(*L.block, &Y[static_cast<size_t>(c) * n], &full[static_cast<size_t>(c) * m]);
+  L.denseF = packLowerInRowOrder(full, L.rowOrder);
+}
+}  // namespace
+
+void TotalFeti::factorizeSubdomains(const mesh::Mesh& mesh, const mesh::Decomposition& decomposition) {
+  // (3) K_reg of every owned subdomain factorised on threads, B_s in the factor's order, the
+  // preconditioners' blocks and the explicit F_s when asked for.
   core::Stopwatch watch;
   std::atomic<bool> stopped{false};  // Solver/Max Seconds passed on this rank: the rest skipped
-  core::forEachSubdomain(numOwned, [&](int i) {
+  core::forEachSubdomain(numOwnedSubdomains(), [&](int i) {
     if (stopped || (settings_.deadline && settings_.deadline->passed())) {
       stopped = true;
       return;
@@ -99,31 +134,14 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
     L.factorTerms = blockTerms(*L.block, L.rowOrder, factorDof);
     if (settings_.dirichletPreconditioner || settings_.lumpedPreconditioner)
       buildPreconditionerBlocks(L, settings_.dirichletPreconditioner, settings_.factorization, settings_.factorOptions);
-    if (settings_.explicitF) {
-      // F_s = B_s K^dagger B_s^T, column by column of B_s^T (ALGORITHMS.md 3, explicit F).
-      const LO m = L.m(), n = L.n();
-      std::vector<double> Bt(static_cast<size_t>(n) * m, 0.0), Y(static_cast<size_t>(n) * m);
-      for (LO r = 0; r < m; ++r)
-        for (LO k = L.block->rowPtr[r]; k < L.block->rowPtr[r + 1]; ++k)
-          Bt[static_cast<size_t>(r) * n + L.block->dof[k]] = L.block->value[k];
-      L.solver.applyPseudoInverse(Bt.data(), Y.data(), m);
-      std::vector<double> full(static_cast<size_t>(m) * m);
-      for (LO c = 0; c < m; ++c) applyBlock(*L.block, &Y[static_cast<size_t>(c) * n], &full[static_cast<size_t>(c) * m]);
-      L.denseF = packLowerInRowOrder(full, L.rowOrder);
-    }
+    if (settings_.explicitF) assembleExplicitF(L);
   });
-  if (settings_.deadline) settings_.deadline->agree(stopped, "the factorisation", rawComm(*comm));
+  if (settings_.deadline) settings_.deadline->agree(stopped, "the factorisation", rawComm(*comm_));
   double seconds = watch.seconds();
-  Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &seconds, &factorizationSeconds_);
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 1, &seconds, &factorizationSeconds_);
+}
 
-  // (4) G on the owned rows; G G^T assembled and factorised once, on rank 0.
-  buildCoarseRows(mesh, decomposition);
-  buildCoarsePattern();
-  measureTraffic();  // before factorizeCoarse: "Auto" compares the coarse solve with it
-  factorizeCoarse();
-  if (settings_.deadline) settings_.deadline->check("the coarse problem", rawComm(*comm));
-  settings_.deadline = nullptr;  // the caller's: not kept beyond the set-up
-
+void TotalFeti::buildDualData() {
   // (5) e = R^T f, d~ = B K^dagger f - c, lambda_Im = G^T (G G^T)^{-1} e.
   e_.assign(numCoarse(), 0.0);
   std::vector<double> eLocal(numCoarse(), 0.0);
@@ -133,7 +151,7 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
       for (LO k = 0; k < L->n(); ++k) s += L->system.R[static_cast<size_t>(j) * L->n() + k] * L->system.f[k];
       eLocal[6 * L->subdomain + j] = s;
     }
-  Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, numCoarse(), eLocal.data(), e_.data());
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, numCoarse(), eLocal.data(), e_.data());
 
   dTilde_ = createDualVector();
   applyBlockwise(*dTilde_, *dTilde_, [](Local& L, bool) {
@@ -141,8 +159,10 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
     applyBlock(*L.block, L.y.data(), L.out.data());
   });
   {
+    const int rank = comm_->getRank();
+    const GO myFirst = B_.firstRowOfRank[rank], myEnd = B_.firstRowOfRank[rank + 1];
     double* d = readWrite(*dTilde_);
-    for (GO r = myFirst; r < myEnd; ++r) d[r - myFirst] -= B.c[r];
+    for (GO r = myFirst; r < myEnd; ++r) d[r - myFirst] -= B_.c[r];
   }
   lambdaIm_ = createDualVector();
   std::vector<double> a = e_;

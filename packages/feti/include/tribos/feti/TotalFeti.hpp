@@ -241,6 +241,14 @@ class TotalFeti {
   struct CoarseRows;  ///< G on the owned rows (implementation detail, defined in TotalFeti.cpp)
 
  private:
+  // The constructor's steps (TotalFeti.cpp): (1) the dual and overlap maps; (2) the rigid
+  // body modes and (3) the owned subdomains' structures; (3) their factorisations; (5) e, d~
+  // and lambda_Im.
+  void buildMaps(int numOwned);
+  void setUpSubdomains(const mesh::Mesh& mesh, const mesh::Decomposition& decomposition,
+                       std::vector<fem::SubdomainSystem> owned);
+  void factorizeSubdomains(const mesh::Mesh& mesh, const mesh::Decomposition& decomposition);
+  void buildDualData();
   // x (owned) -> overlap values -> per-subdomain op -> each row's entries summed into y (owned).
   template <class LocalOp>
   void applyBlockwise(const DualVector& x, DualVector& y, LocalOp op) const;
