@@ -120,8 +120,9 @@ Unmanaged<const T> view(const std::vector<T>& v) {
 }
 }  // namespace
 
-SubdomainSystem assembleSubdomain(const mesh::Mesh& mesh, const mesh::Subdomain& subdomain,
-                                  const std::vector<Material>& materials, const Loads& loads) {
+namespace {
+void requireConsistentArguments(const mesh::Mesh& mesh, const mesh::Subdomain& subdomain,
+                                const std::vector<Material>& materials, const Loads& loads) {
   // Programming errors of the caller (the driver sizes these from the mesh's blocks).
   if (materials.size() < static_cast<size_t>(mesh.numBlocks()))
     throw std::invalid_argument("tribos::fem::assembleSubdomain: " + std::to_string(materials.size()) +
@@ -134,127 +135,178 @@ SubdomainSystem assembleSubdomain(const mesh::Mesh& mesh, const mesh::Subdomain&
     throw std::invalid_argument("tribos::fem::assembleSubdomain: subdomain has " +
                                 std::to_string(subdomain.elements.size()) + " elements but " +
                                 std::to_string(subdomain.tets.size()) + " local connectivities");
-  const LO numNodes = subdomain.numNodes(), numElements = static_cast<LO>(subdomain.elements.size());
-  std::vector<double> coords(3 * static_cast<size_t>(numNodes));
-  for (LO k = 0; k < numNodes; ++k)
-    for (int c = 0; c < 3; ++c) coords[3 * k + c] = mesh.coords[subdomain.nodes[k]][c];
-  std::vector<LO> tets(4 * static_cast<size_t>(numElements));
-  std::vector<double> lambda(numElements), mu(numElements);
-  for (LO e = 0; e < numElements; ++e) {
-    for (int v = 0; v < 4; ++v) tets[4 * e + v] = subdomain.tets[e][v];
-    const int block = mesh.blockOf(subdomain.elements[e]);
-    lambda[e] = materials.at(block).lambda;
-    mu[e] = materials.at(block).mu;
-  }
+}
 
-  // (1) Element matrices K_e = V B^T D B (paper Section 2, Hooke's law with Lame lambda, mu),
-  // independent per element, into a buffer of 144 values per element. An inverted element
-  // would give a negative-definite K_e and a meaningless K_s: the kernel skips it and the
-  // host reports it below, naming it as the user's mesh does (1-based id, block name).
-  std::vector<double> Ke(144 * static_cast<size_t>(numElements)), volume(numElements);
-  Kokkos::parallel_for("tribos::fem::elementStiffness", Kokkos::RangePolicy<ExecSpace>(0, numElements),
-                       ElementStiffnessKernel{view(coords), view(tets), view(lambda), view(mu), view(Ke), view(volume)});
-  for (LO e = 0; e < numElements; ++e)
+/// The subdomain's elements as the kernels read them: local coordinates, connectivity and
+/// the Lame parameters per element.
+struct LocalElements {
+  LO numNodes = 0, numElements = 0;
+  std::vector<double> coords;  ///< 3 per local node
+  std::vector<LO> tets;        ///< 4 per element
+  std::vector<double> lambda, mu;
+};
+
+LocalElements localElements(const mesh::Mesh& mesh, const mesh::Subdomain& subdomain,
+                            const std::vector<Material>& materials) {
+  LocalElements el;
+  el.numNodes = subdomain.numNodes();
+  el.numElements = static_cast<LO>(subdomain.elements.size());
+  el.coords.resize(3 * static_cast<size_t>(el.numNodes));
+  for (LO k = 0; k < el.numNodes; ++k)
+    for (int c = 0; c < 3; ++c) el.coords[3 * k + c] = mesh.coords[subdomain.nodes[k]][c];
+  el.tets.resize(4 * static_cast<size_t>(el.numElements));
+  el.lambda.resize(el.numElements);
+  el.mu.resize(el.numElements);
+  for (LO e = 0; e < el.numElements; ++e) {
+    for (int v = 0; v < 4; ++v) el.tets[4 * e + v] = subdomain.tets[e][v];
+    const int block = mesh.blockOf(subdomain.elements[e]);
+    el.lambda[e] = materials.at(block).lambda;
+    el.mu[e] = materials.at(block).mu;
+  }
+  return el;
+}
+
+// (1) Element matrices K_e = V B^T D B (paper Section 2, Hooke's law with Lame lambda, mu),
+// independent per element, into a buffer of 144 values per element. An inverted element
+// would give a negative-definite K_e and a meaningless K_s: the kernel skips it and the
+// host reports it below, naming it as the user's mesh does (1-based id, block name).
+std::vector<double> elementMatrices(LocalElements& el, const mesh::Mesh& mesh, const mesh::Subdomain& subdomain) {
+  std::vector<double> Ke(144 * static_cast<size_t>(el.numElements)), volume(el.numElements);
+  Kokkos::parallel_for("tribos::fem::elementStiffness", Kokkos::RangePolicy<ExecSpace>(0, el.numElements),
+                       ElementStiffnessKernel{view(el.coords), view(el.tets), view(el.lambda), view(el.mu), view(Ke),
+                                              view(volume)});
+  for (LO e = 0; e < el.numElements; ++e)
     if (!(volume[e] > 0.0)) {
       const LO global = subdomain.elements[e];
       throw core::InputError("element " + std::to_string(global + 1) + " of block \"" +
                              mesh.blocks[mesh.blockOf(global)].name + "\" is inverted or degenerate (volume " +
                              std::to_string(volume[e]) + ")");
     }
+  return Ke;
+}
 
-  // (2) Graph on the host: node -> adjacent (element, local vertex), by counting sort so the
-  // elements around a node are in ascending order (fixes the summation order of step 3),
-  // and node -> sorted neighbour nodes (itself included). Every node pair that shares an
-  // element gets a dense 3x3 block, so row 3a+i lists 3*neighbour+j in ascending order.
-  std::vector<LO> adjacencyPtr(numNodes + 1, 0), adjacentElement(4 * static_cast<size_t>(numElements)),
-      adjacentVertex(4 * static_cast<size_t>(numElements));
-  for (LO t : tets) adjacencyPtr[t + 1]++;
-  for (LO a = 0; a < numNodes; ++a) adjacencyPtr[a + 1] += adjacencyPtr[a];
-  {
-    std::vector<LO> fill(adjacencyPtr.begin(), adjacencyPtr.end() - 1);
-    for (LO e = 0; e < numElements; ++e)
-      for (int v = 0; v < 4; ++v) {
-        const LO k = fill[tets[4 * e + v]]++;
-        adjacentElement[k] = e;
-        adjacentVertex[k] = v;
-      }
-  }
-  std::vector<LO> nodeRowPtr(numNodes + 1, 0), neighbour;
-  neighbour.reserve(16 * static_cast<size_t>(numNodes));
+/// (2) The graph on the host: node -> adjacent (element, local vertex), by counting sort so
+/// the elements around a node are in ascending order (fixes the summation order of step 3),
+/// and node -> sorted neighbour nodes (itself included).
+struct NodeGraph {
+  std::vector<LO> adjacencyPtr, adjacentElement, adjacentVertex;
+  std::vector<LO> nodeRowPtr, neighbour;
+};
+
+NodeGraph nodeGraph(const std::vector<LO>& tets, LO numNodes, LO numElements) {
+  NodeGraph g;
+  g.adjacencyPtr.assign(numNodes + 1, 0);
+  g.adjacentElement.resize(4 * static_cast<size_t>(numElements));
+  g.adjacentVertex.resize(4 * static_cast<size_t>(numElements));
+  for (LO t : tets) g.adjacencyPtr[t + 1]++;
+  for (LO a = 0; a < numNodes; ++a) g.adjacencyPtr[a + 1] += g.adjacencyPtr[a];
+  std::vector<LO> fill(g.adjacencyPtr.begin(), g.adjacencyPtr.end() - 1);
+  for (LO e = 0; e < numElements; ++e)
+    for (int v = 0; v < 4; ++v) {
+      const LO k = fill[tets[4 * e + v]]++;
+      g.adjacentElement[k] = e;
+      g.adjacentVertex[k] = v;
+    }
+  g.nodeRowPtr.assign(numNodes + 1, 0);
+  g.neighbour.reserve(16 * static_cast<size_t>(numNodes));
   std::vector<LO> scratch;
   for (LO a = 0; a < numNodes; ++a) {
     scratch.clear();
-    for (LO k = adjacencyPtr[a]; k < adjacencyPtr[a + 1]; ++k)
-      for (int v = 0; v < 4; ++v) scratch.push_back(tets[4 * adjacentElement[k] + v]);
+    for (LO k = g.adjacencyPtr[a]; k < g.adjacencyPtr[a + 1]; ++k)
+      for (int v = 0; v < 4; ++v) scratch.push_back(tets[4 * g.adjacentElement[k] + v]);
     std::sort(scratch.begin(), scratch.end());
     scratch.erase(std::unique(scratch.begin(), scratch.end()), scratch.end());
-    neighbour.insert(neighbour.end(), scratch.begin(), scratch.end());
-    nodeRowPtr[a + 1] = static_cast<LO>(neighbour.size());
+    g.neighbour.insert(g.neighbour.end(), scratch.begin(), scratch.end());
+    g.nodeRowPtr[a + 1] = static_cast<LO>(g.neighbour.size());
   }
-  SubdomainSystem system;
-  CsrMatrix& K = system.K;
+  return g;
+}
+
+/// K's pattern from the graph: every node pair that shares an element gets a dense 3x3
+/// block, so row 3a+i lists 3*neighbour+j in ascending order; the values zero.
+void stiffnessPattern(const NodeGraph& g, LO numNodes, CsrMatrix& K) {
   K.n = 3 * numNodes;
   K.rowPtr.assign(K.n + 1, 0);
   for (LO a = 0; a < numNodes; ++a) {
-    const LO degree = nodeRowPtr[a + 1] - nodeRowPtr[a];
+    const LO degree = g.nodeRowPtr[a + 1] - g.nodeRowPtr[a];
     for (int i = 0; i < 3; ++i) K.rowPtr[3 * a + i + 1] = K.rowPtr[3 * a + i] + 3 * degree;
   }
   K.colInd.resize(K.rowPtr[K.n]);
   for (LO a = 0; a < numNodes; ++a)
     for (int i = 0; i < 3; ++i) {
       LO k = K.rowPtr[3 * a + i];
-      for (LO p = nodeRowPtr[a]; p < nodeRowPtr[a + 1]; ++p)
-        for (int j = 0; j < 3; ++j) K.colInd[k++] = 3 * neighbour[p] + j;
+      for (LO p = g.nodeRowPtr[a]; p < g.nodeRowPtr[a + 1]; ++p)
+        for (int j = 0; j < 3; ++j) K.colInd[k++] = 3 * g.neighbour[p] + j;
     }
   K.values.assign(K.colInd.size(), 0.0);
+}
 
-  // (3) Race-free gather: iteration a owns the 3 rows of node a and sums the blocks (a, b)
-  // of the elements around a. No two iterations write the same entry, so no atomics are
-  // needed and the result is the same (bitwise) on any back end and any thread count.
-  Kokkos::parallel_for("tribos::fem::gatherStiffnessRows", Kokkos::RangePolicy<ExecSpace>(0, numNodes),
-                       GatherRowsKernel{view(adjacencyPtr), view(adjacentElement), view(adjacentVertex), view(tets),
-                                        view(Ke), view(nodeRowPtr), view(neighbour), view(K.rowPtr),
-                                        view(K.values)});
-
-  // (4) Loads f_s: element/face contributions in kernels, then summed on the host in a
-  // fixed order (load by load, face by face), so f_s does not depend on the thread count.
-  // Only faces whose element lies in this subdomain count: each face is loaded once over
-  // all subdomains, so the subdomain loads sum to the global one.
-  system.f.assign(K.n, 0.0);
+/// The traction loads of the faces whose element lies in this subdomain, into f (each face
+/// is loaded once over all subdomains, so the subdomain loads sum to the global one).
+void addTractionLoads(const mesh::Mesh& mesh, const mesh::Subdomain& subdomain, const LocalElements& el,
+                      const Loads& loads, std::vector<double>& f) {
   for (const auto& traction : loads.tractions) {
     const auto& set = mesh.sideSet(traction.sideSet);  // InputError naming a missing set
     std::vector<LO> faceNodes;
-    for (size_t f = 0; f < set.elements.size(); ++f) {
-      if (!std::binary_search(subdomain.elements.begin(), subdomain.elements.end(), set.elements[f])) continue;
-      const auto& tet = mesh.tets[set.elements[f]];
-      for (int v : mesh::kTetFaceVertices[set.sides[f]])
+    for (size_t face = 0; face < set.elements.size(); ++face) {
+      if (!std::binary_search(subdomain.elements.begin(), subdomain.elements.end(), set.elements[face])) continue;
+      const auto& tet = mesh.tets[set.elements[face]];
+      for (int v : mesh::kTetFaceVertices[set.sides[face]])
         faceNodes.push_back(static_cast<LO>(
             std::lower_bound(subdomain.nodes.begin(), subdomain.nodes.end(), tet[v]) - subdomain.nodes.begin()));
     }
     const LO numFaces = static_cast<LO>(faceNodes.size() / 3);
     std::vector<double> fe(9 * static_cast<size_t>(numFaces));
-    TractionLoadKernel kernel{view(std::as_const(coords)), view(std::as_const(faceNodes)), {}, view(fe)};
+    TractionLoadKernel kernel{view(std::as_const(el.coords)), view(std::as_const(faceNodes)), {}, view(fe)};
     for (int c = 0; c < 3; ++c) kernel.p[c] = traction.p[c];
     Kokkos::parallel_for("tribos::fem::tractionLoads", Kokkos::RangePolicy<ExecSpace>(0, numFaces), kernel);
-    for (LO f = 0; f < numFaces; ++f)
+    for (LO face = 0; face < numFaces; ++face)
       for (int v = 0; v < 3; ++v)
-        for (int c = 0; c < 3; ++c) system.f[3 * faceNodes[3 * f + v] + c] += fe[9 * f + 3 * v + c];
+        for (int c = 0; c < 3; ++c) f[3 * faceNodes[3 * face + v] + c] += fe[9 * face + 3 * v + c];
   }
-  if (!loads.volumeForce.empty()) {
-    std::vector<double> force(3 * static_cast<size_t>(numElements)), fe(12 * static_cast<size_t>(numElements));
-    for (LO e = 0; e < numElements; ++e)
-      for (int c = 0; c < 3; ++c) force[3 * e + c] = loads.volumeForce[mesh.blockOf(subdomain.elements[e])][c];
-    Kokkos::parallel_for("tribos::fem::volumeForceLoads", Kokkos::RangePolicy<ExecSpace>(0, numElements),
-                         VolumeForceKernel{view(std::as_const(coords)), view(std::as_const(tets)),
-                                           view(std::as_const(force)), view(fe)});
-    for (LO e = 0; e < numElements; ++e)
-      for (int v = 0; v < 4; ++v)
-        for (int c = 0; c < 3; ++c) system.f[3 * tets[4 * e + v] + c] += fe[12 * e + 3 * v + c];
-  }
+}
 
+/// The volume forces of the subdomain's elements, into f.
+void addVolumeForces(const mesh::Mesh& mesh, const mesh::Subdomain& subdomain, const LocalElements& el,
+                     const Loads& loads, std::vector<double>& f) {
+  if (loads.volumeForce.empty()) return;
+  const LO numElements = el.numElements;
+  std::vector<double> force(3 * static_cast<size_t>(numElements)), fe(12 * static_cast<size_t>(numElements));
+  for (LO e = 0; e < numElements; ++e)
+    for (int c = 0; c < 3; ++c) force[3 * e + c] = loads.volumeForce[mesh.blockOf(subdomain.elements[e])][c];
+  Kokkos::parallel_for("tribos::fem::volumeForceLoads", Kokkos::RangePolicy<ExecSpace>(0, numElements),
+                       VolumeForceKernel{view(std::as_const(el.coords)), view(std::as_const(el.tets)),
+                                         view(std::as_const(force)), view(fe)});
+  for (LO e = 0; e < numElements; ++e)
+    for (int v = 0; v < 4; ++v)
+      for (int c = 0; c < 3; ++c) f[3 * el.tets[4 * e + v] + c] += fe[12 * e + 3 * v + c];
+}
+}  // namespace
+
+SubdomainSystem assembleSubdomain(const mesh::Mesh& mesh, const mesh::Subdomain& subdomain,
+                                  const std::vector<Material>& materials, const Loads& loads) {
+  requireConsistentArguments(mesh, subdomain, materials, loads);
+  LocalElements el = localElements(mesh, subdomain, materials);
+  std::vector<double> Ke = elementMatrices(el, mesh, subdomain);  // (1)
+  NodeGraph graph = nodeGraph(el.tets, el.numNodes, el.numElements);  // (2)
+  SubdomainSystem system;
+  CsrMatrix& K = system.K;
+  stiffnessPattern(graph, el.numNodes, K);
+  // (3) Race-free gather: iteration a owns the 3 rows of node a and sums the blocks (a, b)
+  // of the elements around a. No two iterations write the same entry, so no atomics are
+  // needed and the result is the same (bitwise) on any back end and any thread count.
+  Kokkos::parallel_for("tribos::fem::gatherStiffnessRows", Kokkos::RangePolicy<ExecSpace>(0, el.numNodes),
+                       GatherRowsKernel{view(graph.adjacencyPtr), view(graph.adjacentElement),
+                                        view(graph.adjacentVertex), view(el.tets), view(Ke), view(graph.nodeRowPtr),
+                                        view(graph.neighbour), view(K.rowPtr), view(K.values)});
+  // (4) Loads f_s: element/face contributions in kernels, then summed on the host in a
+  // fixed order (load by load, face by face), so f_s does not depend on the thread count.
+  system.f.assign(K.n, 0.0);
+  addTractionLoads(mesh, subdomain, el, loads, system.f);
+  addVolumeForces(mesh, subdomain, el, loads, system.f);
   // (5) Rigid body modes of the floating subdomain.
-  std::vector<std::array<double, 3>> local(numNodes);
-  for (LO k = 0; k < numNodes; ++k) local[k] = mesh.coords[subdomain.nodes[k]];
+  std::vector<std::array<double, 3>> local(el.numNodes);
+  for (LO k = 0; k < el.numNodes; ++k) local[k] = mesh.coords[subdomain.nodes[k]];
   system.R = rigidBodyModes(local);
   return system;
 }
