@@ -142,9 +142,9 @@ void writeGlobals(int id, const std::string& path, int step, const std::vector<G
 
 }  // namespace
 
-void writeExodus(const std::string& path, const Mesh& mesh, const std::vector<TimeStep>& steps,
-                 const std::vector<std::string>& info) {
-  // Validate everything before touching the file, so a bad call does not clobber a good one.
+namespace {
+// Validate everything before touching the file, so a bad call does not clobber a good one.
+void checkWritable(const Mesh& mesh, const std::vector<TimeStep>& steps) {
   checkWritableMesh(mesh);
   for (size_t s = 0; s < steps.size(); ++s) {
     checkSameFields(steps.front().nodal, steps[s].nodal, s, "nodal");
@@ -153,16 +153,9 @@ void writeExodus(const std::string& path, const Mesh& mesh, const std::vector<Ti
     checkFieldSizes(steps[s].nodal, mesh.numNodes(), "nodal", "nodes");
     checkFieldSizes(steps[s].element, mesh.numElements(), "element", "elements");
   }
-  ex_opts(0);  // report errors through return codes (quiet, no abort); 0 is also 6.02's default
-  int cpuWordSize = 8, ioWordSize = 8;  // doubles in memory and on disk: coordinates round-trip bitwise
-  ExodusFile file(ex_create(path.c_str(), EX_CLOBBER, &cpuWordSize, &ioWordSize));
-  if (file.id() < 0) throw core::InputError(path + ": cannot create the Exodus file");
-  const int id = file.id();
-  const int nameLength = std::max(kNameLength, longestName(mesh, steps));
-  check(ex_set_max_name_length(id, nameLength), path, "setting the name length");
-  check(ex_put_init(id, "Tribos", 3, mesh.numNodes(), mesh.numElements(), mesh.numBlocks(),
-                    static_cast<int64_t>(mesh.nodeSets.size()), static_cast<int64_t>(mesh.sideSets.size())),
-        path, "writing the header");
+}
+
+void writeCoordinates(int id, const std::string& path, const Mesh& mesh, int nameLength) {
   std::vector<double> x(mesh.numNodes()), y(mesh.numNodes()), z(mesh.numNodes());
   for (LO n = 0; n < mesh.numNodes(); ++n) {
     x[n] = mesh.coords[n][0];
@@ -172,9 +165,17 @@ void writeExodus(const std::string& path, const Mesh& mesh, const std::vector<Ti
   check(ex_put_coord(id, x.data(), y.data(), z.data()), path, "writing coordinates");
   NameArray coordNames(std::vector<std::string>{"x", "y", "z"}, nameLength);
   check(ex_put_coord_names(id, coordNames.data()), path, "writing coordinate names");
-  writeInfo(id, path, info);
+}
 
-  // The file uses 32-bit ids (the default), which LO = int always fits.
+void writeNames(int id, const std::string& path, ex_entity_type type, const std::vector<std::string>& names,
+                int nameLength, const char* what) {
+  if (names.empty()) return;
+  NameArray array(names, nameLength);
+  check(ex_put_names(id, type, array.data()), path, std::string("writing ") + what + " names");
+}
+
+// The file uses 32-bit ids (the default), which LO = int always fits.
+void writeBlocks(int id, const std::string& path, const Mesh& mesh, int nameLength) {
   std::vector<std::string> names;
   for (const auto& b : mesh.blocks) {
     // "TETRA": meshio 5 maps "TETRA4" to a cell type it does not know (KeyError 'tetra4').
@@ -186,11 +187,11 @@ void writeExodus(const std::string& path, const Mesh& mesh, const std::vector<Ti
       check(ex_put_conn(id, EX_ELEM_BLOCK, b.id, conn.data(), nullptr, nullptr), path, "writing block " + b.name);
     names.push_back(b.name);
   }
-  if (!names.empty()) {
-    NameArray blockNames(names, nameLength);
-    check(ex_put_names(id, EX_ELEM_BLOCK, blockNames.data()), path, "writing block names");
-  }
-  names.clear();
+  writeNames(id, path, EX_ELEM_BLOCK, names, nameLength, "block");
+}
+
+void writeSets(int id, const std::string& path, const Mesh& mesh, int nameLength) {
+  std::vector<std::string> names;
   for (const auto& s : mesh.nodeSets) {
     check(ex_put_set_param(id, EX_NODE_SET, s.id, static_cast<int64_t>(s.nodes.size()), 0), path, "writing node set " + s.name);
     std::vector<int> list(s.nodes.begin(), s.nodes.end());
@@ -198,10 +199,7 @@ void writeExodus(const std::string& path, const Mesh& mesh, const std::vector<Ti
     if (!list.empty()) check(ex_put_set(id, EX_NODE_SET, s.id, list.data(), nullptr), path, "writing node set " + s.name);
     names.push_back(s.name);
   }
-  if (!names.empty()) {
-    NameArray setNames(names, nameLength);
-    check(ex_put_names(id, EX_NODE_SET, setNames.data()), path, "writing node set names");
-  }
+  writeNames(id, path, EX_NODE_SET, names, nameLength, "node set");
   names.clear();
   for (const auto& s : mesh.sideSets) {
     check(ex_put_set_param(id, EX_SIDE_SET, s.id, static_cast<int64_t>(s.elements.size()), 0), path,
@@ -215,46 +213,67 @@ void writeExodus(const std::string& path, const Mesh& mesh, const std::vector<Ti
       check(ex_put_set(id, EX_SIDE_SET, s.id, elements.data(), sides.data()), path, "writing side set " + s.name);
     names.push_back(s.name);
   }
-  if (!names.empty()) {
-    NameArray setNames(names, nameLength);
-    check(ex_put_names(id, EX_SIDE_SET, setNames.data()), path, "writing side set names");
-  }
+  writeNames(id, path, EX_SIDE_SET, names, nameLength, "side set");
+}
 
-  if (!steps.empty()) {
-    defineGlobals(id, path, steps.front().global, nameLength);
-    const auto nodalNames = fieldNames(steps.front().nodal), elementNames = fieldNames(steps.front().element);
-    const int numNodal = static_cast<int>(nodalNames.size()), numElemVars = static_cast<int>(elementNames.size());
-    if (numNodal > 0) {
-      check(ex_put_variable_param(id, EX_NODAL, numNodal), path, "defining nodal variables");
-      NameArray n(nodalNames, nameLength);
-      check(ex_put_variable_names(id, EX_NODAL, numNodal, n.data()), path, "naming nodal variables");
-    }
-    if (numElemVars > 0 && mesh.numBlocks() > 0) {
-      check(ex_put_variable_param(id, EX_ELEM_BLOCK, numElemVars), path, "defining element variables");
-      NameArray n(elementNames, nameLength);
-      check(ex_put_variable_names(id, EX_ELEM_BLOCK, numElemVars, n.data()), path, "naming element variables");
-      // Every variable exists on every block. Declaring that up front defines all of them in
-      // one go instead of one netCDF redefinition per (variable, block) at the first ex_put_var.
-      std::vector<int> truth(static_cast<size_t>(mesh.numBlocks()) * numElemVars, 1);
-      check(ex_put_truth_table(id, EX_ELEM_BLOCK, mesh.numBlocks(), numElemVars, truth.data()), path,
-            "writing the element variable truth table");
-    }
-    for (size_t s = 0; s < steps.size(); ++s) {
-      const int step = static_cast<int>(s) + 1;
-      const double time = steps[s].time;
-      check(ex_put_time(id, step, &time), path, "writing time");
-      writeGlobals(id, path, step, steps[s].global);
-      for (size_t v = 0; v < steps[s].nodal.size(); ++v)
-        check(ex_put_var(id, step, EX_NODAL, static_cast<int>(v) + 1, 1, mesh.numNodes(), steps[s].nodal[v].values.data()),
-              path, "writing nodal variable " + steps[s].nodal[v].name);
-      for (size_t v = 0; v < steps[s].element.size(); ++v)
-        for (const auto& b : mesh.blocks)
-          if (b.count > 0)
-            check(ex_put_var(id, step, EX_ELEM_BLOCK, static_cast<int>(v) + 1, b.id, b.count,
-                             steps[s].element[v].values.data() + b.first),
-                  path, "writing element variable " + steps[s].element[v].name);
-    }
+/// The variables (declared once for the file: the first step's names) and their values at
+/// every step.
+void writeSteps(int id, const std::string& path, const Mesh& mesh, const std::vector<TimeStep>& steps, int nameLength) {
+  if (steps.empty()) return;
+  defineGlobals(id, path, steps.front().global, nameLength);
+  const auto nodalNames = fieldNames(steps.front().nodal), elementNames = fieldNames(steps.front().element);
+  const int numNodal = static_cast<int>(nodalNames.size()), numElemVars = static_cast<int>(elementNames.size());
+  if (numNodal > 0) {
+    check(ex_put_variable_param(id, EX_NODAL, numNodal), path, "defining nodal variables");
+    NameArray n(nodalNames, nameLength);
+    check(ex_put_variable_names(id, EX_NODAL, numNodal, n.data()), path, "naming nodal variables");
   }
+  if (numElemVars > 0 && mesh.numBlocks() > 0) {
+    check(ex_put_variable_param(id, EX_ELEM_BLOCK, numElemVars), path, "defining element variables");
+    NameArray n(elementNames, nameLength);
+    check(ex_put_variable_names(id, EX_ELEM_BLOCK, numElemVars, n.data()), path, "naming element variables");
+    // Every variable exists on every block. Declaring that up front defines all of them in
+    // one go instead of one netCDF redefinition per (variable, block) at the first ex_put_var.
+    std::vector<int> truth(static_cast<size_t>(mesh.numBlocks()) * numElemVars, 1);
+    check(ex_put_truth_table(id, EX_ELEM_BLOCK, mesh.numBlocks(), numElemVars, truth.data()), path,
+          "writing the element variable truth table");
+  }
+  for (size_t s = 0; s < steps.size(); ++s) {
+    const int step = static_cast<int>(s) + 1;
+    const double time = steps[s].time;
+    check(ex_put_time(id, step, &time), path, "writing time");
+    writeGlobals(id, path, step, steps[s].global);
+    for (size_t v = 0; v < steps[s].nodal.size(); ++v)
+      check(ex_put_var(id, step, EX_NODAL, static_cast<int>(v) + 1, 1, mesh.numNodes(), steps[s].nodal[v].values.data()),
+            path, "writing nodal variable " + steps[s].nodal[v].name);
+    for (size_t v = 0; v < steps[s].element.size(); ++v)
+      for (const auto& b : mesh.blocks)
+        if (b.count > 0)
+          check(ex_put_var(id, step, EX_ELEM_BLOCK, static_cast<int>(v) + 1, b.id, b.count,
+                           steps[s].element[v].values.data() + b.first),
+                path, "writing element variable " + steps[s].element[v].name);
+  }
+}
+}  // namespace
+
+void writeExodus(const std::string& path, const Mesh& mesh, const std::vector<TimeStep>& steps,
+                 const std::vector<std::string>& info) {
+  checkWritable(mesh, steps);
+  ex_opts(0);  // report errors through return codes (quiet, no abort); 0 is also 6.02's default
+  int cpuWordSize = 8, ioWordSize = 8;  // doubles in memory and on disk: coordinates round-trip bitwise
+  ExodusFile file(ex_create(path.c_str(), EX_CLOBBER, &cpuWordSize, &ioWordSize));
+  if (file.id() < 0) throw core::InputError(path + ": cannot create the Exodus file");
+  const int id = file.id();
+  const int nameLength = std::max(kNameLength, longestName(mesh, steps));
+  check(ex_set_max_name_length(id, nameLength), path, "setting the name length");
+  check(ex_put_init(id, "Tribos", 3, mesh.numNodes(), mesh.numElements(), mesh.numBlocks(),
+                    static_cast<int64_t>(mesh.nodeSets.size()), static_cast<int64_t>(mesh.sideSets.size())),
+        path, "writing the header");
+  writeCoordinates(id, path, mesh, nameLength);
+  writeInfo(id, path, info);
+  writeBlocks(id, path, mesh, nameLength);
+  writeSets(id, path, mesh, nameLength);
+  writeSteps(id, path, mesh, steps, nameLength);
   check(file.close(), path, "closing the file");
 }
 
