@@ -224,38 +224,87 @@ int run(int argc, char** argv, int rank) {
 }
 
 /// Steps (3) to (5): the set-up, the solve and the results.
-int solveAndReport(int argc, char** argv, int rank, const RunStart& start) {
-  const auto& [cl, params, meshFile, resultFiles, deadline, total] = start;
-  // (3) Mesh, decomposition, per-subdomain assembly, constraint matrix B.
-  core::Stopwatch setup;
-  stack::Scene scene = buildSceneOnEveryRank(params, cl.input, meshFile);
-  deadline.check("reading the mesh", MPI_COMM_WORLD);
+/// What step (3) leaves for the solve.
+struct SetUpScene {
+  stack::Scene scene;
   std::vector<fem::SubdomainSystem> systems;
-  const stack::SetupReport report = stack::assembleOwnedSubdomains(scene, MPI_COMM_WORLD, systems);
+  stack::SetupReport report;
+  feti::ConstraintMatrix B;
+  nlohmann::json summary;
+};
+
+// (3) Mesh, decomposition, per-subdomain assembly, constraint matrix B; then only what the
+// solve needs is kept.
+SetUpScene setUpScene(int rank, const RunStart& start) {
+  const auto& [cl, params, meshFile, resultFiles, deadline, total] = start;
+  SetUpScene set;
+  core::Stopwatch setup;
+  set.scene = buildSceneOnEveryRank(params, cl.input, meshFile);
+  deadline.check("reading the mesh", MPI_COMM_WORLD);
+  set.report = stack::assembleOwnedSubdomains(set.scene, MPI_COMM_WORLD, set.systems);
   deadline.check("the assembly", MPI_COMM_WORLD);
   int numRanks = 1;
   MPI_Comm_size(MPI_COMM_WORLD, &numRanks);
   core::Stopwatch constraintWatch;
   // Only this rank's blocks of B (its subdomains, its rows), never the whole of it.
-  feti::ConstraintMatrix B =
-      feti::buildConstraintMatrix(scene.mesh, scene.decomposition, stack::constraintSpec(scene), numRanks, rank);
+  set.B = feti::buildConstraintMatrix(set.scene.mesh, set.scene.decomposition, stack::constraintSpec(set.scene),
+                                      numRanks, rank);
   // Before any solve: every rigid motion of every body must meet a row of B (exit 2 naming
   // the body and its free motions otherwise).
   {
     const Teuchos::MpiComm<int> world(MPI_COMM_WORLD);
-    feti::requireRestrainedBodies(scene.mesh, scene.decomposition, B, &world);
+    feti::requireRestrainedBodies(set.scene.mesh, set.scene.decomposition, set.B, &world);
   }
   const double constraintSeconds = constraintWatch.seconds();
   const double setupSeconds = setup.seconds();
   deadline.check("the constraints", MPI_COMM_WORLD);
-
-  if (rank == 0) std::cout << stack::setupReport(cl.input, scene, report, B, setupSeconds, constraintSeconds);
-  nlohmann::json summary = stack::setupSummary(scene, report, B, cl.input, cl.dryRun);
-  summary["times"]["constraints_s"] = constraintSeconds;
-  summary["times"]["setup_s"] = setupSeconds;
+  if (rank == 0)
+    std::cout << stack::setupReport(cl.input, set.scene, set.report, set.B, setupSeconds, constraintSeconds);
+  set.summary = stack::setupSummary(set.scene, set.report, set.B, cl.input, cl.dryRun);
+  set.summary["times"]["constraints_s"] = constraintSeconds;
+  set.summary["times"]["setup_s"] = setupSeconds;
   // From here on a rank holds its own subdomains, its rows of B and (rank 0) the global mesh
   // for the results: what the set-up alone needed is freed before the factorisation.
-  stack::keepRankData(scene, B, rank, numRanks);
+  stack::keepRankData(set.scene, set.B, rank, numRanks);
+  return set;
+}
+
+// (6) The result files (rank 0). A result that cannot be written (disk full, read-only, a
+// file size limit) leaves no partial file; the summary is still written where it can be and
+// records the failure.
+void writeResults(int argc, char** argv, const RunStart& start, const stack::Scene& scene, OutputData& output,
+                  std::vector<long>& maxRssPerRankKb, nlohmann::json& summary) {
+  const auto& [cl, params, meshFile, resultFiles, deadline, total] = start;
+  std::string writeError;
+  if (resultFiles.exodus) {
+    output.globals = globalValues(summary);
+    output.info = infoRecords(argc, argv, params);
+    try {
+      resultFiles.exodus->writeWith([&](const std::string& path) { writeOutput(path, scene, output); });
+      std::cout << "  wrote " << cl.output << "\n";
+    } catch (const core::IoError& e) {
+      writeError = e.what();
+      summary["output_error"] = {{"option", "--output"}, {"file", cl.output}, {"error", writeError}};
+    }
+  }
+  if (resultFiles.summary) {
+    maxRssPerRankKb[0] = std::max(maxRssPerRankKb[0], peakRssKb());
+    summary["max_rss_per_rank_kb"] = maxRssPerRankKb;
+    try {
+      resultFiles.summary->writeText(summary.dump(2) + "\n");
+      std::cout << "  wrote " << cl.summary << "\n";
+    } catch (const core::IoError& e) {
+      writeError += (writeError.empty() ? "" : "; ") + std::string(e.what());
+    }
+  }
+  if (!writeError.empty()) throw core::IoError(writeError);
+}
+
+/// Steps (3) to (6): the set-up, the solve, the results and their files.
+int solveAndReport(int argc, char** argv, int rank, const RunStart& start) {
+  const auto& [cl, params, meshFile, resultFiles, deadline, total] = start;
+  SetUpScene set = setUpScene(rank, start);  // (3)
+  nlohmann::json& summary = set.summary;
 
   // (4) Solve: the stack the scene needs (stack/SceneSolve.hpp), or none in a dry run.
   int status = core::kExitOk;
@@ -264,9 +313,9 @@ int solveAndReport(int argc, char** argv, int rank, const RunStart& start) {
   if (cl.dryRun) {
     summary["solver"] = "dry run: not solved";
   } else {
-    if (rank == 0 && stack::isContactProblem(scene))
-      std::cout << "  solver chain: " << stack::describeSolverChain(scene, params) << "\n";
-    solve = stack::solveScene(scene, std::move(systems), B, params, MPI_COMM_WORLD, total);
+    if (rank == 0 && stack::isContactProblem(set.scene))
+      std::cout << "  solver chain: " << stack::describeSolverChain(set.scene, params) << "\n";
+    solve = stack::solveScene(set.scene, std::move(set.systems), set.B, params, MPI_COMM_WORLD, total);
     status = solve.converged() ? core::kExitOk : core::kExitNotConverged;
     output.displacement = &solve.displacement();
     output.reaction = &solve.reaction();
@@ -280,9 +329,9 @@ int solveAndReport(int argc, char** argv, int rank, const RunStart& start) {
   // (5) Results on rank 0, which holds the global displacement and reactions.
   stack::StressResults stress;
   if (rank == 0 && output.displacement) {
-    stress = stack::evaluateStresses(scene, *output.displacement);
+    stress = stack::evaluateStresses(set.scene, *output.displacement);
     const auto& appliedLoad = solve.appliedLoad();
-    const auto balance = stack::forceBalance(scene, *output.reaction, appliedLoad);
+    const auto balance = stack::forceBalance(set.scene, *output.reaction, appliedLoad);
     stack::addResultsToSummary(stress, balance, summary);
     output.stress = &stress;
     std::cout << "  strain energy " << stress.strainEnergy << "; applied load (" << appliedLoad[0] << ", "
@@ -292,33 +341,7 @@ int solveAndReport(int argc, char** argv, int rank, const RunStart& start) {
   // Peak memory per rank (KiB) after the solve and the stresses; rank 0's own figure is read
   // again after writing the Exodus result, just before the summary.
   std::vector<long> maxRssPerRankKb = gatherPeakRssKb(rank);
-  if (rank == 0) {
-    // A result that cannot be written (disk full, read-only, a file size limit) leaves no
-    // partial file; the summary is still written where it can be and records the failure.
-    std::string writeError;
-    if (resultFiles.exodus) {
-      output.globals = globalValues(summary);
-      output.info = infoRecords(argc, argv, params);
-      try {
-        resultFiles.exodus->writeWith([&](const std::string& path) { writeOutput(path, scene, output); });
-        std::cout << "  wrote " << cl.output << "\n";
-      } catch (const core::IoError& e) {
-        writeError = e.what();
-        summary["output_error"] = {{"option", "--output"}, {"file", cl.output}, {"error", writeError}};
-      }
-    }
-    if (resultFiles.summary) {
-      maxRssPerRankKb[0] = std::max(maxRssPerRankKb[0], peakRssKb());
-      summary["max_rss_per_rank_kb"] = maxRssPerRankKb;
-      try {
-        resultFiles.summary->writeText(summary.dump(2) + "\n");
-        std::cout << "  wrote " << cl.summary << "\n";
-      } catch (const core::IoError& e) {
-        writeError += (writeError.empty() ? "" : "; ") + std::string(e.what());
-      }
-    }
-    if (!writeError.empty()) throw core::IoError(writeError);
-  }
+  if (rank == 0) writeResults(argc, argv, start, set.scene, output, maxRssPerRankKb, summary);  // (6)
   return status;
 }
 
