@@ -73,9 +73,12 @@ outputsThatAreDevicesOrFifos)
   mkfifo summary.fifo
   run noReader --input "$scene" --summary summary.fifo
   expect_status 2 "a FIFO nobody reads"; expect_text noReader "no process reads it"; expect_within 20 "a FIFO nobody reads"
-  timeout 60 cat summary.fifo >received.json &  # bounded: a refused run would leave it waiting
+  cat summary.fifo >received.json &
   reader=$!
+  # tribos checks for a reader when it starts: wait until cat holds the FIFO open.
+  for _ in $(seq 1 3000); do ls -l /proc/$reader/fd 2>/dev/null | grep -q summary.fifo && break; sleep 0.01; done
   run reader --input "$scene" --summary summary.fifo
+  [ "$status" -eq 0 ] || : >summary.fifo  # a refused run never opened it: release the reader
   wait $reader
   expect_status 0 "a FIFO with a reader"
   grep -q '"converged": true' received.json || fail "the reader did not receive the summary"
@@ -113,15 +116,16 @@ aResultThatCannotBeWritten)
     fail "the summary does not record the failed output"
   no_partial ;;
 aBudgetSpentInTheFactorisation)
-  # 32 subdomains of H/h = 10: the set-up takes about 0.3 s, the factorisation about 4 s (2
-  # idle cores); a budget of 1 s lands in the factorisation even on a loaded machine.
+  # 32 subdomains of H/h = 10: the set-up takes about 0.3 s, the factorisation about 8 s on
+  # one thread (4 s per rank on two); a budget of 2 s lands in the factorisation even on a
+  # loaded machine.
   run budget --input "$scene" --set "Mesh/Subdomains Per Brick=4x2x2" --set "Mesh/H Over h=10" \
-    --set "Solver/Max Seconds=1" --summary s.json --output r.exo
-  expect_status 3 "Max Seconds = 1"
-  expect_text budget "stopped: Solver/Max Seconds = 1 reached after"
+    --set "Solver/Max Seconds=2" --summary s.json --output r.exo
+  expect_status 3 "Max Seconds = 2"
+  expect_text budget "stopped: Solver/Max Seconds = 2 reached after"
   expect_text budget "during the factorisation"
   after=$(grep -o "reached after [0-9.]*" budget.log | head -1 | awk '{print $3}')
-  [ -n "$after" ] && at_most "$after" 2 || fail "stopped after $after s, not within 1 s of 1 s"
+  [ -n "$after" ] && at_most "$after" 3 || fail "stopped after $after s, not within 1 s of 2 s"
   grep -q '"converged": false' s.json || fail "the summary does not say it stopped"
   [ -e r.exo ] && fail "results written for a solve that never started"
   no_partial ;;

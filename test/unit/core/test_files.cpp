@@ -170,7 +170,7 @@ TEST_F(Files, devicesAndFifosAreWrittenInPlaceNeverReplaced) {
   std::thread reader([&] { received = read(pipe); });
   // The reader opens the FIFO at some point; until then there is no reader to find.
   std::unique_ptr<OutputFile> out;
-  for (int attempt = 0; attempt < 2000 && !out; ++attempt) {
+  for (int attempt = 0; attempt < 20000 && !out; ++attempt) {  // up to 20 s on a loaded machine
     try {
       out = std::make_unique<OutputFile>(pipe, "--summary", true);
     } catch (const InputError&) {
