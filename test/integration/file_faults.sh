@@ -116,16 +116,17 @@ aResultThatCannotBeWritten)
     fail "the summary does not record the failed output"
   no_partial ;;
 aBudgetSpentInTheFactorisation)
-  # 32 subdomains of H/h = 10: the set-up takes about 0.3 s, the factorisation about 8 s on
-  # one thread (4 s per rank on two); a budget of 2 s lands in the factorisation even on a
-  # loaded machine.
-  run budget --input "$scene" --set "Mesh/Subdomains Per Brick=4x2x2" --set "Mesh/H Over h=10" \
-    --set "Solver/Max Seconds=2" --summary s.json --output r.exo
-  expect_status 3 "Max Seconds = 2"
-  expect_text budget "stopped: Solver/Max Seconds = 2 reached after"
+  # 32 subdomains of H/h = 14: the set-up takes about 0.65 s, the factorisation 3.7 s on two
+  # ranks (more on one), so a budget of 3 s lands in the factorisation unless a load slows
+  # everything more than fourfold (H/h = 10 with 2 s missed it, once: that factorisation takes
+  # 2.3 s on two ranks). It stops between two subdomains (0.23 s each, idle): within 1.5 s.
+  run budget --input "$scene" --set "Mesh/Subdomains Per Brick=4x2x2" --set "Mesh/H Over h=14" \
+    --set "Solver/Max Seconds=3" --summary s.json --output r.exo
+  expect_status 3 "Max Seconds = 3"
+  expect_text budget "stopped: Solver/Max Seconds = 3 reached after"
   expect_text budget "during the factorisation"
   after=$(grep -o "reached after [0-9.]*" budget.log | head -1 | awk '{print $3}')
-  [ -n "$after" ] && at_most "$after" 3 || fail "stopped after $after s, not within 1 s of 2 s"
+  [ -n "$after" ] && at_most "$after" 4.5 || fail "stopped after $after s, not within 1.5 s of 3 s"
   grep -q '"converged": false' s.json || fail "the summary does not say it stopped"
   [ -e r.exo ] && fail "results written for a solve that never started"
   no_partial ;;
