@@ -56,7 +56,7 @@ t = j["times"]
 per = t["solve_s"] / j["pfp_applications"]
 bound = j["bytes_per_f_application"] / (gbs * 1e9)
 p = j["operator_profile"]
-other_projections = max(0, p["projections"] - p["projections_reused"] - 2 * p["f_applications"])
+other_projections = max(0, p["projections"] - 2 * p["f_applications"])
 total = (p["f_applications"] * j["bytes_per_f_application"] + p["preconditioner_applications"] * p["preconditioner_bytes"]
          + other_projections * p["projection_bytes"] + p["coarse_solves"] * p["coarse_values_per_solve"] * (8.0 if p.get("coarse_single") else 16.0))
 iteration = total / j["pfp_applications"]

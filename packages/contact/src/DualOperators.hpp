@@ -18,18 +18,24 @@ using feti::DualVector;
 class ProjectedDualOperator : public qp::ProjectedOperator {
  public:
   explicit ProjectedDualOperator(const feti::TotalFeti& feti) : feti_(feti), tmp_(feti.createDualVector()) {}
-  void apply(const qp::Vector& x, qp::Vector& y) const override {
-    feti_.project(x, *tmp_);
-    feti_.applyPF(*tmp_, y);
-  }
-  void applyPlusComplement(const qp::Vector& x, qp::Vector& y, double s) const override {
-    apply(x, y);
+  void apply(const qp::Vector& x, qp::Vector& y) const override { applyWith(x, y, nullptr); }
+  bool applyPlusComplement(const qp::Vector& x, qp::Vector& y, double s, qp::EqualityCoordinates* ofX) const override {
+    applyWith(x, y, ofX ? &coordinates_ : nullptr);
     y.update(s, x, -s, *tmp_, 1.0);  // + s (x - P x)
+    if (!ofX) return false;
+    ofX->u.swap(coordinates_.gx);
+    ofX->w.swap(coordinates_.a);
+    return true;
   }
 
  private:
+  void applyWith(const qp::Vector& x, qp::Vector& y, feti::CoarseCoordinates* ofX) const {
+    feti_.project(x, *tmp_, ofX);
+    feti_.applyPF(*tmp_, y);
+  }
   const feti::TotalFeti& feti_;
   Teuchos::RCP<DualVector> tmp_;  ///< P x of the last product
+  mutable feti::CoarseCoordinates coordinates_;  ///< of the last product's x, handed on
 };
 
 /// P D P with D the lumped (B K B^T) or Dirichlet (B S B^T) dual preconditioner: an
@@ -46,9 +52,10 @@ class ProjectedDualPreconditioner : public qp::ProjectedOperator {
       feti_.applyLumped(*tmp_, y);
     feti_.project(y, y);
   }
-  void applyPlusComplement(const qp::Vector& x, qp::Vector& y, double s) const override {
+  bool applyPlusComplement(const qp::Vector& x, qp::Vector& y, double s, qp::EqualityCoordinates*) const override {
     apply(x, y);
     y.update(s, x, -s, *tmp_, 1.0);  // + s (x - P x)
+    return false;
   }
 
  private:
@@ -65,8 +72,7 @@ class CoarseSpaceProjector : public qp::EqualityProjector {
     feti_.project(x, y);
     y.update(1.0, x, -1.0);
   }
-  /// ||Q x||^2 = x^T Q x = (G x)^T (G G^T)^{-1} G x: G and the coarse solve, no G^T pass
-  /// (neither when x was projected recently: TotalFeti::coarseCoordinates).
+  /// ||Q x||^2 = x^T Q x = (G x)^T (G G^T)^{-1} G x: G and the coarse solve, no G^T pass.
   double normQ(const qp::Vector& x, qp::Vector&) const override {
     feti_.coarseCoordinates(x, gx_, a_);
     double q = 0.0;

@@ -305,8 +305,6 @@ void TotalFeti::releaseCoarseFactor() const {
   distributedCoarse_.reset();  // it reads coarse_'s factor on rank 0
   coarse_.reset();
   coarseFactored_ = false;
-  for (CoarseMemo& memo : coarseMemo_) memo = CoarseMemo{};
-  for (ProjectionMemo& memo : projectionMemo_) memo = ProjectionMemo{};
 }
 
 void TotalFeti::onRootThenBroadcast(std::vector<double>& v, const std::function<void()>& work,
@@ -343,36 +341,17 @@ void TotalFeti::onRootThenBroadcast(std::vector<double>& v, const std::function<
 void TotalFeti::solveCoarse(std::vector<double>& a) const {
   core::Stopwatch watch;
   ++profile_.coarseSolves;
-  // a is the same on every rank, so every rank finds the same memo entry (or none).
-  for (const CoarseMemo& memo : coarseMemo_)
-    if (memo.valid && std::equal(a.begin(), a.end(), memo.rhs.begin(), [](double x, double y) {
-          return std::memcmp(&x, &y, sizeof(double)) == 0;
-        })) {
-      std::copy(memo.solution.begin(), memo.solution.end(), a.begin());
-      ++profile_.coarseSolvesReused;
-      profile_.coarseSolveSeconds += watch.seconds();
-      return;
-    }
-  CoarseMemo& memo = coarseMemo_[coarseMemoNext_];
-  coarseMemoNext_ = 1 - coarseMemoNext_;
-  memo.valid = false;
-  memo.rhs.assign(a.begin(), a.end());
   if (!coarseFactored_) factorizeCoarse();  // released (releaseCoarseFactor): the same factor again
   // Over the ranks when the factor is large (the bits of the serial solve), else on rank 0
   // alone, then broadcast: with every rank solving, the R ranks of a node streamed R copies
   // of the factor at once (16 ranks at 4 000 subdomains: doc/measurements/scalability.md).
-  if (distributedCoarse_) {
-    distributedCoarse_->solve(memo.rhs.data(), a.data());
-    memo.solution.assign(a.begin(), a.end());
-    memo.valid = true;
-    profile_.coarseSolveSeconds += watch.seconds();
-    return;
-  }
-  onRootThenBroadcast(
-      a, [&] { coarse_->solve(memo.rhs.data(), a.data()); },
-      [](const std::string& message) { throw std::runtime_error(message); });
-  memo.solution.assign(a.begin(), a.end());
-  memo.valid = true;
+  coarseRhs_.assign(a.begin(), a.end());
+  if (distributedCoarse_)
+    distributedCoarse_->solve(coarseRhs_.data(), a.data());
+  else
+    onRootThenBroadcast(
+        a, [&] { coarse_->solve(coarseRhs_.data(), a.data()); },
+        [](const std::string& message) { throw std::runtime_error(message); });
   profile_.coarseSolveSeconds += watch.seconds();
 }
 

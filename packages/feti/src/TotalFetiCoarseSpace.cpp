@@ -357,9 +357,8 @@ void addComponent(const TotalFeti::CoarseRows& G, LO first, LO end, double b0, d
 }
 
 // y_r = x_r - sum over the entries of row r of g_{s,r} . a_s, for the owned rows (y may be
-// x: each row reads its x_r before writing y_r); copyOfX (optional) gets x as well, in the
-// same pass (the projection memo's input: no pass of its own over x on the main thread).
-void subtractGt(const TotalFeti::CoarseRows& G, const double* a, const double* x, double* y, double* copyOfX) {
+// x: each row reads its x_r before writing y_r).
+void subtractGt(const TotalFeti::CoarseRows& G, const double* a, const double* x, double* y) {
   core::forEachSubdomain(G.numChunks(), [&](int c) {
     const LO first = c * kRowChunk, end = std::min<LO>(G.numRows, first + kRowChunk);
     double* __restrict rowSum = G.rowSum.data();
@@ -390,14 +389,7 @@ void subtractGt(const TotalFeti::CoarseRows& G, const double* a, const double* x
         rowSum[t.index] += (g[0] * b[0] + g[1] * b[1]) + (g[2] * b[2] + g[3] * b[3]) + (g[4] * b[4] + g[5] * b[5]);
       }
     }
-    if (copyOfX)
-      for (LO r = first; r < end; ++r) {
-        const double xr = x[r];
-        copyOfX[r] = xr;
-        y[r] = xr - rowSum[r];
-      }
-    else
-      for (LO r = first; r < end; ++r) y[r] = x[r] - rowSum[r];
+    for (LO r = first; r < end; ++r) y[r] = x[r] - rowSum[r];
   });
 }
 }  // namespace detail
@@ -408,7 +400,7 @@ void TotalFeti::applyGt(const std::vector<double>& a, DualVector& y) const {
   for (size_t i = 0; i < a.size(); ++i) minusA[i] = -a[i];
   y.putScalar(0.0);
   double* yd = readWrite(y);
-  subtractGt(*G_, minusA.data(), yd, yd, nullptr);
+  subtractGt(*G_, minusA.data(), yd, yd);
 }
 
 

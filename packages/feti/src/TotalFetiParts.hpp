@@ -174,9 +174,8 @@ inline double* readWrite(DualVector& v) { return v.getLocalViewHost(Tpetra::Acce
 /// an owned subdomain (TotalFetiPreconditioners.cpp).
 void buildPreconditionerBlocks(TotalFeti::Local& L, bool interiorToo, Factorization factorization,
                                const SparseCholeskyOptions& options);
-/// y := x - G^T a on the owned rows (a copy of x kept in `copyOfX` when not null;
-/// TotalFetiCoarseSpace.cpp): the G^T pass of a projection.
-void subtractGt(const TotalFeti::CoarseRows& G, const double* a, const double* x, double* y, double* copyOfX);
+/// y := x - G^T a on the owned rows (TotalFetiCoarseSpace.cpp): the G^T pass of a projection.
+void subtractGt(const TotalFeti::CoarseRows& G, const double* a, const double* x, double* y);
 }  // namespace detail
 using namespace detail;
 

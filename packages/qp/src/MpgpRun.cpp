@@ -50,6 +50,7 @@ void MpgpRun::split(const Vector& at, const Vector& gradientAt, Vector& free, Ve
 void MpgpRun::gradient() {
   A_.apply(x_, g_);
   ++counters.operatorApplications;
+  if (settings_.gradientFromProduct) settings_.gradientFromProduct();
   g_.update(-1.0, b_, 1.0);
 }
 

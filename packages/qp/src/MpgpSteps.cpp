@@ -91,6 +91,7 @@ bool MpgpRun::optimalExpansionStep() {
   if (!(0.5 * dot(trial_, reduced_) <= fHalf)) return false;
   x_.assign(trial_);
   g_.assign(trialGradient_);
+  if (settings_.gradientFromProduct) settings_.gradientFromProduct();  // the last product was A trial
   split(x_, g_, phi_, beta_);
   restartDirection();
   ++counters.expansionSteps;

@@ -9,6 +9,9 @@
 namespace tribos::qp {
 
 /// A_rho = A + rho Q (the penalised Hessian of paper (19)). Counts products with A only.
+/// Keeps the coordinates of Q x of its last product's input x where A gave them
+/// (ProjectedOperator::applyPlusComplement): SMALSE-M's ||Q x|| of MPGP's iterate takes them
+/// from there (EqualityNorm) instead of a projection of its own.
 class PenalisedOperator : public SymmetricOperator {
  public:
   PenalisedOperator(const SymmetricOperator& A, const EqualityProjector& Q, double rho, const Teuchos::RCP<const Map>& map,
@@ -18,13 +21,17 @@ class PenalisedOperator : public SymmetricOperator {
   void apply(const Vector& x, Vector& y) const override {
     ScopedSeconds timed(seconds_);
     if (projected_) {
-      projected_->applyPlusComplement(x, y, rho_);  // Q x from the P x that A computes
+      inputKnown_ = projected_->applyPlusComplement(x, y, rho_, &input_);  // Q x from the P x that A computes
       return;
     }
+    inputKnown_ = false;
     A_.apply(x, y);
     Q_.applyQ(x, tmp_);
     y.update(rho_, tmp_, 1.0);
   }
+  /// The coordinates of Q x for the x of the last product, where the product computed them;
+  /// else null.
+  const EqualityCoordinates* lastInputCoordinates() const { return inputKnown_ ? &input_ : nullptr; }
 
  private:
   const SymmetricOperator& A_;
@@ -32,6 +39,8 @@ class PenalisedOperator : public SymmetricOperator {
   const EqualityProjector& Q_;
   double rho_;
   mutable Vector tmp_;
+  mutable EqualityCoordinates input_;  ///< of the last product's x (when inputKnown_)
+  mutable bool inputKnown_ = false;
   double& seconds_;  ///< time in products (SmalseCounters::operatorSeconds)
 };
 
@@ -45,7 +54,7 @@ class PenalisedPreconditioner : public SymmetricOperator {
   void apply(const Vector& x, Vector& y) const override {
     ScopedSeconds timed(seconds_);
     if (projected_) {
-      projected_->applyPlusComplement(x, y, 1.0 / rho_);
+      projected_->applyPlusComplement(x, y, 1.0 / rho_, nullptr);
       return;
     }
     M_.apply(x, y);

@@ -38,7 +38,7 @@ SmalseRun::SmalseRun(const SmalseSettings& settings, const SymmetricOperator& A,
       Qmu_(map_),
       previousQmu_(map_),
       previousB_(map_),
-      innerEquality_(Q_) {}
+      innerEquality_(Q_, 10, [this]() { return Arho_ ? Arho_->lastInputCoordinates() : nullptr; }) {}
 
 SmalseCounters SmalseRun::finish() {
   counters_.seconds = watch_.seconds();
@@ -99,6 +99,7 @@ void SmalseRun::buildInnerSolver() {
     mpgpSettings.preconditioner = givenPreconditioner_.get();
   }
   mpgpSettings.cgStep = [this](double alpha, const Vector& p) { innerEquality_.cgStep(alpha, p); };
+  mpgpSettings.gradientFromProduct = [this]() { innerEquality_.gradientFromProduct(); };
   if (s_.innerMonitor)
     mpgpSettings.progress = [this](const MpgpCounters& inner) {
       s_.innerMonitor({outer_, inner.iterations, inner.projectedGradientNorm / normC_,

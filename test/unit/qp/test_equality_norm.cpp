@@ -42,16 +42,20 @@ class CoordinateProjector : public test::DenseProjector {
 double exactNorm(const test::EqualityQp& qp, const qp::Vector& x) {
   return test::norm2(test::matVec(qp.Q, test::gather(x)));
 }
+/// An equality-constrained QP of size n with `rows` random rows of G.
+test::EqualityQp randomQp(int n, int rows, unsigned seed, unsigned spdSeed) {
+  std::mt19937 gen(seed);
+  std::normal_distribution<double> normal;
+  Dense G(rows, std::vector<double>(n));
+  for (auto& row : G)
+    for (double& v : row) v = normal(gen);
+  return test::makeEqualityQp(test::randomSpd(n, 10.0, spdSeed), G, std::vector<double>(n, 1.0));
+}
 }  // namespace
 
 TEST(EqualityNorm, followsCgStepsRecomputesAfterOtherStepsAndRefreshes) {
   const int n = 14;
-  std::mt19937 gen(4);
-  std::normal_distribution<double> normal;
-  Dense G(3, std::vector<double>(n));
-  for (auto& row : G)
-    for (double& v : row) v = normal(gen);
-  const auto qp = test::makeEqualityQp(test::randomSpd(n, 10.0, 3), G, std::vector<double>(n, 1.0));
+  const auto qp = randomQp(n, 3, 4, 3);
   auto map = test::makeMap(n, test::selfComm());
   qp::Vector x(map), p(map), scratch(map);
   x.randomize();
@@ -91,12 +95,7 @@ TEST(EqualityNorm, followsCgStepsRecomputesAfterOtherStepsAndRefreshes) {
 
 TEST(EqualityNorm, withoutCoordinatesEveryNormProjects) {
   const int n = 8;
-  std::mt19937 gen(5);
-  std::normal_distribution<double> normal;
-  Dense G(2, std::vector<double>(n));
-  for (auto& row : G)
-    for (double& v : row) v = normal(gen);
-  const auto qp = test::makeEqualityQp(test::randomSpd(n, 10.0, 4), G, std::vector<double>(n, 1.0));
+  const auto qp = randomQp(n, 2, 5, 4);
   auto map = test::makeMap(n, test::selfComm());
   qp::Vector x(map), p(map), scratch(map);
   x.randomize();
@@ -110,4 +109,47 @@ TEST(EqualityNorm, withoutCoordinatesEveryNormProjects) {
     EXPECT_NEAR(norm.norm(x, scratch), exactNorm(qp, x), 1e-12 * exactNorm(qp, x));
   }
   EXPECT_EQ(norm.trackedNorms(), 0);
+}
+
+TEST(EqualityNorm, takesTheCoordinatesThatTheLastProductHandedOver) {
+  // The product with A hands over the coordinates of its input (lastProduct): a CG step takes
+  // those of p from it, and a norm after gradientFromProduct those of x, without calling Q's
+  // coordinates. Without the report the norm computes them (x moved otherwise); a product that
+  // gave none (null) leaves Q to compute them too.
+  const int n = 12;
+  const auto qp = randomQp(n, 3, 7, 5);
+  auto map = test::makeMap(n, test::selfComm());
+  qp::Vector x(map), p(map), scratch(map);
+  x.randomize();
+  CoordinateProjector Q(qp);
+  qp::EqualityCoordinates product;  // of the last "product's" input, as A_rho would keep them
+  bool given = true;
+  qp::EqualityNorm norm(Q, 10, [&]() { return given ? &product : nullptr; });
+  auto productWith = [&](const qp::Vector& v) {
+    CoordinateProjector fresh(qp);
+    fresh.coordinates(v, product.u, product.w);
+  };
+  norm.restart();
+  productWith(x);
+  norm.gradientFromProduct();
+  EXPECT_NEAR(norm.norm(x, scratch), exactNorm(qp, x), 1e-12 * exactNorm(qp, x));
+  EXPECT_EQ(Q.calls, 0);
+  p.randomize();
+  productWith(p);
+  x.update(-0.4, p, 1.0);
+  norm.cgStep(0.4, p);
+  EXPECT_NEAR(norm.norm(x, scratch), exactNorm(qp, x), 1e-12 * exactNorm(qp, x));
+  EXPECT_EQ(Q.calls, 0);
+  EXPECT_EQ(norm.trackedNorms(), 1);
+  // x moved without a report: computed (the report of an earlier norm is not reused).
+  p.randomize();
+  x.update(-0.2, p, 1.0);
+  EXPECT_NEAR(norm.norm(x, scratch), exactNorm(qp, x), 1e-12 * exactNorm(qp, x));
+  EXPECT_EQ(Q.calls, 1);
+  // A product that kept no coordinates: Q computes them.
+  given = false;
+  x.randomize();
+  norm.gradientFromProduct();
+  EXPECT_NEAR(norm.norm(x, scratch), exactNorm(qp, x), 1e-12 * exactNorm(qp, x));
+  EXPECT_EQ(Q.calls, 2);
 }

@@ -597,7 +597,7 @@ class FusedDenseOperator : public qp::ProjectedOperator {
     ++applications;
     test::scatter(test::matVec(A_, gather_(x)), y);
   }
-  void applyPlusComplement(const qp::Vector& x, qp::Vector& y, double s) const override {
+  bool applyPlusComplement(const qp::Vector& x, qp::Vector& y, double s, qp::EqualityCoordinates*) const override {
     ++fused;
     const auto xs = gather_(x);
     auto ys = test::matVec(A_, xs);
@@ -605,6 +605,7 @@ class FusedDenseOperator : public qp::ProjectedOperator {
     for (size_t i = 0; i < ys.size(); ++i) ys[i] += s * qx[i];
     ++applications;
     test::scatter(ys, y);
+    return false;
   }
   mutable long long applications = 0, fused = 0;
 

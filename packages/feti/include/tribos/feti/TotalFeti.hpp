@@ -97,10 +97,8 @@ struct TotalFetiSettings {
 /// doc/measurements/coarse_problem.md): counts and wall seconds of each operator, read by the summary.
 struct OperatorProfile {
   long long fApplications = 0, projections = 0, coarseSolves = 0, preconditionerApplications = 0;
-  long long coarseSolvesReused = 0;    ///< of coarseSolves: answered from the last two (same rhs bits)
-  long long projectionsReused = 0;     ///< of projections: x one of the last four (same bits): G^T a only
-  long long coarseCoordinates = 0;     ///< coarseCoordinates calls (SMALSE-M's ||Q x||)
-  long long coarseCoordinatesReused = 0;  ///< of those: copied from a projection of the same x
+  /// coarseCoordinates calls: SMALSE-M's ||Q x|| where no product gave the coordinates of x
+  long long coarseCoordinates = 0;
   double fSeconds = 0.0;               ///< B K^+ B^T (imports, subdomain solves, export-add)
   double gSeconds = 0.0;               ///< G x and G^T a of the projections (owned rows)
   double coarseReduceSeconds = 0.0;    ///< the all-reduce of G x (length l)
@@ -133,6 +131,12 @@ struct OperatorProfile {
   /// The least bytes one projection (G x and G^T a) and one preconditioner application
   /// (B S B^T or B K_bb B^T; 0 without one) move, summed over the ranks (measureTraffic).
   double projectionBytes = 0.0, preconditionerBytes = 0.0;
+};
+
+/// The coordinates of Q x = G^T a of a dual vector x: gx = G x and a = (G G^T)^{-1} G x
+/// (length l, replicated), ||Q x||^2 = gx^T a.
+struct CoarseCoordinates {
+  std::vector<double> gx, a;
 };
 
 class TotalFeti {
@@ -168,21 +172,21 @@ class TotalFeti {
   /// a := (G G^T)^{-1} a to double precision whatever the factor's: with a single-precision
   /// one, solveCoarse refined by iterative refinement (products G G^T x as G (G^T x)).
   void solveCoarseExactly(std::vector<double>& a) const;
-  /// Frees the factor of G G^T and the solve-time memos (the largest replicated data at
+  /// Frees the factor of G G^T (the largest replicated data at
   /// thousands of subdomains: doc/measurements/scalability.md), for a caller done with projections,
   /// before the factor of G_I G_I^T of rigidBodyCoefficients(lambda, mask). A later coarse
   /// solve factorises G G^T again (the same bits; collective, as every coarse solve is).
   void releaseCoarseFactor() const;
-  /// y = P x = x - G^T (G G^T)^{-1} G x (y may be x).
-  void project(const DualVector& x, DualVector& y) const;
+  /// y = P x = x - G^T (G G^T)^{-1} G x (y may be x). With `ofX`, also the coordinates
+  /// of Q x = x - P x it computes on the way: G x and (G G^T)^{-1} G x (the bits of
+  /// coarseCoordinates(x)), so that a caller who needs them does not compute them again.
+  void project(const DualVector& x, DualVector& y, CoarseCoordinates* ofX = nullptr) const;
   /// y = P x with the exact projector whatever the coarse factor's precision
   /// (solveCoarseExactly; y may be x): for a vector whose part in Im G^T is large against its
   /// part in Ker G (SMALSE-M's c = P h), where the single-precision factor would leave a
   /// visible residue of that part.
   void projectExactly(const DualVector& x, DualVector& y) const;
-  /// gx = G x and a = (G G^T)^{-1} G x (replicated; ||Q x||^2 = gx^T a): copied, without G x
-  /// or a coarse solve, when x is one of the last four projected vectors (same bits on every
-  /// rank); else computed. Collective.
+  /// gx = G x and a = (G G^T)^{-1} G x (replicated; ||Q x||^2 = gx^T a). Collective.
   void coarseCoordinates(const DualVector& x, std::vector<double>& gx, std::vector<double>& a) const;
   /// y = B K B^T x (the lumped preconditioner, before projection), from K_bb only (b = the
   /// dofs that B touches). Requires settings.lumpedPreconditioner or dirichletPreconditioner.
@@ -337,32 +341,7 @@ class TotalFeti {
   void onRootThenBroadcast(std::vector<double>& v, const std::function<void()>& work,
                            const std::function<void(const std::string&)>& fail) const;
   /// Coarse work vectors of project() and solveCoarse(), allocated once (length l).
-  mutable std::vector<double> coarseLocal_, coarseVector_;
-  /// The last two coarse solves (right-hand side, solution): the solvers project the same
-  /// vector twice in a row of operator applications (P x inside P F P x, then Q x = x - P x;
-  /// the same around the preconditioner), and a right-hand side with the same bits has the
-  /// same solution (doc/measurements/coarse_problem.md).
-  struct CoarseMemo {
-    std::vector<double> rhs, solution;
-    bool valid = false;
-  };
-  mutable CoarseMemo coarseMemo_[2];
-  mutable int coarseMemoNext_ = 0;
-  /// The last projections (x on the owned rows, G x and a = (G G^T)^{-1} G x): a hit skips
-  /// G x and the coarse solve (coarseCoordinates: all of its work; project: all but one G^T
-  /// pass, which gives the bits of P x again without a stored copy of it).
-  /// Four: SMALSE-M asks for the coarse coordinates of its iterate x (coarseCoordinates)
-  /// after the products with A_rho (P x, P F P x) and the preconditioner (P phi, P D P phi).
-  /// x is stored by the G^T pass of the projection itself (no pass of its own).
-  static constexpr int kProjectionMemo = 4;
-  struct ProjectionMemo {
-    std::vector<double> rhs, gx, coarse;
-    bool valid = false;
-  };
-  mutable ProjectionMemo projectionMemo_[kProjectionMemo];
-  mutable int projectionMemoNext_ = 0;
-  /// Index of the memo entry whose input has the bits of x on every rank, or -1 (collective).
-  int findProjection(const double* x) const;
+  mutable std::vector<double> coarseLocal_, coarseVector_, coarseRhs_;
   std::vector<double> e_;
   Teuchos::RCP<DualVector> dTilde_, lambdaIm_;
   mutable long long fApplications_ = 0;

@@ -19,13 +19,20 @@ class SymmetricOperator {
   virtual void apply(const Vector& x, Vector& y) const = 0;
 };
 
+/// Coordinates of Q x that are linear in x (EqualityProjector::coordinates): ||Q x||^2 = u^T w.
+struct EqualityCoordinates {
+  std::vector<double> u, w;
+};
+
 /// A = P X P with P = I - Q for the Q of the equality constraint that SMALSE-M is given. Such
 /// an operator computes P x anyway, so A x + s Q x needs no projection of its own: Q x = x - P x
 /// (A_rho = A + rho Q and the preconditioner M^-1 + Q / rho save one projection per product).
 class ProjectedOperator : public SymmetricOperator {
  public:
-  /// y = A x + s Q x.
-  virtual void applyPlusComplement(const Vector& x, Vector& y, double s) const = 0;
+  /// y = A x + s Q x. With `ofX` (may be null): also the coordinates of Q x that computing P x
+  /// gives on the way (the bits of EqualityProjector::coordinates(x)); returns whether it gave
+  /// them.
+  virtual bool applyPlusComplement(const Vector& x, Vector& y, double s, EqualityCoordinates* ofX) const = 0;
 };
 
 /// The orthogonal projector Q onto Im G^T (so that P = I - Q projects onto Ker G) of the

@@ -54,6 +54,10 @@ struct MpgpSettings {
   /// between two stop tests there is one iteration, so no call means x moved otherwise.
   /// May be empty.
   std::function<void(double alpha, const Vector& p)> cgStep;
+  /// Called right after g = A x - b was computed by a product with the iterate x itself, so
+  /// that the last product's input is x (SMALSE-M then takes the coordinates of Q x from
+  /// that product: EqualityNorm). May be empty.
+  std::function<void()> gradientFromProduct;
 };
 
 struct MpgpCounters {
