@@ -1,4 +1,5 @@
 // TotalFeti: the set-up (maps, factorisations, G, the coarse problem, d~, lambda_Im) and F.
+#include "CoarseProblem.hpp"
 #include "TotalFetiParts.hpp"
 
 namespace tribos::feti {
@@ -24,9 +25,10 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
   factorizeSubdomains(mesh, decomposition);                // (3)
   // (4) G on the owned rows; G G^T assembled and factorised once, on rank 0.
   buildCoarseRows(mesh, decomposition);
-  buildCoarsePattern();
-  measureTraffic();  // before factorizeCoarse: "Auto" compares the coarse solve with it
-  factorizeCoarse();
+  measureTraffic();  // before the coarse factor: "Auto" compares the coarse solve with it
+  coarse_ = std::make_unique<CoarseProblem>(*G_, numSubdomains_, B_.numRows, gMax_, subdomainBytesPerF_, comm_,
+                                            settings_, profile_);
+  coarse_->factorize();
   if (settings_.deadline) settings_.deadline->check("the coarse problem", rawComm(*comm));
   settings_.deadline = nullptr;  // the caller's: not kept beyond the set-up
   buildDualData();  // (5)

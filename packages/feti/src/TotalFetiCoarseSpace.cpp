@@ -20,12 +20,15 @@ void TotalFeti::CoarseRows::rowG(LO rowOrderEntry, double* g) const {
   transposedProduct(M(rowSubdomain[rowOrderEntry]), geo, g);
 }
 
+namespace {
+using EntryData = Tpetra::MultiVector<Scalar, LO, GO>;
+
 /// Builds the CoarseTerm of rows of blocks from their `data` (6 numbers, entrySource):
 /// p~ of the node of a one-term row, g' of the others. One coordinate slot per (subdomain,
 /// local node) and one full slot per (subdomain, row) of the rank (G x and G^T a share them).
-class TotalFeti::CoarseTermBuilder {
+class CoarseTermBuilder {
  public:
-  explicit CoarseTermBuilder(CoarseRows& G) : G_(G) {}
+  explicit CoarseTermBuilder(TotalFeti::CoarseRows& G) : G_(G) {}
   /// The term of row i of block b (subdomain s); index left to the caller.
   CoarseTerm operator()(int s, const SubdomainBlock& b, LO i, const double* data) {
     const LO first = b.rowPtr[i];
@@ -53,18 +56,170 @@ class TotalFeti::CoarseTermBuilder {
     TEUCHOS_TEST_FOR_EXCEPTION(slot >= (1u << 30), std::length_error, "tribos::feti: too many coarse slots on a rank");
     return 4 * slot + static_cast<std::uint32_t>(d);
   }
-  CoarseRows& G_;
+  TotalFeti::CoarseRows& G_;
   std::map<std::pair<int, LO>, std::uint32_t> coordSlot_;
   std::map<std::pair<int, GO>, std::uint32_t> fullSlot_;
 };
+
+/// One entry (owned row, subdomain s) of G: the row (owned index), its row in B_s, its kind
+/// (component d of a one-term row, 3 for several terms).
+struct RowEntry {
+  LO row;
+  int subdomain;
+  LO blockRow;
+  int kind;
+};
+
+using Locals = std::vector<std::unique_ptr<TotalFeti::Local>>;
+
+/// The frames (centre, scale, M_s: kFrame numbers) of the owned subdomains, by their owner
+/// (which has R_s), zeros elsewhere; -0.0 made +0.0 so that the sum with the other ranks'
+/// zeros keeps every bit.
+std::vector<double> ownedFrames(const Locals& local, const mesh::Mesh& mesh, const mesh::Decomposition& decomposition,
+                                int numSubdomains) {
+  std::vector<double> frames(kFrame * static_cast<size_t>(numSubdomains), 0.0);
+  core::forEachSubdomain(static_cast<int>(local.size()), [&](int i) {
+    const TotalFeti::Local& L = *local[i];
+    double* frame = &frames[kFrame * static_cast<size_t>(L.subdomain)];
+    subdomainFrame(mesh, decomposition.subdomains[L.subdomain].nodes, L.system.R, frame);
+    for (int j = 0; j < kFrame; ++j) frame[j] += 0.0;
+  });
+  return frames;
+}
+
+/// The data of each entry of the owned subdomains, by their owner (the only rank that has
+/// their nodes, stack::keepRankData): p~ of the node of a one-term row (3 numbers), g' of the
+/// others (6), the terms in B's order.
+void fillEntryData(const Locals& local, const mesh::Mesh& mesh, const mesh::Decomposition& decomposition,
+                   const std::vector<double>& frames, const std::vector<LO>& firstSource, EntryData& dataSource) {
+  auto data = dataSource.getLocalViewHost(Tpetra::Access::OverwriteAll);
+  core::forEachSubdomain(static_cast<int>(local.size()), [&](int i) {
+    const TotalFeti::Local& L = *local[i];
+    const SubdomainBlock& b = *L.block;
+    const double* frame = &frames[kFrame * static_cast<size_t>(L.subdomain)];
+    const auto& nodes = decomposition.subdomains[L.subdomain].nodes;
+    for (LO r = 0; r < L.m(); ++r) {
+      double g[6] = {}, v[6], p[3];
+      if (b.rowPtr[r + 1] - b.rowPtr[r] == 1) {
+        scaledPoint(frame, mesh.coords[nodes[b.dof[b.rowPtr[r]] / 3]], g);
+      } else {
+        for (LO k = b.rowPtr[r]; k < b.rowPtr[r + 1]; ++k) {
+          scaledPoint(frame, mesh.coords[nodes[b.dof[k] / 3]], p);
+          geometricRow(b.dof[k] % 3, p, v);
+          for (int j = 0; j < 6; ++j) g[j] += b.value[k] * v[j];
+        }
+      }
+      for (int j = 0; j < 6; ++j) data(firstSource[i] + r, j) = g[j];
+    }
+  });
+}
+
+/// The entries of the owned rows [firstRow, firstRow + numRows) of every block, ordered by
+/// row, then subdomain (ascending: the order in which G G^T has always summed them).
+std::vector<RowEntry> ownedRowEntries(const ConstraintMatrix& B, GO firstRow, LO numRows, int numSubdomains) {
+  std::vector<RowEntry> entries;
+  for (int s = 0; s < numSubdomains; ++s) {
+    const auto& rows = B.blocks[s].rows;
+    const auto lo = std::lower_bound(rows.begin(), rows.end(), firstRow);
+    for (auto it = lo; it != rows.end() && *it < firstRow + numRows; ++it)
+      entries.push_back({static_cast<LO>(*it - firstRow), s, static_cast<LO>(it - rows.begin()),
+                         termKind(B.blocks[s], static_cast<LO>(it - rows.begin()))});
+  }
+  std::stable_sort(entries.begin(), entries.end(), [](const RowEntry& a, const RowEntry& b) { return a.row < b.row; });
+  return entries;
+}
+
+void dataOf(const EntryData::host_view_type& view, LO e, double* out) {
+  for (int j = 0; j < 6; ++j) out[j] = view(e, j);
+}
+
+/// The row view (rowStart, rowSubdomain, rowEntry) and the stored order of the entries: by
+/// chunk, then subdomain, then kind, then row (entries are in row order: a stable sort by
+/// (chunk, subdomain, kind) keeps the rows ascending within a kind), with the runs and their
+/// kind groups. `data`: each entry's 6 numbers (fillEntryData, imported to the row's owner).
+void storeRowTerms(TotalFeti::CoarseRows& G, const std::vector<RowEntry>& entries, const ConstraintMatrix& B,
+                   const EntryData& data, CoarseTermBuilder& termOf) {
+  G.rowStart.assign(G.numRows + 1, 0);
+  G.rowSubdomain.resize(entries.size());
+  for (size_t e = 0; e < entries.size(); ++e) {
+    ++G.rowStart[entries[e].row + 1];
+    G.rowSubdomain[e] = entries[e].subdomain;
+  }
+  for (LO r = 0; r < G.numRows; ++r) G.rowStart[r + 1] += G.rowStart[r];
+  std::vector<LO> order(entries.size());
+  for (size_t e = 0; e < order.size(); ++e) order[e] = static_cast<LO>(e);
+  std::stable_sort(order.begin(), order.end(), [&](LO a, LO b) {
+    const LO ca = entries[a].row / kRowChunk, cb = entries[b].row / kRowChunk;
+    if (ca != cb) return ca < cb;
+    if (entries[a].subdomain != entries[b].subdomain) return entries[a].subdomain < entries[b].subdomain;
+    return entries[a].kind < entries[b].kind;
+  });
+  G.rowEntry.resize(entries.size());
+  G.term.resize(entries.size());
+  const auto view = data.getLocalViewHost(Tpetra::Access::ReadOnly);
+  double numbers[6];
+  const LO numChunks = (G.numRows + kRowChunk - 1) / kRowChunk;
+  G.chunkRunStart.assign(numChunks + 1, 0);  // runs per chunk, then their prefix sums
+  for (size_t k = 0; k < order.size(); ++k) {
+    const RowEntry& entry = entries[order[k]];
+    G.rowEntry[order[k]] = static_cast<LO>(k);
+    dataOf(view, order[k], numbers);
+    G.term[k] = termOf(entry.subdomain, B.blocks[entry.subdomain], entry.blockRow, numbers);
+    G.term[k].index = entry.row;
+    const LO chunk = entry.row / kRowChunk;
+    if (k == 0 || chunk != entries[order[k - 1]].row / kRowChunk || entry.subdomain != entries[order[k - 1]].subdomain) {
+      G.runStart.push_back(static_cast<LO>(k));
+      G.runSubdomain.push_back(entry.subdomain);
+      ++G.chunkRunStart[chunk + 1];
+    }
+  }
+  G.runStart.push_back(static_cast<LO>(order.size()));
+  for (LO c = 0; c < numChunks; ++c) G.chunkRunStart[c + 1] += G.chunkRunStart[c];
+  const size_t numRuns = G.runSubdomain.size();
+  G.runGroupStart.assign(4 * numRuns + 1, static_cast<LO>(order.size()));
+  for (size_t j = 0; j < numRuns; ++j)
+    for (int kind = 0; kind < 4; ++kind) {
+      LO e = G.runStart[j];
+      while (e < G.runStart[j + 1] && entries[order[e]].kind < kind) ++e;
+      G.runGroupStart[4 * j + kind] = e;
+    }
+  G.rowSum.assign(G.numRows, 0.0);
+}
+
+/// G x's terms of the owned subdomains: their own blocks, every row (the same slots where
+/// shared); by kind (component d = 0, 1, 2 of one-term rows, then the full entries), in
+/// rowOrder within a kind. `data`: fillEntryData's.
+void storeOwnedTerms(TotalFeti::CoarseRows& G, const Locals& local, const std::vector<LO>& firstSource,
+                     const EntryData& data, CoarseTermBuilder& termOf) {
+  const auto view = data.getLocalViewHost(Tpetra::Access::ReadOnly);
+  double numbers[6];
+  G.ownedTerm.clear();
+  G.ownedStart.clear();
+  for (size_t i = 0; i < local.size(); ++i) {
+    const TotalFeti::Local& L = *local[i];
+    for (int kind = 0; kind < 4; ++kind) {
+      G.ownedStart.push_back(static_cast<LO>(G.ownedTerm.size()));
+      for (LO r : L.rowOrder) {
+        if (termKind(*L.block, r) != kind) continue;
+        dataOf(view, firstSource[i] + r, numbers);
+        G.ownedTerm.push_back(termOf(L.subdomain, *L.block, r, numbers));
+        G.ownedTerm.back().index = L.overlapIndex[r];
+      }
+    }
+    G.ownedStart.push_back(static_cast<LO>(G.ownedTerm.size()));
+    G.ownedStart.push_back(L.subdomain);
+  }
+  G.ownedTerm.shrink_to_fit();
+}
+}  // namespace
 
 void TotalFeti::buildCoarseRows(const mesh::Mesh& mesh, const mesh::Decomposition& decomposition) {
   // Entry (s, r) = row r of B in block s, global id r * numSubdomains + s: the same id on every
   // rank without any rank knowing the sizes of the blocks it does not own. Source: the entries
   // of the owned subdomains; target: the entries of the owned rows (the rank has those rows of
   // every block, feti::keepRankRows). One import of 6 numbers per entry (the data of its
-  // CoarseTerm, below), also applyBlockwise's entry-wise sums (several ranks); M_s travels
-  // by one all-reduce of 40 numbers per subdomain.
+  // CoarseTerm), also applyBlockwise's entry-wise sums (several ranks); M_s travels by one
+  // all-reduce of kFrame numbers per subdomain.
   const int rank = comm_->getRank();
   const GO S = numSubdomains_;
   std::vector<GO> ids;
@@ -74,72 +229,23 @@ void TotalFeti::buildCoarseRows(const mesh::Mesh& mesh, const mesh::Decompositio
   auto source = Teuchos::rcp(new DualMap(invalid, Teuchos::ArrayView<const GO>(ids.data(), ids.size()), 0, comm_));
   std::vector<LO> firstSource(numOwnedSubdomains() + 1, 0);  // first source entry of each owned subdomain
   for (int i = 0; i < numOwnedSubdomains(); ++i) firstSource[i + 1] = firstSource[i] + local_[i]->m();
-
-  // The frames (centre, scale, M_s) of the owned subdomains, by their owner (which has R_s);
-  // -0.0 made +0.0 so that the sum with the other ranks' zeros keeps every bit.
-  std::vector<double> frames(kFrame * static_cast<size_t>(S), 0.0);
-  core::forEachSubdomain(numOwnedSubdomains(), [&](int i) {
-    const Local& L = *local_[i];
-    double* frame = &frames[kFrame * static_cast<size_t>(L.subdomain)];
-    subdomainFrame(mesh, decomposition.subdomains[L.subdomain].nodes, L.system.R, frame);
-    for (int j = 0; j < kFrame; ++j) frame[j] += 0.0;
-  });
-  // The data of each entry of the owned subdomains, by their owner (the only rank that has
-  // their nodes, stack::keepRankData): p~ of the node of a one-term row (3 numbers), g' of
-  // the others (6), travelling to the owners of the rows as g did before.
-  Tpetra::MultiVector<Scalar, LO, GO> dataSource(source, 6);
-  {
-    auto data = dataSource.getLocalViewHost(Tpetra::Access::OverwriteAll);
-    core::forEachSubdomain(numOwnedSubdomains(), [&](int i) {
-      const Local& L = *local_[i];
-      const SubdomainBlock& b = *L.block;
-      const double* frame = &frames[kFrame * static_cast<size_t>(L.subdomain)];
-      const auto& nodes = decomposition.subdomains[L.subdomain].nodes;
-      for (LO r = 0; r < L.m(); ++r) {
-        double g[6] = {}, v[6], p[3];
-        if (b.rowPtr[r + 1] - b.rowPtr[r] == 1) {
-          scaledPoint(frame, mesh.coords[nodes[b.dof[b.rowPtr[r]] / 3]], g);
-        } else {
-          for (LO k = b.rowPtr[r]; k < b.rowPtr[r + 1]; ++k) {  // the terms in B's order
-            scaledPoint(frame, mesh.coords[nodes[b.dof[k] / 3]], p);
-            geometricRow(b.dof[k] % 3, p, v);
-            for (int j = 0; j < 6; ++j) g[j] += b.value[k] * v[j];
-          }
-        }
-        for (int j = 0; j < 6; ++j) data(firstSource[i] + r, j) = g[j];
-      }
-    });
-  }
+  std::vector<double> frames = ownedFrames(local_, mesh, decomposition, numSubdomains_);
+  EntryData dataSource(source, 6);
+  fillEntryData(local_, mesh, decomposition, frames, firstSource, dataSource);
   if (comm_->getSize() > 1) {
     std::vector<double> mine = frames;
     Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, static_cast<int>(frames.size()), mine.data(), frames.data());
   }
 
-  // Target: the entries of the owned rows, ordered by row, then subdomain (ascending: the
-  // order in which G G^T has always summed them).
   auto G = std::make_unique<CoarseRows>();
   G->firstRow = B_.firstRowOfRank[rank];
   G->numRows = static_cast<LO>(B_.firstRowOfRank[rank + 1] - G->firstRow);
-  struct Entry {
-    LO row;
-    int subdomain;
-    LO blockRow;  ///< its row in B_s
-    int kind;     ///< component d of a one-term row, 3 for several terms
-  };
-  std::vector<Entry> entries;
-  for (int s = 0; s < numSubdomains_; ++s) {
-    const auto& rows = B_.blocks[s].rows;
-    const auto lo = std::lower_bound(rows.begin(), rows.end(), G->firstRow);
-    for (auto it = lo; it != rows.end() && *it < G->firstRow + G->numRows; ++it)
-      entries.push_back({static_cast<LO>(*it - G->firstRow), s, static_cast<LO>(it - rows.begin()),
-                         termKind(B_.blocks[s], static_cast<LO>(it - rows.begin()))});
-  }
-  std::stable_sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) { return a.row < b.row; });
+  const std::vector<RowEntry> entries = ownedRowEntries(B_, G->firstRow, G->numRows, numSubdomains_);
   ids.resize(entries.size());
   for (size_t e = 0; e < entries.size(); ++e) ids[e] = (G->firstRow + entries[e].row) * S + entries[e].subdomain;
   auto target = Teuchos::rcp(new DualMap(invalid, Teuchos::ArrayView<const GO>(ids.data(), ids.size()), 0, comm_));
   auto entryImport = Teuchos::rcp(new Tpetra::Import<LO, GO>(source, target));
-  Tpetra::MultiVector<Scalar, LO, GO> dataTarget(target, 6);
+  EntryData dataTarget(target, 6);
   dataTarget.doImport(dataSource, *entryImport, Tpetra::INSERT);
   if (!overlapIsOwned_) {  // applyBlockwise's entry-wise sums (several ranks)
     entryImport_ = entryImport;
@@ -148,78 +254,9 @@ void TotalFeti::buildCoarseRows(const mesh::Mesh& mesh, const mesh::Decompositio
     entrySourceFirst_ = firstSource;
   }
 
-  G->rowStart.assign(G->numRows + 1, 0);
-  G->rowSubdomain.resize(entries.size());
-  for (size_t e = 0; e < entries.size(); ++e) {
-    ++G->rowStart[entries[e].row + 1];
-    G->rowSubdomain[e] = entries[e].subdomain;
-  }
-  for (LO r = 0; r < G->numRows; ++r) G->rowStart[r + 1] += G->rowStart[r];
-  // The stored order: by chunk, then subdomain, then kind, then row (entries are in row order:
-  // a stable sort by (chunk, subdomain, kind) keeps the rows ascending within a kind).
-  std::vector<LO> order(entries.size());
-  for (size_t e = 0; e < order.size(); ++e) order[e] = static_cast<LO>(e);
-  std::stable_sort(order.begin(), order.end(), [&](LO a, LO b) {
-    const LO ca = entries[a].row / kRowChunk, cb = entries[b].row / kRowChunk;
-    if (ca != cb) return ca < cb;
-    if (entries[a].subdomain != entries[b].subdomain) return entries[a].subdomain < entries[b].subdomain;
-    return entries[a].kind < entries[b].kind;
-  });
-  G->rowEntry.resize(entries.size());
-  G->term.resize(entries.size());
   CoarseTermBuilder termOf(*G);
-  auto targetData = dataTarget.getLocalViewHost(Tpetra::Access::ReadOnly);
-  auto sourceData = dataSource.getLocalViewHost(Tpetra::Access::ReadOnly);
-  auto dataOf = [](const auto& view, LO e, double* out) {
-    for (int j = 0; j < 6; ++j) out[j] = view(e, j);
-  };
-  double data[6];
-  const LO numChunks = (G->numRows + kRowChunk - 1) / kRowChunk;
-  G->chunkRunStart.assign(numChunks + 1, 0);  // runs per chunk, then their prefix sums
-  for (size_t k = 0; k < order.size(); ++k) {
-    const Entry& entry = entries[order[k]];
-    G->rowEntry[order[k]] = static_cast<LO>(k);
-    dataOf(targetData, order[k], data);
-    G->term[k] = termOf(entry.subdomain, B_.blocks[entry.subdomain], entry.blockRow, data);
-    G->term[k].index = entry.row;
-    const LO chunk = entry.row / kRowChunk;
-    if (k == 0 || chunk != entries[order[k - 1]].row / kRowChunk || entry.subdomain != entries[order[k - 1]].subdomain) {
-      G->runStart.push_back(static_cast<LO>(k));
-      G->runSubdomain.push_back(entry.subdomain);
-      ++G->chunkRunStart[chunk + 1];
-    }
-  }
-  G->runStart.push_back(static_cast<LO>(order.size()));
-  for (LO c = 0; c < numChunks; ++c) G->chunkRunStart[c + 1] += G->chunkRunStart[c];
-  const size_t numRuns = G->runSubdomain.size();
-  G->runGroupStart.assign(4 * numRuns + 1, static_cast<LO>(order.size()));
-  for (size_t j = 0; j < numRuns; ++j)
-    for (int kind = 0; kind < 4; ++kind) {
-      LO e = G->runStart[j];
-      while (e < G->runStart[j + 1] && entries[order[e]].kind < kind) ++e;
-      G->runGroupStart[4 * j + kind] = e;
-    }
-  G->rowSum.assign(G->numRows, 0.0);
-  // G x of the owned subdomains: their own blocks, every row (the same slots where shared);
-  // by kind (component d = 0, 1, 2 of one-term rows, then the full entries), in rowOrder
-  // within a kind.
-  G->ownedTerm.clear();
-  G->ownedStart.clear();
-  for (int i = 0; i < numOwnedSubdomains(); ++i) {
-    const Local& L = *local_[i];
-    for (int kind = 0; kind < 4; ++kind) {
-      G->ownedStart.push_back(static_cast<LO>(G->ownedTerm.size()));
-      for (LO r : L.rowOrder) {
-        if (termKind(*L.block, r) != kind) continue;
-        dataOf(sourceData, firstSource[i] + r, data);
-        G->ownedTerm.push_back(termOf(L.subdomain, *L.block, r, data));
-        G->ownedTerm.back().index = L.overlapIndex[r];
-      }
-    }
-    G->ownedStart.push_back(static_cast<LO>(G->ownedTerm.size()));
-    G->ownedStart.push_back(L.subdomain);
-  }
-  G->ownedTerm.shrink_to_fit();
+  storeRowTerms(*G, entries, B_, dataTarget, termOf);
+  storeOwnedTerms(*G, local_, firstSource, dataSource, termOf);
   G->basis.resize(36 * static_cast<size_t>(S));
   for (GO s = 0; s < S; ++s)
     std::copy(frames.data() + kFrame * s + 4, frames.data() + kFrame * (s + 1), G->basis.data() + 36 * s);

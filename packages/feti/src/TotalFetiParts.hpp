@@ -3,7 +3,7 @@
 // the blocks of B and of K as the operators read them, the compact G (CoarseRows), one owned
 // subdomain (Local), the sums over the overlap rows (applyBlockwise) and small helpers.
 // One component per source file: TotalFeti.cpp (set-up, F), TotalFetiPreconditioners.cpp,
-// TotalFetiCoarseSpace.cpp (G), TotalFetiCoarseProblem.cpp (G G^T and its solves),
+// TotalFetiCoarseSpace.cpp (G), CoarseProblem.{hpp,cpp} (G G^T and its solves),
 // TotalFetiProjector.cpp (P), TotalFetiRecovery.cpp (alpha, u, residuals).
 #include "tribos/feti/TotalFeti.hpp"
 

@@ -1,7 +1,22 @@
-// TotalFeti's projector P = I - G^T (G G^T)^-1 G, and the coarse coordinates of SMALSE-M's ||Q x||.
+// TotalFeti's projector P = I - G^T (G G^T)^-1 G, the coarse coordinates of SMALSE-M's ||Q x||,
+// and the coarse solves it makes with its CoarseProblem.
+#include "CoarseProblem.hpp"
 #include "TotalFetiParts.hpp"
 
 namespace tribos::feti {
+
+void TotalFeti::solveCoarse(std::vector<double>& a) const { coarse_->solve(a); }
+
+void TotalFeti::solveCoarseExactly(std::vector<double>& a) const {
+  // Products G G^T x as G (G^T x) for the refinement of a single-precision factor's solves.
+  coarse_->solveExactly(a, [this](const std::vector<double>& x, std::vector<double>& y) {
+    DualVector v(dualMap_);
+    applyGt(x, v);
+    applyG(v, y);
+  });
+}
+
+void TotalFeti::releaseCoarseFactor() const { coarse_->release(); }
 
 void TotalFeti::project(const DualVector& x, DualVector& y, CoarseCoordinates* ofX) const {
   // y = x - G^T (G G^T)^{-1} G x on the owned rows: x on the overlap rows (several ranks),
@@ -25,8 +40,7 @@ void TotalFeti::project(const DualVector& x, DualVector& y, CoarseCoordinates* o
 }
 
 void TotalFeti::projectExactly(const DualVector& x, DualVector& y) const {
-  if (!coarseFactored_) factorizeCoarse();
-  if (!coarseSingle_) {
+  if (!coarse_->single()) {
     project(x, y);  // exact already
     return;
   }

@@ -1,4 +1,5 @@
 // TotalFeti's recovery: alpha from lambda (paper (14)), u, B u and the residuals of the discrete problem.
+#include "CoarseProblem.hpp"
 #include "TotalFetiParts.hpp"
 
 namespace tribos::feti {
@@ -20,9 +21,9 @@ std::vector<double> TotalFeti::rigidBodyCoefficients(const DualVector& lambda,
   std::vector<double> alpha;
   applyG(residual, alpha);
   // Assembled, factorised and solved on rank 0 (as G G^T: onRootThenBroadcast).
-  fem::CsrMatrix GiGit = assembleCoarse(&ownedRowMask);
+  fem::CsrMatrix GiGit = coarse_->assemble(&ownedRowMask);
   onRootThenBroadcast(
-      alpha,
+      *comm_, alpha,
       [&] {
         auto factor = makeSparseCholesky(settings_.factorization, settings_.factorOptions);
         try {

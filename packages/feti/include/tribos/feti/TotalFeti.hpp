@@ -41,6 +41,7 @@ class Deadline;
 namespace tribos::feti {
 
 class DistributedCoarseSolve;
+class CoarseProblem;
 
 /// The rows I leave a rigid body mode free (G_I G_I^T singular): no constraint active at the
 /// end holds some body, e.g. a load beyond what contact and friction can carry.
@@ -287,23 +288,9 @@ class TotalFeti {
   Teuchos::RCP<DualVector> entrySource_, entryTarget_;
   Teuchos::RCP<const Tpetra::Import<LO, GO>> entryImport_;
   std::vector<LO> entrySourceFirst_;
-  /// G_I G_I^T over the owned rows with mask != 0, summed over the ranks (no mask: G G^T), on
-  /// the pattern of G G^T, on rank 0 (the other ranks get an empty matrix). Collective.
-  fem::CsrMatrix assembleCoarse(const std::vector<char>* ownedRowMask) const;
-  /// Rank 0: sum = the whole pattern's slots, every rank's `values` (their `blocks`, kSlots x 36
-  /// each) added in; rank 0's own values are released. Collective.
-  void addBlocksOnRoot(const std::vector<LO>& blocks, std::vector<double>& values, std::vector<double>& sum) const;
-  /// The block pattern of G G^T from the owned rows of G and one all-gather of their
-  /// subdomain pairs (no rank reads the blocks of B of subdomains it does not own).
-  void buildCoarsePattern();
-  /// Block pattern of G G^T: block row s has the blocks k in [coarseBlockStart_[s],
-  /// coarseBlockStart_[s + 1]), block column coarseNeighbours_[k] (ascending within a row).
-  std::vector<LO> coarseBlockStart_;
-  std::vector<int> coarseNeighbours_;
   /// G on the owned rows and of the owned subdomains in the compact geometric form (CoarseRows), from
   /// the frames of the subdomains (one all-reduce at set-up) and the mesh's coordinates.
   void buildCoarseRows(const mesh::Mesh& mesh, const mesh::Decomposition& decomposition);
-  class CoarseTermBuilder;  ///< set-up helper of buildCoarseRows (TotalFeti.cpp)
   /// Sets factorNonzeros_ and bytesPerFApplication_ (collective).
   void measureTraffic();
   /// The entries of G x of this rank's subdomains (the others zero; length l, not reduced),
@@ -315,33 +302,9 @@ class TotalFeti {
   long long primalDofs_ = 0;     ///< sum of n_s over all subdomains
 
   std::unique_ptr<CoarseRows> G_;           ///< G on the owned rows
-  /// G G^T's factor, on rank 0 only; null after releaseCoarseFactor() until the next coarse
-  /// solve.
-  mutable std::unique_ptr<SparseCholesky> coarse_;
-  /// The coarse solves spread over the ranks (several ranks and a factor large enough to
-  /// pay, DistributedCoarseSolve.hpp); null: solved on rank 0 and broadcast. Reset before coarse_.
-  mutable std::unique_ptr<DistributedCoarseSolve> distributedCoarse_;
-  /// Whether G G^T is factorised (on rank 0): the same on every rank.
-  mutable bool coarseFactored_ = false;
-  /// Whether its factor is in single precision (the same on every rank), and whether the
-  /// single one was found too inaccurate for this G G^T (then it stays double).
-  mutable bool coarseSingle_ = false, coarseSingleRejected_ = false;
-  /// Rank 0: rounds coarse_ to single precision where its implementation can; returns
-  /// whether it did and the relative difference of one solve (a fixed right-hand side)
-  /// before and after.
-  std::pair<bool, double> roundCoarseToSingle() const;
-  /// Rank 0, coarse_ factorised: whether coarsePrecision asks for the single factor, given
-  /// two coarse solves' bytes over those of F's subdomain solves.
-  bool singleCoarsePays(double coarseToFBytes) const;
-  /// Assembles G G^T (collective) and factorises it into coarse_ on rank 0.
-  void factorizeCoarse() const;
-  /// Runs `work` on rank 0 alone, then broadcasts v (of the same length on every rank) from
-  /// it; if `work` throws there, every rank calls fail(rank 0's message), which throws.
-  /// One rank: work() alone. Collective.
-  void onRootThenBroadcast(std::vector<double>& v, const std::function<void()>& work,
-                           const std::function<void(const std::string&)>& fail) const;
+  std::unique_ptr<CoarseProblem> coarse_;   ///< G G^T, its factor and solves (CoarseProblem.hpp)
   /// Coarse work vectors of project() and solveCoarse(), allocated once (length l).
-  mutable std::vector<double> coarseLocal_, coarseVector_, coarseRhs_;
+  mutable std::vector<double> coarseLocal_, coarseVector_;
   std::vector<double> e_;
   Teuchos::RCP<DualVector> dTilde_, lambdaIm_;
   mutable long long fApplications_ = 0;

@@ -1,14 +1,33 @@
-// TotalFeti's coarse problem: G G^T assembled and factorised on rank 0, its precision, its solves.
+// The coarse problem of T-FETI (CoarseProblem.hpp): G G^T's pattern, assembly on rank 0,
+// factor and precision, and its solves.
+#include "CoarseProblem.hpp"
+
 #include "TotalFetiParts.hpp"
 
 namespace tribos::feti {
 
-void TotalFeti::buildCoarsePattern() {
+CoarseProblem::CoarseProblem(const TotalFeti::CoarseRows& G, int numSubdomains, GO numRowsOfB, double gMax,
+                             double subdomainBytesPerF, Teuchos::RCP<const Teuchos::Comm<int>> comm,
+                             const TotalFetiSettings& settings, OperatorProfile& profile)
+    : G_(G),
+      numSubdomains_(numSubdomains),
+      numRowsOfB_(numRowsOfB),
+      gMax_(gMax),
+      subdomainBytesPerF_(subdomainBytesPerF),
+      comm_(std::move(comm)),
+      settings_(settings),
+      profile_(profile) {
+  buildPattern();
+}
+
+CoarseProblem::~CoarseProblem() = default;
+
+void CoarseProblem::buildPattern() {
   // Block (s, t) of G G^T is present when a row of B touches both s and t. Every row is owned
   // by one rank, which holds all its entries g_{s,r} (buildCoarseRows): the pairs of its owned
   // rows, gathered from every rank, are the whole pattern. The gathered lists are as long as
   // the pattern itself (which every rank holds in any case), not as long as B.
-  const CoarseRows& G = *G_;
+  const TotalFeti::CoarseRows& G = G_;
   std::vector<long long> pairs;  // s * numSubdomains + t, sorted and unique
   for (LO r = 0; r < G.numRows; ++r)
     for (LO e = G.rowStart[r]; e < G.rowStart[r + 1]; ++e)
@@ -21,18 +40,18 @@ void TotalFeti::buildCoarsePattern() {
   for (long long key : pairs) neighbours[key / numSubdomains_].push_back(static_cast<int>(key % numSubdomains_));
   pairs.clear();
   pairs.shrink_to_fit();
-  coarseBlockStart_.assign(numSubdomains_ + 1, 0);  // first block of block row s
-  coarseNeighbours_.clear();
+  blockStart_.assign(numSubdomains_ + 1, 0);  // first block of block row s
+  neighbours_.clear();
   for (int s = 0; s < numSubdomains_; ++s) {
     auto& t = neighbours[s];
     std::sort(t.begin(), t.end());
     t.erase(std::unique(t.begin(), t.end()), t.end());
-    coarseBlockStart_[s + 1] = coarseBlockStart_[s] + static_cast<LO>(t.size());
-    coarseNeighbours_.insert(coarseNeighbours_.end(), t.begin(), t.end());
+    blockStart_[s + 1] = blockStart_[s] + static_cast<LO>(t.size());
+    neighbours_.insert(neighbours_.end(), t.begin(), t.end());
   }
 }
 
-fem::CsrMatrix TotalFeti::assembleCoarse(const std::vector<char>* ownedRowMask) const {
+fem::CsrMatrix CoarseProblem::assemble(const std::vector<char>* ownedRowMask) const {
   // (G G^T)_{st} = sum over rows r touching both s and t of g_{s,r} g_{t,r}^T: 6x6 blocks
   // for subdomains that share a row of B (buildCoarsePattern; with a mask the same pattern,
   // the blocks of the rows left out stay zero). Each rank adds the products of its owned
@@ -41,12 +60,12 @@ fem::CsrMatrix TotalFeti::assembleCoarse(const std::vector<char>* ownedRowMask) 
   // array the size of the pattern (at 4 000 subdomains 62 MB of slots and a 47 MB matrix,
   // which were the transient peak of every rank on 16 ranks, doc/measurements/scalability.md).
   auto counted = [&](LO ownedRow) { return !ownedRowMask || (*ownedRowMask)[ownedRow]; };
-  const std::vector<LO>& blockStart = coarseBlockStart_;
+  const std::vector<LO>& blockStart = blockStart_;
   auto blockOf = [&](int s, int t) {
-    const auto first = coarseNeighbours_.begin() + blockStart[s], last = coarseNeighbours_.begin() + blockStart[s + 1];
+    const auto first = neighbours_.begin() + blockStart[s], last = neighbours_.begin() + blockStart[s + 1];
     return blockStart[s] + static_cast<LO>(std::lower_bound(first, last, t) - first);
   };
-  const CoarseRows& G = *G_;
+  const TotalFeti::CoarseRows& G = G_;
   // Only the blocks (s, t) with s <= t are summed: (t, s) is (s, t)^T, the same products
   // (g_t[c] g_s[a] = g_s[a] g_t[c] exactly) in the same exact slot sums, so the matrix below
   // reads them transposed with the bits of summing them itself. Each row's g_{s,r} are
@@ -69,7 +88,7 @@ fem::CsrMatrix TotalFeti::assembleCoarse(const std::vector<char>* ownedRowMask) 
   // Reproducible sums (core::SumBins): the rows of a block are owned by different ranks on
   // different layouts. |g_s[a] g_t[c]| <= gMax^2; at most one term per row of B. The slots
   // hold exact sums, so rank 0 may add the ranks' slots in any order.
-  const core::SumBins bins(gMax_ * gMax_, static_cast<long long>(B_.numRows));
+  const core::SumBins bins(gMax_ * gMax_, static_cast<long long>(numRowsOfB_));
   constexpr size_t kBlock = kSlots * 36;
   std::vector<double> local(kBlock * touched.size(), 0.0);
   std::vector<double> g;  // the row's g_{s,r}, 6 per entry
@@ -97,14 +116,14 @@ fem::CsrMatrix TotalFeti::assembleCoarse(const std::vector<char>* ownedRowMask) 
 
   // Each value combined from its slots straight into the matrix (no array of the blocks in
   // between).
-  GGt.n = numCoarse();
+  GGt.n = 6 * numSubdomains_;
   GGt.rowPtr.assign(GGt.n + 1, 0);
   GGt.colInd.reserve(slots.size() / kSlots);
   GGt.values.reserve(slots.size() / kSlots);
   for (int s = 0; s < numSubdomains_; ++s)
     for (int a = 0; a < 6; ++a) {
       for (LO k = blockStart[s]; k < blockStart[s + 1]; ++k) {
-        const int t = coarseNeighbours_[k];
+        const int t = neighbours_[k];
         // (s, t) below the diagonal: entry (c, a) of the upper block (t, s).
         const LO stored = s <= t ? k : blockOf(t, s);
         for (int c = 0; c < 6; ++c) {
@@ -118,7 +137,7 @@ fem::CsrMatrix TotalFeti::assembleCoarse(const std::vector<char>* ownedRowMask) 
   return GGt;
 }
 
-void TotalFeti::addBlocksOnRoot(const std::vector<LO>& blocks, std::vector<double>& values,
+void CoarseProblem::addBlocksOnRoot(const std::vector<LO>& blocks, std::vector<double>& values,
                                 std::vector<double>& sum) const {
   // Rank 0 receives the ranks' blocks one rank at a time (its transient: one rank's share, not
   // all of them at once) and adds them to its own.
@@ -129,7 +148,7 @@ void TotalFeti::addBlocksOnRoot(const std::vector<LO>& blocks, std::vector<doubl
   };
   const int rank = comm_->getRank(), size = comm_->getSize();
   if (rank == 0) {
-    sum.assign(kBlock * static_cast<size_t>(coarseBlockStart_.back()), 0.0);
+    sum.assign(kBlock * static_cast<size_t>(blockStart_.back()), 0.0);
     add(blocks.data(), blocks.size(), values.data());
     std::vector<double>().swap(values);
   }
@@ -163,16 +182,16 @@ void TotalFeti::addBlocksOnRoot(const std::vector<LO>& blocks, std::vector<doubl
   }
 }
 
-void TotalFeti::factorizeCoarse() const {
+void CoarseProblem::factorize() {
   // G G^T is assembled on rank 0 from every rank's blocks and factorised there
   // (onRootThenBroadcast): its assembled matrix lives only as long as the factorisation.
   core::Stopwatch watch;
-  fem::CsrMatrix GGt = assembleCoarse(nullptr);
+  fem::CsrMatrix GGt = assemble(nullptr);
   // Rounded to single (1), the gate's error, and two coarse solves' bytes over those of F's
   // subdomain solves (with the double factor).
   std::vector<double> single(3, 0.0);
   onRootThenBroadcast(
-      single,
+      *comm_,       single,
       [&] {
         auto factor = makeSparseCholesky(settings_.factorization, settings_.factorOptions);
         factor->setSubtreeSolve(true);  // solved on the main thread of rank 0
@@ -183,12 +202,12 @@ void TotalFeti::factorizeCoarse() const {
                                              "(G G^T is singular: ") +
                                  e.what() + "); check Boundary/Dirichlet Node Sets and the contact surfaces");
         }
-        coarse_ = std::move(factor);
-        profile_.coarseFactorNonzeros = coarse_->factorNonzeros();
-        profile_.coarseSubtrees = coarse_->subtreeCount();
-        single[2] = 2.0 * static_cast<double>(coarse_->solveBytes()) / subdomainBytesPerF_;
-        if (singleCoarsePays(single[2]) && !coarseSingleRejected_) {
-          const auto [rounded, error] = roundCoarseToSingle();
+        factor_ = std::move(factor);
+        profile_.coarseFactorNonzeros = factor_->factorNonzeros();
+        profile_.coarseSubtrees = factor_->subtreeCount();
+        single[2] = 2.0 * static_cast<double>(factor_->solveBytes()) / subdomainBytesPerF_;
+        if (singlePays(single[2]) && !singleRejected_) {
+          const auto [rounded, error] = roundToSingle();
           single[0] = rounded ? 1.0 : 0.0;
           single[1] = error;
         }
@@ -199,26 +218,26 @@ void TotalFeti::factorizeCoarse() const {
   if (single[0] != 0.0 && !(single[1] <= settings_.singleCoarseGate)) {
     // Too inaccurate for this G G^T (kappa ~ 1e4 and more; NaN too): factorised again in
     // double, on every rank alike (the flags came from rank 0).
-    coarseSingleRejected_ = true;
-    coarse_.reset();
+    singleRejected_ = true;
+    factor_.reset();
     profile_.coarseFactorSeconds += watch.seconds();
-    factorizeCoarse();
+    factorize();
     profile_.coarseSingleError = single[1];  // the error that sent it back
     return;
   }
-  coarseSingle_ = single[0] != 0.0;
-  profile_.coarseSingle = coarseSingle_;
+  single_ = single[0] != 0.0;
+  profile_.coarseSingle = single_;
   // Collective: the subtrees of its elimination tree to the ranks that will solve them.
-  distributedCoarse_ = DistributedCoarseSolve::create(rawComm(*comm_), coarse_.get(), settings_.distributedCoarseFromValues);
-  profile_.coarseRankSubtrees = distributedCoarse_ ? distributedCoarse_->numLeaves() : 0;
-  profile_.coarseSplitDepth = distributedCoarse_ ? distributedCoarse_->depth() : 0;
+  distributed_ = DistributedCoarseSolve::create(rawComm(*comm_), factor_.get(), settings_.distributedCoarseFromValues);
+  profile_.coarseRankSubtrees = distributed_ ? distributed_->numLeaves() : 0;
+  profile_.coarseSplitDepth = distributed_ ? distributed_->depth() : 0;
   profile_.coarseValuesPerSolve =
-      distributedCoarse_ ? distributedCoarse_->valuesOnThisRank() : (coarse_ ? coarse_->factorNonzeros() : 0);
-  coarseFactored_ = true;
+      distributed_ ? distributed_->valuesOnThisRank() : (factor_ ? factor_->factorNonzeros() : 0);
+  factored_ = true;
   profile_.coarseFactorSeconds += watch.seconds();
 }
 
-bool TotalFeti::singleCoarsePays(double coarseToFBytes) const {
+bool CoarseProblem::singlePays(double coarseToFBytes) const {
   // Rank 0, with the factor: "Auto" rounds where the two coarse solves of an A_rho product
   // read at least as many bytes as the subdomain solves of its F application
   // (subdomainBytesPerF_: the same on every rank layout, so that the choice, and with it
@@ -236,19 +255,19 @@ bool TotalFeti::singleCoarsePays(double coarseToFBytes) const {
   return coarseToFBytes >= 1.0;
 }
 
-std::pair<bool, double> TotalFeti::roundCoarseToSingle() const {
+std::pair<bool, double> CoarseProblem::roundToSingle() {
   // One solve of a fixed right-hand side before and after the rounding: the relative change
   // is about kappa(G G^T) 1e-7, the size of the perturbation the rounding makes to P.
-  const LO n = coarse_->size();
+  const LO n = factor_->size();
   std::vector<double> b(static_cast<size_t>(n)), exact(b.size()), rounded(b.size());
   std::uint32_t state = 12345u;
   for (double& v : b) {
     state = 1664525u * state + 1013904223u;  // a fixed sequence (LCG), spread over [-1, 1)
     v = static_cast<double>(state) / 2147483648.0 - 1.0;
   }
-  coarse_->solve(b.data(), exact.data());
-  if (!coarse_->roundToSingle()) return {false, 0.0};
-  coarse_->solve(b.data(), rounded.data());
+  factor_->solve(b.data(), exact.data());
+  if (!factor_->roundToSingle()) return {false, 0.0};
+  factor_->solve(b.data(), rounded.data());
   double difference = 0.0, norm = 0.0;
   for (size_t i = 0; i < b.size(); ++i) {
     difference += (rounded[i] - exact[i]) * (rounded[i] - exact[i]);
@@ -257,10 +276,10 @@ std::pair<bool, double> TotalFeti::roundCoarseToSingle() const {
   return {true, std::sqrt(difference / norm)};  // NaN or Inf: rejected by the gate
 }
 
-void TotalFeti::solveCoarseExactly(std::vector<double>& a) const {
-  if (!coarseFactored_) factorizeCoarse();
-  if (!coarseSingle_) {
-    solveCoarse(a);
+void CoarseProblem::solveExactly(std::vector<double>& a, const Product& product) {
+  if (!factored_) factorize();
+  if (!single_) {
+    solve(a);
     return;
   }
   // Iterative refinement: x += C~^{-1} (b - G G^T x) contracts by about the gate's error per
@@ -269,15 +288,13 @@ void TotalFeti::solveCoarseExactly(std::vector<double>& a) const {
   // of x. The same numbers on every rank (coarse vectors are replicated), so the same
   // decisions.
   const std::vector<double> b = a;
-  solveCoarse(a);
-  DualVector v(dualMap_);
+  solve(a);
   std::vector<double> r;
   double previous = std::numeric_limits<double>::infinity(), correction = 0.0, norm = 0.0;
   for (int k = 0; k < kMaxCoarseRefinements; ++k) {
-    applyGt(a, v);
-    applyG(v, r);
+    product(a, r);
     for (size_t i = 0; i < r.size(); ++i) r[i] = b[i] - r[i];
-    solveCoarse(r);
+    solve(r);
     ++profile_.coarseRefinementSteps;
     correction = 0.0;
     norm = 0.0;
@@ -294,22 +311,40 @@ void TotalFeti::solveCoarseExactly(std::vector<double>& a) const {
   // coarse solve too; the summary keeps the gate's error (coarse_single false with an error:
   // sent back to double).
   const double error = profile_.coarseSingleError;
-  coarseSingleRejected_ = true;
-  releaseCoarseFactor();
+  singleRejected_ = true;
+  release();
   a = b;
-  solveCoarse(a);
+  solve(a);
   profile_.coarseSingleError = error;
 }
 
-void TotalFeti::releaseCoarseFactor() const {
-  distributedCoarse_.reset();  // it reads coarse_'s factor on rank 0
-  coarse_.reset();
-  coarseFactored_ = false;
+void CoarseProblem::release() {
+  distributed_.reset();  // it reads factor_ on rank 0
+  factor_.reset();
+  factored_ = false;
 }
 
-void TotalFeti::onRootThenBroadcast(std::vector<double>& v, const std::function<void()>& work,
-                                    const std::function<void(const std::string&)>& fail) const {
-  if (comm_->getSize() == 1) {
+void CoarseProblem::solve(std::vector<double>& a) {
+  core::Stopwatch watch;
+  ++profile_.coarseSolves;
+  if (!factored_) factorize();  // released (releaseCoarseFactor): the same factor again
+  // Over the ranks when the factor is large (the bits of the serial solve), else on rank 0
+  // alone, then broadcast: with every rank solving, the R ranks of a node streamed R copies
+  // of the factor at once (16 ranks at 4 000 subdomains: doc/measurements/scalability.md).
+  rhs_.assign(a.begin(), a.end());
+  if (distributed_)
+    distributed_->solve(rhs_.data(), a.data());
+  else
+    onRootThenBroadcast(
+      *comm_,         a, [&] { factor_->solve(rhs_.data(), a.data()); },
+        [](const std::string& message) { throw std::runtime_error(message); });
+  profile_.coarseSolveSeconds += watch.seconds();
+}
+
+
+void onRootThenBroadcast(const Teuchos::Comm<int>& comm, std::vector<double>& v, const std::function<void()>& work,
+                         const std::function<void(const std::string&)>& fail) {
+  if (comm.getSize() == 1) {
     work();  // its exceptions as they are
     return;
   }
@@ -317,7 +352,7 @@ void TotalFeti::onRootThenBroadcast(std::vector<double>& v, const std::function<
   // throws, with rank 0's message (a rank left waiting in a collective would hang the job).
   int failed = 0;
   std::string message;
-  if (comm_->getRank() == 0) {
+  if (comm.getRank() == 0) {
     try {
       work();
     } catch (const std::exception& e) {
@@ -325,35 +360,16 @@ void TotalFeti::onRootThenBroadcast(std::vector<double>& v, const std::function<
       message = e.what();
     }
   }
-  Teuchos::broadcast(*comm_, 0, 1, &failed);
+  Teuchos::broadcast(comm, 0, 1, &failed);
   if (failed) {
     int length = static_cast<int>(message.size());
-    Teuchos::broadcast(*comm_, 0, 1, &length);
+    Teuchos::broadcast(comm, 0, 1, &length);
     message.resize(static_cast<size_t>(length));
-    if (length > 0) Teuchos::broadcast(*comm_, 0, length, message.data());
+    if (length > 0) Teuchos::broadcast(comm, 0, length, message.data());
     fail(message);
-    throw std::logic_error("tribos::feti::TotalFeti::onRootThenBroadcast: `fail` must throw");
+    throw std::logic_error("tribos::feti::onRootThenBroadcast: `fail` must throw");
   }
-  if (!v.empty()) Teuchos::broadcast(*comm_, 0, static_cast<int>(v.size()), v.data());
+  if (!v.empty()) Teuchos::broadcast(comm, 0, static_cast<int>(v.size()), v.data());
 }
-
-
-void TotalFeti::solveCoarse(std::vector<double>& a) const {
-  core::Stopwatch watch;
-  ++profile_.coarseSolves;
-  if (!coarseFactored_) factorizeCoarse();  // released (releaseCoarseFactor): the same factor again
-  // Over the ranks when the factor is large (the bits of the serial solve), else on rank 0
-  // alone, then broadcast: with every rank solving, the R ranks of a node streamed R copies
-  // of the factor at once (16 ranks at 4 000 subdomains: doc/measurements/scalability.md).
-  coarseRhs_.assign(a.begin(), a.end());
-  if (distributedCoarse_)
-    distributedCoarse_->solve(coarseRhs_.data(), a.data());
-  else
-    onRootThenBroadcast(
-        a, [&] { coarse_->solve(coarseRhs_.data(), a.data()); },
-        [](const std::string& message) { throw std::runtime_error(message); });
-  profile_.coarseSolveSeconds += watch.seconds();
-}
-
 
 }  // namespace tribos::feti
