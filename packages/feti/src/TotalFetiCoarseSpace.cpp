@@ -129,7 +129,8 @@ std::vector<RowEntry> ownedRowEntries(const ConstraintMatrix& B, GO firstRow, LO
   return entries;
 }
 
-void dataOf(const EntryData::host_view_type& view, LO e, double* out) {
+template <class View>
+void dataOf(const View& view, LO e, double* out) {
   for (int j = 0; j < 6; ++j) out[j] = view(e, j);
 }
 
