@@ -51,49 +51,42 @@ void CoarseProblem::buildPattern() {
   }
 }
 
-fem::CsrMatrix CoarseProblem::assemble(const std::vector<char>* ownedRowMask) const {
-  // (G G^T)_{st} = sum over rows r touching both s and t of g_{s,r} g_{t,r}^T: 6x6 blocks
-  // for subdomains that share a row of B (buildCoarsePattern; with a mask the same pattern,
-  // the blocks of the rows left out stay zero). Each rank adds the products of its owned
-  // rows into the blocks they touch, in row order; rank 0 adds every rank's blocks into the
-  // whole pattern and builds the matrix, which only it factorises. No rank but 0 holds an
-  // array the size of the pattern (at 4 000 subdomains 62 MB of slots and a 47 MB matrix,
-  // which were the transient peak of every rank on 16 ranks, doc/measurements/scalability.md).
-  auto counted = [&](LO ownedRow) { return !ownedRowMask || (*ownedRowMask)[ownedRow]; };
-  const std::vector<LO>& blockStart = blockStart_;
-  auto blockOf = [&](int s, int t) {
-    const auto first = neighbours_.begin() + blockStart[s], last = neighbours_.begin() + blockStart[s + 1];
-    return blockStart[s] + static_cast<LO>(std::lower_bound(first, last, t) - first);
-  };
+LO CoarseProblem::blockOf(int s, int t) const {
+  const auto first = neighbours_.begin() + blockStart_[s], last = neighbours_.begin() + blockStart_[s + 1];
+  return blockStart_[s] + static_cast<LO>(std::lower_bound(first, last, t) - first);
+}
+
+std::vector<LO> CoarseProblem::touchedBlocks(const std::vector<char>* ownedRowMask, std::vector<LO>& slotOf) const {
   const TotalFeti::CoarseRows& G = G_;
-  // Only the blocks (s, t) with s <= t are summed: (t, s) is (s, t)^T, the same products
-  // (g_t[c] g_s[a] = g_s[a] g_t[c] exactly) in the same exact slot sums, so the matrix below
-  // reads them transposed with the bits of summing them itself. Each row's g_{s,r} are
-  // decoded once (rowG) for all its pairs.
-  const LO numBlocks = blockStart[numSubdomains_];
-  std::vector<LO> slotOf(static_cast<size_t>(numBlocks), -1);  // block -> its index among `touched`
-  std::vector<LO> touched;  // the upper blocks of this rank's counted rows, ascending
+  slotOf.assign(static_cast<size_t>(blockStart_[numSubdomains_]), -1);
   for (LO r = 0; r < G.numRows; ++r) {
-    if (!counted(r)) continue;
+    if (ownedRowMask && !(*ownedRowMask)[r]) continue;
     for (LO e = G.rowStart[r]; e < G.rowStart[r + 1]; ++e)
       for (LO f = G.rowStart[r]; f < G.rowStart[r + 1]; ++f)
         if (G.rowSubdomain[e] <= G.rowSubdomain[f]) slotOf[blockOf(G.rowSubdomain[e], G.rowSubdomain[f])] = 0;
   }
-  for (LO k = 0; k < numBlocks; ++k)
+  std::vector<LO> touched;
+  for (LO k = 0; k < static_cast<LO>(slotOf.size()); ++k)
     if (slotOf[k] == 0) {
       slotOf[k] = static_cast<LO>(touched.size());
       touched.push_back(k);
     }
+  return touched;
+}
 
+std::vector<double> CoarseProblem::sumOwnedRows(const std::vector<char>* ownedRowMask, const std::vector<LO>& slotOf,
+                                                size_t numTouched) const {
   // Reproducible sums (core::SumBins): the rows of a block are owned by different ranks on
   // different layouts. |g_s[a] g_t[c]| <= gMax^2; at most one term per row of B. The slots
-  // hold exact sums, so rank 0 may add the ranks' slots in any order.
+  // hold exact sums, so rank 0 may add the ranks' slots in any order. Each row's g_{s,r} are
+  // decoded once (rowG) for all its pairs.
+  const TotalFeti::CoarseRows& G = G_;
   const core::SumBins bins(gMax_ * gMax_, static_cast<long long>(numRowsOfB_));
   constexpr size_t kBlock = kSlots * 36;
-  std::vector<double> local(kBlock * touched.size(), 0.0);
+  std::vector<double> local(kBlock * numTouched, 0.0);
   std::vector<double> g;  // the row's g_{s,r}, 6 per entry
   for (LO r = 0; r < G.numRows; ++r) {
-    if (!counted(r)) continue;
+    if (ownedRowMask && !(*ownedRowMask)[r]) continue;
     const LO first = G.rowStart[r], entries = G.rowStart[r + 1] - first;
     g.resize(6 * static_cast<size_t>(entries));
     for (LO e = 0; e < entries; ++e) G.rowG(first + e, &g[6 * static_cast<size_t>(e)]);
@@ -108,23 +101,21 @@ fem::CsrMatrix CoarseProblem::assemble(const std::vector<char>* ownedRowMask) co
           for (int c = 0; c < 6; ++c) bins.deposit(gs[a] * gt[c], block + kSlots * (a * 6 + c));
       }
   }
-  std::vector<LO>().swap(slotOf);
-  std::vector<double> slots;  // rank 0: the whole pattern's (upper blocks filled)
-  addBlocksOnRoot(touched, local, slots);
-  fem::CsrMatrix GGt;
-  if (comm_->getRank() != 0) return GGt;
+  return local;
+}
 
+fem::CsrMatrix CoarseProblem::matrixFromSlots(const std::vector<double>& slots) const {
   // Each value combined from its slots straight into the matrix (no array of the blocks in
-  // between).
+  // between); a block (s, t) below the diagonal is the upper block (t, s) read transposed.
+  fem::CsrMatrix GGt;
   GGt.n = 6 * numSubdomains_;
   GGt.rowPtr.assign(GGt.n + 1, 0);
   GGt.colInd.reserve(slots.size() / kSlots);
   GGt.values.reserve(slots.size() / kSlots);
   for (int s = 0; s < numSubdomains_; ++s)
     for (int a = 0; a < 6; ++a) {
-      for (LO k = blockStart[s]; k < blockStart[s + 1]; ++k) {
+      for (LO k = blockStart_[s]; k < blockStart_[s + 1]; ++k) {
         const int t = neighbours_[k];
-        // (s, t) below the diagonal: entry (c, a) of the upper block (t, s).
         const LO stored = s <= t ? k : blockOf(t, s);
         for (int c = 0; c < 6; ++c) {
           const int entry = s <= t ? a * 6 + c : c * 6 + a;
@@ -135,6 +126,27 @@ fem::CsrMatrix CoarseProblem::assemble(const std::vector<char>* ownedRowMask) co
       GGt.rowPtr[6 * s + a + 1] = static_cast<LO>(GGt.colInd.size());
     }
   return GGt;
+}
+
+fem::CsrMatrix CoarseProblem::assemble(const std::vector<char>* ownedRowMask) const {
+  // (G G^T)_{st} = sum over rows r touching both s and t of g_{s,r} g_{t,r}^T: 6x6 blocks
+  // for subdomains that share a row of B (buildPattern; with a mask the same pattern, the
+  // blocks of the rows left out stay zero). Each rank adds the products of its owned rows
+  // into the blocks they touch, in row order; rank 0 adds every rank's blocks into the whole
+  // pattern and builds the matrix, which only it factorises. No rank but 0 holds an array
+  // the size of the pattern (at 4 000 subdomains 62 MB of slots and a 47 MB matrix, which
+  // were the transient peak of every rank on 16 ranks, doc/measurements/scalability.md).
+  // Only the blocks (s, t) with s <= t are summed: (t, s) is (s, t)^T, the same products
+  // (g_t[c] g_s[a] = g_s[a] g_t[c] exactly) in the same exact slot sums, so the matrix reads
+  // them transposed with the bits of summing them itself.
+  std::vector<LO> slotOf;  // block -> its index among `touched`
+  const std::vector<LO> touched = touchedBlocks(ownedRowMask, slotOf);
+  std::vector<double> local = sumOwnedRows(ownedRowMask, slotOf, touched.size());
+  std::vector<LO>().swap(slotOf);
+  std::vector<double> slots;  // rank 0: the whole pattern's (upper blocks filled)
+  addBlocksOnRoot(touched, local, slots);
+  if (comm_->getRank() != 0) return fem::CsrMatrix{};
+  return matrixFromSlots(slots);
 }
 
 void CoarseProblem::addBlocksOnRoot(const std::vector<LO>& blocks, std::vector<double>& values,

@@ -52,6 +52,16 @@ class CoarseProblem {
   /// The block pattern of G G^T from the owned rows of G and one all-gather of their
   /// subdomain pairs (no rank reads the blocks of B of subdomains it does not own).
   void buildPattern();
+  /// The index of block (s, t) in the pattern.
+  LO blockOf(int s, int t) const;
+  /// The upper blocks (s <= t) that the counted owned rows touch, ascending; slotOf: block ->
+  /// its index among them (-1: untouched).
+  std::vector<LO> touchedBlocks(const std::vector<char>* ownedRowMask, std::vector<LO>& slotOf) const;
+  /// The exact slot sums (core::SumBins) of the counted owned rows' products in those blocks.
+  std::vector<double> sumOwnedRows(const std::vector<char>* ownedRowMask, const std::vector<LO>& slotOf,
+                                   size_t numTouched) const;
+  /// Rank 0: G G^T (or G_I G_I^T) in CSR from the whole pattern's slots.
+  fem::CsrMatrix matrixFromSlots(const std::vector<double>& slots) const;
   /// Rank 0: sum = the whole pattern's slots, every rank's `values` (their `blocks`, kSlots x 36
   /// each) added in; rank 0's own values are released. Collective.
   void addBlocksOnRoot(const std::vector<LO>& blocks, std::vector<double>& values, std::vector<double>& sum) const;
