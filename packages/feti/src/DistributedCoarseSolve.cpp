@@ -424,21 +424,21 @@ int DistributedCoarseSolve::depth() const {
   return deepest;
 }
 
-void DistributedCoarseSolve::solve(const double* b, double* x) const {
-  const std::vector<LO>& perm = factor_->permutation();
-  double* v = v_.data();
+void DistributedCoarseSolve::forwardLeaves(double* v) const {
+  // The leaves (on this rank's threads), their updates of rows above them kept.
   const size_t maxRows = static_cast<size_t>(factor_->maxPanelRows_);
-  double* splitWork = work_.data() + maxRows * leaves_.size();
-  for (LO k = 0; k < n_; ++k) v[k] = b[perm[k]];
-  // Forward: the leaves (on this rank's threads), their updates of rows above them kept.
   core::forEachSubdomain(static_cast<int>(leaves_.size()), [&](int i) {
     const Task& t = tasks_[leaves_[i]];
     const LO first = local(t.first);
     factor_->forward(first, first + (t.last - t.first), v, work_.data() + maxRows * i, t.columnEnd,
                      outputOf(leaves_[i]).data());
   });
-  // Then the splits from the deepest up: gather the parts' updates to the leader, which
-  // subtracts those inside the split and solves its top, in supernode order.
+}
+
+void DistributedCoarseSolve::forwardSplits(double* v) const {
+  // From the deepest up: gather the parts' updates to the leader, which subtracts those
+  // inside the split and solves its top, in supernode order.
+  double* splitWork = work_.data() + static_cast<size_t>(factor_->maxPanelRows_) * leaves_.size();
   for (auto s = splits_.rbegin(); s != splits_.rend(); ++s) {
     const Task& task = tasks_[s->task];
     double* send = s->send.data();
@@ -467,7 +467,12 @@ void DistributedCoarseSolve::solve(const double* b, double* x) const {
       }
     }
   }
-  // Backward: from the whole factor down, each leader solves its top and broadcasts it.
+}
+
+void DistributedCoarseSolve::backward(double* v) const {
+  // From the whole factor down, each leader solves its top and broadcasts it; then the leaves.
+  const size_t maxRows = static_cast<size_t>(factor_->maxPanelRows_);
+  double* splitWork = work_.data() + maxRows * leaves_.size();
   for (const Split& s : splits_) {
     if (s.leader) {
       for (auto segment = s.segments.rbegin(); segment != s.segments.rend(); ++segment)
@@ -492,6 +497,9 @@ void DistributedCoarseSolve::solve(const double* b, double* x) const {
     const LO first = local(t.first);
     factor_->backward(first, first + (t.last - t.first), v, work_.data() + maxRows * i);
   });
+}
+
+void DistributedCoarseSolve::shareColumns(double* v) const {
   // Every rank's solved columns to every rank.
   double* out = columns_.data();
   for (const auto& [begin, end] : ownedColumns_[rank_]) out = std::copy(v + begin, v + end, out);
@@ -503,6 +511,16 @@ void DistributedCoarseSolve::solve(const double* b, double* x) const {
       std::copy(in, in + (end - begin), v + begin);
       in += end - begin;
     }
+}
+
+void DistributedCoarseSolve::solve(const double* b, double* x) const {
+  const std::vector<LO>& perm = factor_->permutation();
+  double* v = v_.data();
+  for (LO k = 0; k < n_; ++k) v[k] = b[perm[k]];
+  forwardLeaves(v);
+  forwardSplits(v);
+  backward(v);
+  shareColumns(v);
   for (LO k = 0; k < n_; ++k) x[perm[k]] = v[k];
 }
 

@@ -55,7 +55,9 @@ double signedVolume(const Mesh& m, const std::array<LO, 4>& t) {
 }
 }  // namespace
 
-Mesh generateTwoBricks(const TwoBricksSpec& spec) {
+namespace {
+/// The checks of the spec: H/h >= 1, cubic subdomains, ids that fit LO, gap >= 0.
+void checkTwoBricksSpec(const TwoBricksSpec& spec) {
   const BrickGrid& g = spec.subdomainsPerBrick;
   const int m = spec.hOverH;
   core::requireInput(m >= 1, "Mesh/H Over h: must be >= 1, got " + std::to_string(m));
@@ -72,8 +74,71 @@ Mesh generateTwoBricks(const TwoBricksSpec& spec) {
                      "Mesh/Subdomains Per Brick and Mesh/H Over h: " + std::to_string(g.nx) + "x" +
                          std::to_string(g.ny) + "x" + std::to_string(g.nz) + " subdomains with H/h = " +
                          std::to_string(m) + " give more tetrahedra than a 32-bit index can count");
-  const double h = 20.0 / (g.nx * m);
   core::requireInput(spec.gap >= 0.0, "Mesh/Initial Gap: must be >= 0, got " + std::to_string(spec.gap));
+}
+
+/// The tetrahedra of one brick as one element block: five per cube, the split alternating
+/// with the parity of the cube (conforming face diagonals), positively oriented.
+void addBrickElements(Mesh& mesh, const Brick& br, const char* name, int id) {
+  ElementBlock block{name, id, static_cast<LO>(mesh.tets.size()), 0};
+  for (int k = 0; k < br.ez; ++k)
+    for (int j = 0; j < br.ey; ++j)
+      for (int i = 0; i < br.ex; ++i) {
+        LO corner[8];
+        for (int v = 0; v < 8; ++v) corner[v] = br.node(i + (v & 1), j + ((v >> 1) & 1), k + ((v >> 2) & 1));
+        const auto& split = (i + j + k) % 2 == 0 ? kEvenSplit : kOddSplit;
+        for (const auto& t : split) {
+          std::array<LO, 4> tet{corner[t[0]], corner[t[1]], corner[t[2]], corner[t[3]]};
+          if (signedVolume(mesh, tet) < 0.0) std::swap(tet[2], tet[3]);
+          mesh.tets.push_back(tet);
+        }
+      }
+  block.count = static_cast<LO>(mesh.tets.size()) - block.first;
+  mesh.blocks.push_back(block);
+}
+
+/// A boundary part: (name, brick, axis, plane at the upper or lower end of the axis).
+struct BoundaryPart {
+  const char* name;
+  int brick, axis;
+  bool upper;
+};
+
+/// The node set and side set of a part: the faces of its brick whose 3 vertices lie on the
+/// plane (tested on grid indices, not on floating-point coordinates).
+void addBoundaryPart(Mesh& mesh, const Brick (&bricks)[2], const BoundaryPart& part, int id) {
+  auto onPlane = [&](LO node) {
+    const Brick& br = bricks[part.brick];
+    const LO local = node - br.firstNode;
+    if (local < 0 || local >= br.numNodes()) return false;
+    const int idx[3] = {local % (br.ex + 1), (local / (br.ex + 1)) % (br.ey + 1), local / ((br.ex + 1) * (br.ey + 1))};
+    const int extent[3] = {br.ex, br.ey, br.ez};
+    return idx[part.axis] == (part.upper ? extent[part.axis] : 0);
+  };
+  NodeSet ns{part.name, id, {}};
+  SideSet ss{part.name, id, {}, {}};
+  const ElementBlock& block = mesh.blocks[part.brick];
+  for (LO e = block.first; e < block.first + block.count; ++e)
+    for (int side = 0; side < 4; ++side) {
+      bool all = true;
+      for (int v : kTetFaceVertices[side]) all = all && onPlane(mesh.tets[e][v]);
+      if (!all) continue;
+      ss.elements.push_back(e);
+      ss.sides.push_back(side);
+      for (int v : kTetFaceVertices[side]) ns.nodes.push_back(mesh.tets[e][v]);
+    }
+  std::sort(ns.nodes.begin(), ns.nodes.end());
+  ns.nodes.erase(std::unique(ns.nodes.begin(), ns.nodes.end()), ns.nodes.end());
+  mesh.nodeSets.push_back(std::move(ns));
+  mesh.sideSets.push_back(std::move(ss));
+}
+}  // namespace
+
+Mesh generateTwoBricks(const TwoBricksSpec& spec) {
+  checkTwoBricksSpec(spec);
+  const BrickGrid& g = spec.subdomainsPerBrick;
+  const int m = spec.hOverH;
+  const double h = 20.0 / (g.nx * m);
   Mesh mesh;
   Brick bricks[2];
   for (int b = 0; b < 2; ++b) {
@@ -84,62 +149,11 @@ Mesh generateTwoBricks(const TwoBricksSpec& spec) {
         for (int i = 0; i <= br.ex; ++i) mesh.coords.push_back({i * h, j * h, br.z0 + k * h});
   }
   const char* names[2] = {"aluminium", "steel"};
-  for (int b = 0; b < 2; ++b) {
-    const Brick& br = bricks[b];
-    ElementBlock block{names[b], b + 1, static_cast<LO>(mesh.tets.size()), 0};
-    for (int k = 0; k < br.ez; ++k)
-      for (int j = 0; j < br.ey; ++j)
-        for (int i = 0; i < br.ex; ++i) {
-          LO corner[8];
-          for (int v = 0; v < 8; ++v) corner[v] = br.node(i + (v & 1), j + ((v >> 1) & 1), k + ((v >> 2) & 1));
-          const auto& split = (i + j + k) % 2 == 0 ? kEvenSplit : kOddSplit;
-          for (const auto& t : split) {
-            std::array<LO, 4> tet{corner[t[0]], corner[t[1]], corner[t[2]], corner[t[3]]};
-            if (signedVolume(mesh, tet) < 0.0) std::swap(tet[2], tet[3]);
-            mesh.tets.push_back(tet);
-          }
-        }
-    block.count = static_cast<LO>(mesh.tets.size()) - block.first;
-    mesh.blocks.push_back(block);
-  }
-
-  // Boundary parts: (name, brick, axis, plane index). A face belongs to the part when its 3
-  // vertices lie on the plane (tested on grid indices, not on floating-point coordinates).
-  struct Part {
-    const char* name;
-    int brick, axis;
-    bool upper;
-  };
-  const Part parts[6] = {{"dirichlet_aluminium", 0, 0, false}, {"dirichlet_steel", 1, 0, false},
-                         {"contact_aluminium", 0, 2, true},    {"contact_steel", 1, 2, false},
-                         {"load_end", 1, 0, true},             {"load_top", 1, 2, true}};
-  auto onPlane = [&](LO node, const Part& p) {
-    const Brick& br = bricks[p.brick];
-    const LO local = node - br.firstNode;
-    if (local < 0 || local >= br.numNodes()) return false;
-    const int idx[3] = {local % (br.ex + 1), (local / (br.ex + 1)) % (br.ey + 1), local / ((br.ex + 1) * (br.ey + 1))};
-    const int extent[3] = {br.ex, br.ey, br.ez};
-    return idx[p.axis] == (p.upper ? extent[p.axis] : 0);
-  };
-  for (int p = 0; p < 6; ++p) {
-    const Part& part = parts[p];
-    NodeSet ns{part.name, p + 1, {}};
-    SideSet ss{part.name, p + 1, {}, {}};
-    const ElementBlock& block = mesh.blocks[part.brick];
-    for (LO e = block.first; e < block.first + block.count; ++e)
-      for (int side = 0; side < 4; ++side) {
-        bool all = true;
-        for (int v : kTetFaceVertices[side]) all = all && onPlane(mesh.tets[e][v], part);
-        if (!all) continue;
-        ss.elements.push_back(e);
-        ss.sides.push_back(side);
-        for (int v : kTetFaceVertices[side]) ns.nodes.push_back(mesh.tets[e][v]);
-      }
-    std::sort(ns.nodes.begin(), ns.nodes.end());
-    ns.nodes.erase(std::unique(ns.nodes.begin(), ns.nodes.end()), ns.nodes.end());
-    mesh.nodeSets.push_back(std::move(ns));
-    mesh.sideSets.push_back(std::move(ss));
-  }
+  for (int b = 0; b < 2; ++b) addBrickElements(mesh, bricks[b], names[b], b + 1);
+  const BoundaryPart parts[6] = {{"dirichlet_aluminium", 0, 0, false}, {"dirichlet_steel", 1, 0, false},
+                                 {"contact_aluminium", 0, 2, true},    {"contact_steel", 1, 2, false},
+                                 {"load_end", 1, 0, true},             {"load_top", 1, 2, true}};
+  for (int p = 0; p < 6; ++p) addBoundaryPart(mesh, bricks, parts[p], p + 1);
   mesh.validate("two-bricks generator");
   return mesh;
 }

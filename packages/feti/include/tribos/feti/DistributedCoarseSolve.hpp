@@ -91,6 +91,13 @@ class DistributedCoarseSolve {
   void buildSplits();
   void receiveParts(const PackedFactor* whole);
   void planBuffers();
+  // The steps of solve() on the permuted vector v: the forward substitution of this rank's
+  // leaves, then of the splits it is in (deepest first), the backward substitution (splits
+  // from the whole factor down, then the leaves), and the solved columns to every rank.
+  void forwardLeaves(double* v) const;
+  void forwardSplits(double* v) const;
+  void backward(double* v) const;
+  void shareColumns(double* v) const;
   /// The supernode index in factor_ of supernode k of the whole factor.
   LO local(LO k) const;
   /// The update entries a task hands to its parent's leader: a leaf's or a split's.
