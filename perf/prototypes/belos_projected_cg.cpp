@@ -47,6 +47,7 @@
 #include "tribos/core/Parameters.hpp"
 #include "tribos/core/XmlParameters.hpp"
 #include "tribos/feti/ConstraintMatrix.hpp"
+#include "tribos/feti/DualTpetraOperators.hpp"
 #include "tribos/feti/ProjectedCg.hpp"
 #include "tribos/feti/TotalFeti.hpp"
 #include "tribos/stack/FetiSettings.hpp"
@@ -61,35 +62,6 @@ namespace {
 using MV = Tpetra::MultiVector<Scalar, LO, GO>;
 using OP = Tpetra::Operator<Scalar, LO, GO>;
 using feti::DualVector;
-
-// A dual operator y = op(x) column by column on the dual map, as a Tpetra::Operator
-// (Y = alpha op(X) + beta Y; symmetric, so no transpose of its own).
-class DualOperator : public OP {
- public:
-  DualOperator(const feti::TotalFeti& feti, std::function<void(const DualVector&, DualVector&)> op)
-      : feti_(feti), op_(std::move(op)), work_(feti.createDualVector()) {}
-  Teuchos::RCP<const Tpetra::Map<LO, GO>> getDomainMap() const override { return feti_.dualMap(); }
-  Teuchos::RCP<const Tpetra::Map<LO, GO>> getRangeMap() const override { return feti_.dualMap(); }
-  bool hasTransposeApply() const override { return true; }
-  void apply(const MV& X, MV& Y, Teuchos::ETransp, Scalar alpha, Scalar beta) const override {
-    const auto& map = *feti_.dualMap();
-    TEUCHOS_TEST_FOR_EXCEPTION(X.getNumVectors() != Y.getNumVectors() ||
-                                   X.getLocalLength() != map.getNodeNumElements() ||
-                                   Y.getLocalLength() != map.getNodeNumElements(),
-                               std::invalid_argument, "DualOperator::apply: X or Y not on the dual map");
-    for (size_t j = 0; j < X.getNumVectors(); ++j) {
-      op_(*X.getVector(j), *work_);
-      auto y = Y.getVectorNonConst(j);
-      if (beta == 0.0) y->scale(alpha, *work_);  // Y's old values ignored (no 0 * NaN)
-      else y->update(alpha, *work_, beta);
-    }
-  }
-
- private:
-  const feti::TotalFeti& feti_;
-  std::function<void(const DualVector&, DualVector&)> op_;
-  Teuchos::RCP<DualVector> work_;
-};
 
 struct Run {
   int iterations = 0;
@@ -135,27 +107,23 @@ Run solveBelos(const feti::TotalFeti& feti, const feti::ProjectedCgSettings& cg,
     feti.project(*h, *h);
   }
   auto mu = Teuchos::rcp(new MV(feti.dualMap(), 1));  // mu_0 = 0
-  auto A = strict ? Teuchos::rcp(new DualOperator(feti,
-                                                  [&feti](const DualVector& x, DualVector& y) {
-                                                    DualVector t(x.getMap());
-                                                    feti.project(x, t);
-                                                    feti.applyPF(t, y);
-                                                  }))
-                  : Teuchos::rcp(new DualOperator(feti, [&feti](const DualVector& x, DualVector& y) {
-                      feti.applyPF(x, y);
-                    }));
+  // The library's P F P (feti/DualTpetraOperators.hpp), or P F alone (x in Ker G already).
+  auto A = strict ? feti::makeDualOperator(feti, feti::DualOperatorKind::PFP)
+                  : feti::wrapDualOperator(
+                        feti, [&feti](const DualVector& x, DualVector& y) { feti.applyPF(x, y); }, "P F");
   auto problem = Teuchos::rcp(new Belos::LinearProblem<Scalar, MV, OP>(A, mu, b));
   if (cg.preconditioner != DualPreconditioner::None) {
     const bool dirichlet = cg.preconditioner == DualPreconditioner::Dirichlet;
-    problem->setLeftPrec(Teuchos::rcp(new DualOperator(feti, [&feti, strict, dirichlet](const DualVector& x,
-                                                                                           DualVector& y) {
-      DualVector t(x.getMap()), s(x.getMap());
-      if (strict) feti.project(x, t);
-      else t.assign(x);
-      if (dirichlet) feti.applyDirichlet(t, s);
-      else feti.applyLumped(t, s);
-      feti.project(s, y);
-    })));
+    problem->setLeftPrec(strict ? feti::makeDualOperator(feti, feti::DualOperatorKind::PDP)
+                                : feti::wrapDualOperator(
+                                      feti,
+                                      [&feti, dirichlet](const DualVector& x, DualVector& y) {
+                                        DualVector s(x.getMap());
+                                        if (dirichlet) feti.applyDirichlet(x, s);
+                                        else feti.applyLumped(x, s);
+                                        feti.project(s, y);
+                                      },
+                                      "P D"));
   }
   // r_0 = b - A mu_0 = b: given, so that Belos applies no P F P to mu_0 = 0. The
   // preconditioned initial residual is only read by the "Norm of Preconditioned Initial

@@ -11,6 +11,7 @@
 
 #include <Teuchos_DefaultMpiComm.hpp>
 #include <Teuchos_ParameterList.hpp>
+#include <Tpetra_MultiVector.hpp>
 #include <Tpetra_Vector.hpp>
 
 #include <Teuchos_XMLParameterListHelpers.hpp>
@@ -22,6 +23,7 @@
 #include "tribos/core/Parameters.hpp"
 #include "tribos/fem/SubdomainSystem.hpp"
 #include "tribos/feti/ConstraintMatrix.hpp"
+#include "tribos/feti/DualTpetraOperators.hpp"
 #include "tribos/feti/ProjectedCg.hpp"
 #include "tribos/feti/TotalFeti.hpp"
 #include "tribos/mesh/Decomposition.hpp"
@@ -473,4 +475,65 @@ TEST(TotalFeti, dirichletEqualsBSBtFromDenseSchurComplements) {
     p->feti->applyLumped(*x, *y);
     EXPECT_LT(relativeDifference(*y, referencePreconditioner(*p, seed, false)), 1e-13);
   }
+}
+
+TEST(TotalFeti, dualOperatorsAsTpetraOperatorsGiveTheDirectProductsAndCheckTheirMaps) {
+  // makeDualOperator: Y = alpha op(X) + beta Y column by column with the bits of the direct
+  // calls (F, P F P = applyPF(P x), P, P D P), on the dual map; X of another map is refused.
+  feti::TotalFetiSettings settings;
+  settings.dirichletPreconditioner = true;
+  auto p = makeProblem("4x2x2", 2, false, settings);
+  const auto& f = *p->feti;
+  using MV = Tpetra::MultiVector<Scalar, LO, GO>;
+  MV X(f.dualMap(), 2), Y(f.dualMap(), 2);
+  for (int j = 0; j < 2; ++j) {
+    randomize(*X.getVectorNonConst(j), 40 + j);
+    randomize(*Y.getVectorNonConst(j), 50 + j);
+  }
+  const double alpha = 0.75, beta = -0.5;
+  auto direct = [&](feti::DualOperatorKind kind, const feti::DualVector& x, feti::DualVector& y) {
+    auto t = f.createDualVector();
+    switch (kind) {
+      case feti::DualOperatorKind::F: f.applyF(x, y); break;
+      case feti::DualOperatorKind::PFP: f.project(x, *t); f.applyPF(*t, y); break;
+      case feti::DualOperatorKind::Projector: f.project(x, y); break;
+      case feti::DualOperatorKind::PDP: f.project(x, *t); f.applyDirichlet(*t, y); f.project(y, y); break;
+    }
+  };
+  for (auto kind : {feti::DualOperatorKind::F, feti::DualOperatorKind::PFP, feti::DualOperatorKind::Projector,
+                    feti::DualOperatorKind::PDP}) {
+    auto op = feti::makeDualOperator(f, kind);
+    EXPECT_TRUE(op->getDomainMap()->isSameAs(*f.dualMap()));
+    EXPECT_TRUE(op->hasTransposeApply());
+    MV Z(Y, Teuchos::Copy);
+    op->apply(X, Z, Teuchos::NO_TRANS, alpha, beta);
+    for (int j = 0; j < 2; ++j) {
+      auto expected = f.createDualVector();
+      direct(kind, *X.getVector(j), *expected);
+      expected->update(beta, *Y.getVector(j), alpha);  // alpha op(x) + beta y, in the operator's order
+      auto z = Z.getVector(j)->getLocalViewHost(Tpetra::Access::ReadOnly);
+      auto e = expected->getLocalViewHost(Tpetra::Access::ReadOnly);
+      double worst = 0.0, scale = 0.0;
+      for (size_t i = 0; i < z.extent(0); ++i) {
+        worst = std::max(worst, std::abs(z(i, 0) - e(i, 0)));
+        scale = std::max(scale, std::abs(e(i, 0)));
+      }
+      EXPECT_LE(worst, 1e-14 * scale) << "kind " << static_cast<int>(kind) << ", column " << j;
+    }
+  }
+  // beta = 0 ignores Y's old values, NaN included.
+  auto F = feti::makeDualOperator(f, feti::DualOperatorKind::F);
+  MV W(f.dualMap(), 1);
+  W.putScalar(std::nan(""));
+  MV X1(f.dualMap(), 1);
+  randomize(*X1.getVectorNonConst(0), 7);
+  F->apply(X1, W, Teuchos::NO_TRANS, 1.0, 0.0);
+  EXPECT_TRUE(std::isfinite(W.getVector(0)->norm2()));
+  // Another map: refused on every rank.
+  auto other = Teuchos::rcp(new Tpetra::Map<LO, GO>(f.dualMap()->getGlobalNumElements() + 3, 0, f.comm()));
+  MV Xother(other, 1), Yother(other, 1);
+  EXPECT_THROW(F->apply(Xother, Yother), std::invalid_argument);
+  // A lumped or Dirichlet preconditioner is needed for P D P.
+  auto plain = makeProblem("4x2x2", 2, false);
+  EXPECT_THROW(feti::makeDualOperator(*plain->feti, feti::DualOperatorKind::PDP), std::invalid_argument);
 }

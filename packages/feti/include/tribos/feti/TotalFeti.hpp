@@ -224,6 +224,12 @@ class TotalFeti {
   double loadNormInf() const;
   const Teuchos::RCP<const Teuchos::Comm<int>>& comm() const { return comm_; }
   const ConstraintMatrix& constraints() const { return B_; }
+  /// The preconditioner built at set-up: Dirichlet where asked, else Lumped where asked, else None.
+  DualPreconditioner preconditioner() const {
+    return settings_.dirichletPreconditioner ? DualPreconditioner::Dirichlet
+           : settings_.lumpedPreconditioner  ? DualPreconditioner::Lumped
+                                             : DualPreconditioner::None;
+  }
 
   long long fApplications() const { return fApplications_; }
   const OperatorProfile& profile() const { return profile_; }
