@@ -38,6 +38,7 @@
 #include "tribos/core/Errors.hpp"
 #include "tribos/core/Parallel.hpp"
 #include "tribos/core/Parameters.hpp"
+#include "tribos/core/PhaseTimer.hpp"
 #include "tribos/core/Timer.hpp"
 #include "tribos/core/XmlParameters.hpp"
 #include "tribos/mesh/ExodusIO.hpp"
@@ -238,13 +239,21 @@ struct SetUpScene {
 SetUpScene setUpScene(int rank, const RunStart& start) {
   const auto& [cl, params, meshFile, resultFiles, deadline, total] = start;
   SetUpScene set;
+  core::ScopedPhase phase("Set-up");
   core::Stopwatch setup;
-  set.scene = buildSceneOnEveryRank(params, cl.input, meshFile);
+  {
+    core::ScopedPhase mesh("Set-up: mesh and decomposition");
+    set.scene = buildSceneOnEveryRank(params, cl.input, meshFile);
+  }
   deadline.check("reading the mesh", MPI_COMM_WORLD);
-  set.report = stack::assembleOwnedSubdomains(set.scene, MPI_COMM_WORLD, set.systems);
+  {
+    core::ScopedPhase assembly("Set-up: assembly");
+    set.report = stack::assembleOwnedSubdomains(set.scene, MPI_COMM_WORLD, set.systems);
+  }
   deadline.check("the assembly", MPI_COMM_WORLD);
   int numRanks = 1;
   MPI_Comm_size(MPI_COMM_WORLD, &numRanks);
+  core::ScopedPhase constraints("Set-up: constraints");
   core::Stopwatch constraintWatch;
   // Only this rank's blocks of B (its subdomains, its rows), never the whole of it.
   set.B = feti::buildConstraintMatrix(set.scene.mesh, set.scene.decomposition, stack::constraintSpec(set.scene),
@@ -303,6 +312,7 @@ void writeResults(int argc, char** argv, const RunStart& start, const stack::Sce
 /// Steps (3) to (6): the set-up, the solve, the results and their files.
 int solveAndReport(int argc, char** argv, int rank, const RunStart& start) {
   const auto& [cl, params, meshFile, resultFiles, deadline, total] = start;
+  core::startPhaseTimers("tribos");
   SetUpScene set = setUpScene(rank, start);  // (3)
   nlohmann::json& summary = set.summary;
 
@@ -315,6 +325,7 @@ int solveAndReport(int argc, char** argv, int rank, const RunStart& start) {
   } else {
     if (rank == 0 && stack::isContactProblem(set.scene))
       std::cout << "  solver chain: " << stack::describeSolverChain(set.scene, params) << "\n";
+    core::ScopedPhase phase("Solve");
     solve = stack::solveScene(set.scene, std::move(set.systems), set.B, params, MPI_COMM_WORLD, total);
     status = solve.converged() ? core::kExitOk : core::kExitNotConverged;
     output.displacement = &solve.displacement();
@@ -324,10 +335,10 @@ int solveAndReport(int argc, char** argv, int rank, const RunStart& start) {
     if (rank == 0) std::cout << stack::solveReport(solve);
   }
   summary["times"]["total_s"] = total.seconds();
-  if (rank == 0 && !cl.dryRun) std::cout << stack::timingTable(summary);
 
   // (5) Results on rank 0, which holds the global displacement and reactions.
   stack::StressResults stress;
+  std::optional<core::ScopedPhase> resultsPhase(std::in_place, "Results: stresses and reactions");
   if (rank == 0 && output.displacement) {
     stress = stack::evaluateStresses(set.scene, *output.displacement);
     const auto& appliedLoad = solve.appliedLoad();
@@ -341,6 +352,11 @@ int solveAndReport(int argc, char** argv, int rank, const RunStart& start) {
   // Peak memory per rank (KiB) after the solve and the stresses; rank 0's own figure is read
   // again after writing the Exodus result, just before the summary.
   std::vector<long> maxRssPerRankKb = gatherPeakRssKb(rank);
+  resultsPhase.reset();
+  // The phases up to here (the files are written after the summary is complete).
+  const auto phases = core::finishPhaseTimers(Teuchos::MpiComm<int>(MPI_COMM_WORLD));
+  stack::addTimersToSummary(phases, summary);
+  if (rank == 0 && !cl.dryRun) std::cout << stack::timingTable(phases);
   if (rank == 0) writeResults(argc, argv, start, set.scene, output, maxRssPerRankKb, summary);  // (6)
   return status;
 }

@@ -8,6 +8,7 @@
 #include "DualOperators.hpp"
 #include "SlipBoundStrategy.hpp"
 #include "tribos/core/Errors.hpp"
+#include "tribos/core/PhaseTimer.hpp"
 
 namespace tribos::contact {
 
@@ -97,7 +98,10 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
   const SmalseRun run = [&](const qp::OuterHook& hook, double knownNormA) {
     tally.add(smalse.solve(A, Q, problem.rightHandSide(), problem.omega(), *mu, hook, knownNormA));
   };
-  makeSlipBoundStrategy(friction, eps, kktTolerance)->solve(run, problem, *mu, result);
+  {
+    core::ScopedPhase phase("Contact: SMALSE-M");
+    makeSlipBoundStrategy(friction, eps, kktTolerance)->solve(run, problem, *mu, result);
+  }
   if (result.counters.nonFinite) {
     result.converged = false;
     result.message = "diverged: non-finite values (NaN or Inf) in the dual iterations; check the loads, the "
@@ -106,6 +110,7 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
 
   // (4) lambda = mu + lambda_Im; alpha over the rows where the dual constraints are inactive
   // (ALGORITHMS.md 7); u = K^dagger (f - B^T lambda) + R alpha.
+  core::ScopedPhase phase("Contact: recovery and KKT");
   const auto recovered = recoverPrimal(feti, B, problem, *mu, kktTolerance, result);
   // (5) KKT residuals of the discrete problem and the contact status per node.
   reportKkt(feti, B, friction, problem, recovered, result);

@@ -20,17 +20,24 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
   TEUCHOS_TEST_FOR_EXCEPTION(static_cast<int>(B.firstRowOfRank.size()) != size + 1, std::invalid_argument,
                              "tribos::feti::TotalFeti: B was built for " << B.firstRowOfRank.size() - 1
                                                                          << " ranks, the communicator has " << size);
-  buildMaps(numOwned);                                     // (1)
-  setUpSubdomains(mesh, decomposition, std::move(owned));  // (2) and (3)'s structures
-  factorizeSubdomains(mesh, decomposition);                // (3)
-  // (4) G on the owned rows; G G^T assembled and factorised once, on rank 0.
-  buildCoarseRows(mesh, decomposition);
-  measureTraffic();  // before the coarse factor: "Auto" compares the coarse solve with it
-  coarse_ = std::make_unique<CoarseProblem>(*G_, numSubdomains_, B_.numRows, gMax_, subdomainBytesPerF_, comm_,
-                                            settings_, profile_);
-  coarse_->factorize();
+  {
+    core::ScopedPhase phase("T-FETI: subdomain factors");
+    buildMaps(numOwned);                                     // (1)
+    setUpSubdomains(mesh, decomposition, std::move(owned));  // (2) and (3)'s structures
+    factorizeSubdomains(mesh, decomposition);                // (3)
+  }
+  {
+    // (4) G on the owned rows; G G^T assembled and factorised once, on rank 0.
+    core::ScopedPhase phase("T-FETI: coarse space and problem");
+    buildCoarseRows(mesh, decomposition);
+    measureTraffic();  // before the coarse factor: "Auto" compares the coarse solve with it
+    coarse_ = std::make_unique<CoarseProblem>(*G_, numSubdomains_, B_.numRows, gMax_, subdomainBytesPerF_, comm_,
+                                              settings_, profile_);
+    coarse_->factorize();
+  }
   if (settings_.deadline) settings_.deadline->check("the coarse problem", rawComm(*comm));
   settings_.deadline = nullptr;  // the caller's: not kept beyond the set-up
+  core::ScopedPhase phase("T-FETI: d~ and lambda_Im");
   buildDualData();  // (5)
 }
 

@@ -27,6 +27,7 @@
 #include "tribos/core/Deadline.hpp"
 #include "tribos/core/Errors.hpp"
 #include "tribos/core/Parallel.hpp"
+#include "tribos/core/PhaseTimer.hpp"
 #include "tribos/core/ReproducibleSum.hpp"
 #include "tribos/core/Timer.hpp"
 #include "tribos/feti/DistributedCoarseSolve.hpp"

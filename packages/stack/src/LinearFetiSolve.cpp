@@ -8,6 +8,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "tribos/core/PhaseTimer.hpp"
 #include "tribos/core/Timer.hpp"
 #include "tribos/stack/GlobalFields.hpp"
 #include "tribos/stack/SolveBudget.hpp"
@@ -74,7 +75,11 @@ LinearFetiResult solveLinearFeti(const Scene& scene, std::vector<fem::SubdomainS
   cg.preconditioner = dualPreconditioner(fetiList);
   cg.stopRequested = budget.stopRequest();
   auto lambda = feti.createDualVector();
-  const auto solve = feti::solveProjectedCg(feti, *lambda, cg);
+  const auto solve = [&] {
+    core::ScopedPhase phase("Linear: projected CG");
+    return feti::solveProjectedCg(feti, *lambda, cg);
+  }();
+  core::ScopedPhase recovery("Linear: recovery and KKT");
   const auto alpha = feti.rigidBodyCoefficients(*lambda);
   const auto u = feti.recoverDisplacements(*lambda, alpha);
   result.solveSeconds = watch.seconds();

@@ -2,6 +2,7 @@
 
 #include <Teuchos_ParameterList.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <iomanip>
 #include <sstream>
@@ -233,20 +234,27 @@ std::string solveReport(const SceneSolveResult& result) {
   return result.contactProblem ? contactReport(result.contactSolve) : linearReport(result.linear);
 }
 
-std::string timingTable(const nlohmann::json& summary) {
-  // The timing table of the run (slowest rank where the phase is parallel).
+std::string timingTable(const std::vector<core::PhaseTime>& phases) {
+  // The phases as StackedTimer nested them: "tribos@Set-up@Set-up: mesh" is printed as
+  // "Set-up: mesh" two levels in.
   std::string table;
-  char line[96];
-  std::snprintf(line, sizeof line, "  %-16s %10s\n", "phase", "seconds");
+  char line[160];
+  std::snprintf(line, sizeof line, "  %-44s %10s %6s\n", "phase (slowest rank)", "seconds", "calls");
   table += line;
-  for (const char* phase : {"mesh_s", "decomposition_s", "assembly_s", "constraints_s", "factorization_s", "solve_s",
-                            "total_s"})
-    if (summary["times"].contains(phase)) {
-      std::snprintf(line, sizeof line, "  %-16s %10.4f\n", std::string(phase).substr(0, std::string(phase).size() - 2).c_str(),
-                    summary["times"][phase].get<double>());
-      table += line;
-    }
+  for (const auto& phase : phases) {
+    const size_t depth = static_cast<size_t>(std::count(phase.path.begin(), phase.path.end(), '@'));
+    const std::string name = std::string(2 * depth, ' ') + phase.path.substr(phase.path.rfind('@') + 1);
+    std::snprintf(line, sizeof line, "  %-44s %10.4f %6lld\n", name.c_str(), phase.maxSeconds, phase.calls);
+    table += line;
+  }
   return table;
+}
+
+void addTimersToSummary(const std::vector<core::PhaseTime>& phases, nlohmann::json& summary) {
+  summary["timers"] = nlohmann::json::array();
+  for (const auto& phase : phases)
+    summary["timers"].push_back(
+        {{"phase", phase.path}, {"max_s", phase.maxSeconds}, {"min_s", phase.minSeconds}, {"calls", phase.calls}});
 }
 
 /// Stresses, strain energy, reactions and the force balance (rank 0) into the summary.

@@ -6,7 +6,9 @@
 #include <nlohmann/json.hpp>
 
 #include <string>
+#include <vector>
 
+#include "tribos/core/PhaseTimer.hpp"
 #include "tribos/stack/Results.hpp"
 #include "tribos/stack/SceneSolve.hpp"
 #include "tribos/stack/SubdomainSetup.hpp"
@@ -25,8 +27,12 @@ std::string setupReport(const std::string& input, const Scene& scene, const Setu
 void addSolveSummary(const SceneSolveResult& result, const Teuchos::ParameterList& tribos, nlohmann::json& summary);
 /// The console lines of the solve.
 std::string solveReport(const SceneSolveResult& result);
-/// The table of the phase times in `summary`.
-std::string timingTable(const nlohmann::json& summary);
+/// The table of the run's phases (core/PhaseTimer.hpp): one line per phase, indented by its
+/// depth, the slowest rank's seconds and the calls.
+std::string timingTable(const std::vector<core::PhaseTime>& phases);
+/// The phases into the summary's "timers": per phase its path, max_s and min_s over the
+/// ranks, calls.
+void addTimersToSummary(const std::vector<core::PhaseTime>& phases, nlohmann::json& summary);
 
 /// Stresses, strain energy, reactions and the force balance (rank 0) into the summary.
 void addResultsToSummary(const StressResults& stress, const ForceBalance& balance, nlohmann::json& summary);
