@@ -342,11 +342,11 @@ int solveAndReport(int argc, char** argv, int rank, const RunStart& start) {
   if (rank == 0 && output.displacement) {
     stress = stack::evaluateStresses(set.scene, *output.displacement);
     const auto& appliedLoad = solve.appliedLoad();
-    const auto balance = stack::forceBalance(set.scene, *output.reaction, appliedLoad);
+    const auto balance = stack::forceBalance(set.scene, *output.reaction, appliedLoad, solve.appliedLoadMagnitude());
     stack::addResultsToSummary(stress, balance, summary);
     output.stress = &stress;
     std::cout << "  strain energy " << stress.strainEnergy << "; applied load (" << appliedLoad[0] << ", "
-              << appliedLoad[1] << ", " << appliedLoad[2] << "), |reactions + load| / |load| = "
+              << appliedLoad[1] << ", " << appliedLoad[2] << "), force balance |reactions + load| / scale = "
               << balance.relativeImbalance << "\n";
   }
   // Peak memory per rank (KiB) after the solve and the stresses; rank 0's own figure is read

@@ -73,7 +73,7 @@ TEST(results, uniformCompressionGivesTheExactStressEverywhere) {
   EXPECT_NEAR(stress.strainEnergy, kP * kP * kVolume / (2.0 * kE), 1e-10 * kP * kP * kVolume / kE);
 
   // The load p A = 2 goes down; the plane z = 0 pushes back with 2; the lateral planes carry nothing.
-  const auto balance = stack::forceBalance(s.scene, s.linear.reaction, s.linear.appliedLoad);
+  const auto balance = stack::forceBalance(s.scene, s.linear.reaction, s.linear.appliedLoad, s.linear.appliedLoadMagnitude);
   EXPECT_NEAR(balance.appliedLoad[2], -kP, 1e-14);
   EXPECT_NEAR(norm(reactionOf(balance, "symmetry_z").force), kP, 1e-10 * kP);
   EXPECT_NEAR(reactionOf(balance, "symmetry_z").force[2], kP, 1e-10 * kP);
@@ -89,7 +89,7 @@ TEST(results, paperProblemReactionsBalanceTheLoad) {
   const auto& r = s.result;
   EXPECT_TRUE(r.contact.converged) << r.contact.message;
   if (worldRank() != 0) return;
-  const auto balance = stack::forceBalance(s.scene, r.reaction, r.appliedLoad);
+  const auto balance = stack::forceBalance(s.scene, r.reaction, r.appliedLoad, r.appliedLoadMagnitude);
   const double load = norm(r.appliedLoad);
   std::printf("paper problem: applied load (%g, %g, %g), |reactions + load| / |load| = %.2e\n", r.appliedLoad[0],
               r.appliedLoad[1], r.appliedLoad[2], balance.relativeImbalance);
@@ -155,7 +155,7 @@ TEST(results, nodeSetSurfacesGiveTheSameSolutionAsSideSets) {
   const auto& r = byNodeSets.contact;
   EXPECT_NEAR(r.appliedLoad[2], -5.0, 1e-12);
   EXPECT_NEAR(r.totalContactForce[2], 5.0, 1e-8 * 5.0);  // force of the lower (slave) box on the upper
-  const auto balance = stack::forceBalance(byNodeSets.scene, r.reaction, r.appliedLoad);
+  const auto balance = stack::forceBalance(byNodeSets.scene, r.reaction, r.appliedLoad, r.appliedLoadMagnitude);
   EXPECT_NEAR(reactionOf(balance, "lower_z0").force[2], 5.0, 1e-8 * 5.0);
   EXPECT_LE(balance.relativeImbalance, 1e-8);
 }
@@ -184,7 +184,7 @@ TEST(results, reactionsBalanceWhereContactMeetsSymmetryPlanes) {
   const auto& r = s.contact;
   EXPECT_TRUE(r.contact.converged) << r.contact.message;
   if (worldRank() != 0) return;
-  const auto balance = stack::forceBalance(s.scene, r.reaction, r.appliedLoad);
+  const auto balance = stack::forceBalance(s.scene, r.reaction, r.appliedLoad, r.appliedLoadMagnitude);
   std::printf("contact on symmetry planes: |reactions + load| / |load| = %.2e\n", balance.relativeImbalance);
   EXPECT_LE(balance.relativeImbalance, 1e-8);
   // The upper box is held by its planes and the contact only: its planes take the load
@@ -193,4 +193,50 @@ TEST(results, reactionsBalanceWhereContactMeetsSymmetryPlanes) {
   const auto& uy = reactionOf(balance, "upper_y").force;
   EXPECT_NEAR(ux[0] + r.totalContactForce[0] + r.appliedLoad[0], 0.0, 1e-8 * norm(r.appliedLoad));
   EXPECT_NEAR(uy[1] + r.totalContactForce[1] + r.appliedLoad[1], 0.0, 1e-8 * norm(r.appliedLoad));
+}
+
+// Force scales that exist (issue 30): a scene driven by a prescribed displacement alone (no
+// load) converges with every KKT residual relative to the forces it has, and the reaction
+// of the indenting condition is the contact resultant; loads that cancel (the same force up
+// and down on two faces) balance to round-off, not to |reactions| / |round-off|.
+TEST(results, aDisplacementDrivenIndentationConvergesAndItsReactionIsTheContactForce) {
+  const auto lower = test::boxMesh({0.0, 0.0, 0.0}, {1.0, 1.0, 1.0}, {3, 3, 2}, "lower");
+  const auto upper = test::boxMesh({0.25, 0.25, 1.0}, {0.5, 0.5, 0.5}, {2, 2, 2}, "upper");
+  std::vector<std::string> o = {"Mesh/Subdomains=4", "Materials/lower/Young Modulus=1000",
+                                "Materials/lower/Poisson Ratio=0.3", "Materials/upper/Young Modulus=3000",
+                                "Materials/upper/Poisson Ratio=0.2", "Solver/Verbose=false",
+                                "Contact/Friction Model=Coulomb", "Contact/Slave Side Set=lower_z1",
+                                "Contact/Master Side Set=upper_z0", "Boundary/Dirichlet Node Sets={lower_z0}"};
+  o = with(o, displacementCondition("indent", "upper_z1", "xyz", "{0, 0, -0.01}"));
+  const auto s = test::solveBoxScene(test::mergeMeshes(lower, upper), o);
+  const auto& r = s.contact;
+  ASSERT_TRUE(r.contact.converged) << r.contact.message;
+  EXPECT_LE(r.contact.kkt.equilibrium, 1e-6);
+  EXPECT_EQ(r.appliedLoadMagnitude, 0.0);
+  if (worldRank() != 0) return;
+  const auto balance = stack::forceBalance(s.scene, r.reaction, r.appliedLoad, r.appliedLoadMagnitude);
+  const double push = -reactionOf(balance, "indent").force[2];
+  EXPECT_GT(push, 0.0);
+  EXPECT_NEAR(r.totalContactForce[2], push, 1e-6 * push);  // the lower (slave) box pushes the punch up
+  EXPECT_NEAR(reactionOf(balance, "lower_z0").force[2], push, 1e-6 * push);
+  EXPECT_LE(balance.relativeImbalance, 1e-10);
+}
+
+TEST(results, loadsThatCancelBalanceToRoundOff) {
+  const auto mesh = test::boxMesh({0.0, 0.0, 0.0}, {1.0, 1.0, 1.0}, {2, 2, 2}, "box");
+  std::vector<std::string> o = {"Mesh/Subdomains=2", "Materials/box/Young Modulus=1000",
+                                "Materials/box/Poisson Ratio=0.3", "Solver/Tolerance=1e-10", "Solver/Verbose=false",
+                                "Boundary/Dirichlet Node Sets={box_x0}", "Loads/down/Side Set=box_z1",
+                                "Loads/down/Traction={0, 0, -1}", "Loads/up/Side Set=box_x1",
+                                "Loads/up/Traction={0, 0, 1}"};
+  const auto s = test::solveBoxScene(mesh, o);
+  ASSERT_TRUE(s.linear.converged);
+  // |down| + |up| = 2, less what cancels at the nodes of the edge the two faces share.
+  EXPECT_GT(s.linear.appliedLoadMagnitude, 1.5);
+  EXPECT_LE(s.linear.appliedLoadMagnitude, 2.0 + 1e-12);
+  if (worldRank() != 0) return;
+  EXPECT_LE(std::abs(s.linear.appliedLoad[2]), 1e-12);
+  const auto balance = stack::forceBalance(s.scene, s.linear.reaction, s.linear.appliedLoad,
+                                           s.linear.appliedLoadMagnitude);
+  EXPECT_LE(balance.relativeImbalance, 1e-10);
 }

@@ -188,8 +188,11 @@ double equalityResiduals(const feti::TotalFeti& feti, const feti::ConstraintMatr
       const double residual = bu(r - first, 0) - B.c[r];  // B_E u = c_E (prescribed values)
       equality.push_back(residual * residual);
     }
-  result.kkt.equilibrium = feti.equilibriumResidual(lambda, result.displacement) /
-                           std::max(feti.loadNormInf(), std::numeric_limits<double>::min());
+  // Relative to the largest force, applied or constraint (non-zero when only prescribed
+  // displacements drive the scene; the load alone would divide by zero).
+  double forceScale = 0.0;
+  const double equilibrium = feti.equilibriumResidual(lambda, result.displacement, &forceScale);
+  result.kkt.equilibrium = forceScale > 0.0 ? equilibrium / forceScale : equilibrium;
   const double uNorm = std::sqrt(globalSum(comm, uNorm2, feti.primalDofs()));
   result.kkt.equality = std::sqrt(globalSum(comm, equality, B.numRows)) / (uNorm > 0.0 ? uNorm : 1.0);
   return uInf > 0.0 ? uInf : 1.0;

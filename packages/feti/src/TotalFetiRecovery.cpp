@@ -59,19 +59,23 @@ void TotalFeti::applyB(const std::vector<std::vector<double>>& u, DualVector& y)
   });
 }
 
-double TotalFeti::equilibriumResidual(const DualVector& lambda, const std::vector<std::vector<double>>& u) const {
+double TotalFeti::equilibriumResidual(const DualVector& lambda, const std::vector<std::vector<double>>& u,
+                                      double* forceScale) const {
   const double* lo = overlapValues(lambda);
-  double worst = 0.0;
+  double worst[2] = {0.0, 0.0}, global[2] = {0.0, 0.0};  // the residual, the largest force
   for (size_t i = 0; i < local_.size(); ++i) {
     Local& L = *local_[i];
     for (LO r = 0; r < L.m(); ++r) L.in[r] = lo[L.overlapIndex[r]];
     applyBlockTranspose(*L.block, L.rowOrder, L.in.data(), L.x.data(), L.n());
     L.system.K.apply(u[i].data(), L.y.data());
-    for (LO k = 0; k < L.n(); ++k) worst = std::max(worst, std::abs(L.y[k] - L.system.f[k] + L.x[k]));
+    for (LO k = 0; k < L.n(); ++k) {
+      worst[0] = std::max(worst[0], std::abs(L.y[k] - L.system.f[k] + L.x[k]));
+      worst[1] = std::max(worst[1], std::max(std::abs(L.system.f[k]), std::abs(L.x[k])));
+    }
   }
-  double global = 0.0;
-  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 1, &worst, &global);
-  return global;
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 2, worst, global);
+  if (forceScale) *forceScale = global[1];
+  return global[0];
 }
 
 double TotalFeti::energy(const std::vector<std::vector<double>>& u) const {

@@ -220,6 +220,7 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
   out.chain = describeContactChain(tribos);
 
   out.appliedLoad = totalLoad(owned, comm);
+  out.appliedLoadMagnitude = loadMagnitude(owned, comm);
   const feti::TotalFeti feti(scene.mesh, scene.decomposition, std::move(owned), B,
                              Teuchos::rcp(new Teuchos::MpiComm<int>(comm)), settings);
   out.factorizationSeconds = feti.factorizationSeconds();

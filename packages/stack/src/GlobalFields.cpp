@@ -1,10 +1,13 @@
 #include "tribos/stack/GlobalFields.hpp"
 
+#include <Teuchos_DefaultMpiComm.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <utility>
 
+#include "tribos/core/ReproducibleSum.hpp"
 #include "tribos/stack/RootGather.hpp"
 
 namespace tribos::stack {
@@ -142,6 +145,16 @@ std::array<double, 3> totalLoad(const std::vector<fem::SubdomainSystem>& owned, 
     for (size_t i = 0; i < s.f.size(); ++i) local[i % 3] += s.f[i];
   MPI_Allreduce(local.data(), global.data(), 3, MPI_DOUBLE, MPI_SUM, comm);
   return global;
+}
+
+double loadMagnitude(const std::vector<fem::SubdomainSystem>& owned, MPI_Comm comm) {
+  std::vector<double> terms;
+  for (const auto& s : owned)
+    for (size_t i = 0; i + 2 < s.f.size(); i += 3) terms.push_back(std::hypot(s.f[i], s.f[i + 1], s.f[i + 2]));
+  long long mine = static_cast<long long>(terms.size()), count = 0;
+  MPI_Allreduce(&mine, &count, 1, MPI_LONG_LONG, MPI_SUM, comm);
+  const Teuchos::MpiComm<int> teuchosComm(comm);
+  return core::reproducibleSum(&teuchosComm, terms.data(), terms.size(), count);  // the same on every layout
 }
 
 std::vector<double> tributaryArea(const mesh::Mesh& mesh, const std::string& sideSet) {

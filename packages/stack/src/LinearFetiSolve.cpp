@@ -54,13 +54,8 @@ LinearFetiResult solveLinearFeti(const Scene& scene, std::vector<fem::SubdomainS
   auto teuchosComm = Teuchos::rcp(new Teuchos::MpiComm<int>(comm));
   const int rank = teuchosComm->getRank();
 
-  double fNormLocal = 0.0;
-  for (const auto& s : owned)
-    for (double v : s.f) fNormLocal = std::max(fNormLocal, std::abs(v));
-  double fNorm = 0.0;
-  MPI_Allreduce(&fNormLocal, &fNorm, 1, MPI_DOUBLE, MPI_MAX, comm);
-
   result.appliedLoad = totalLoad(owned, comm);
+  result.appliedLoadMagnitude = loadMagnitude(owned, comm);
 
   feti::TotalFetiSettings settings = totalFetiSettings(fetiList, true);
   settings.deadline = &deadline;
@@ -93,7 +88,11 @@ LinearFetiResult solveLinearFeti(const Scene& scene, std::vector<fem::SubdomainS
   result.bytesPerFApplication = feti.bytesPerFApplication();
 
   // KKT of the discrete problem: equilibrium per subdomain, and B u = c.
-  result.equilibriumResidual = feti.equilibriumResidual(*lambda, u) / (fNorm > 0.0 ? fNorm : 1.0);
+  // Relative to the largest force, applied or constraint (a scene without loads, driven by
+  // prescribed displacements, has only the latter).
+  double forceScale = 0.0;
+  const double equilibrium = feti.equilibriumResidual(*lambda, u, &forceScale);
+  result.equilibriumResidual = forceScale > 0.0 ? equilibrium / forceScale : equilibrium;
   auto Bu = feti.createDualVector();
   feti.applyB(u, *Bu);
   {

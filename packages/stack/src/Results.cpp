@@ -1,5 +1,6 @@
 #include "tribos/stack/Results.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "tribos/fem/ElementKernels.hpp"
@@ -68,7 +69,7 @@ StressResults evaluateStresses(const Scene& scene, const std::vector<std::array<
 }
 
 ForceBalance forceBalance(const Scene& scene, const std::vector<std::array<double, 3>>& nodalReaction,
-                          const std::array<double, 3>& appliedLoad) {
+                          const std::array<double, 3>& appliedLoad, double appliedLoadMagnitude) {
   ForceBalance out;
   out.appliedLoad = appliedLoad;
   auto sumOver = [&](const std::string& name, const std::string& nodeSet, const std::array<bool, 3>& components) {
@@ -82,14 +83,14 @@ ForceBalance forceBalance(const Scene& scene, const std::vector<std::array<doubl
   for (const auto& condition : scene.displacementConditions)
     sumOver(condition.name, condition.nodeSet, condition.components);
 
-  double magnitude = 0.0;  // the scale when nothing is loaded
+  double reactionMagnitude = 0.0;
   for (const auto& r : nodalReaction) {
     for (int c = 0; c < 3; ++c) out.totalReaction[c] += r[c];
-    magnitude += norm(r);
+    reactionMagnitude += norm(r);
   }
   const std::array<double, 3> residual{out.totalReaction[0] + appliedLoad[0], out.totalReaction[1] + appliedLoad[1],
                                        out.totalReaction[2] + appliedLoad[2]};
-  const double scale = norm(appliedLoad) > 0.0 ? norm(appliedLoad) : magnitude;
+  const double scale = std::max({norm(appliedLoad), appliedLoadMagnitude, reactionMagnitude});
   out.relativeImbalance = scale > 0.0 ? norm(residual) / scale : 0.0;
   return out;
 }

@@ -212,8 +212,12 @@ class TotalFeti {
   std::vector<double> rigidBodyCoefficients(const DualVector& lambda, const std::vector<char>& ownedRowMask) const;
   /// y = B u for displacements u of the owned subdomains (u[i] of subdomain firstOwned + i).
   void applyB(const std::vector<std::vector<double>>& u, DualVector& y) const;
-  /// max over owned subdomains of ||K_s u_s - f_s + B_s^T lambda_s||_inf (equilibrium).
-  double equilibriumResidual(const DualVector& lambda, const std::vector<std::vector<double>>& u) const;
+  /// max over owned subdomains of ||K_s u_s - f_s + B_s^T lambda_s||_inf (equilibrium), all
+  /// ranks. With `forceScale`: also max(||f_s||_inf, ||B_s^T lambda_s||_inf) over all
+  /// subdomains, the forces the residual compares with; it is not zero when the loads are
+  /// (a scene driven by prescribed displacements: the constraint forces carry it).
+  double equilibriumResidual(const DualVector& lambda, const std::vector<std::vector<double>>& u,
+                             double* forceScale = nullptr) const;
   /// u_s = K_s^dagger (f_s - B_s^T lambda) + R_s alpha_s for every owned subdomain.
   std::vector<std::vector<double>> recoverDisplacements(const DualVector& lambda,
                                                         const std::vector<double>& alpha) const;

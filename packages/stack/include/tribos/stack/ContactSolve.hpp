@@ -44,6 +44,7 @@ struct ContactSolveResult {
   /// Reaction force per global node (gatherReactions), rank 0.
   std::vector<std::array<double, 3>> reaction;
   std::array<double, 3> appliedLoad{};  ///< sum of the nodal loads (every rank)
+  double appliedLoadMagnitude = 0.0;    ///< sum of their lengths (loadMagnitude)
   double totalNormalForce = 0.0;    ///< sum of the normal nodal forces (rank 0)
   std::array<double, 3> totalContactForce{};  ///< sum of nodal contact forces in x, y, z (rank 0)
   double factorizationSeconds = 0.0, solveSeconds = 0.0;

@@ -41,6 +41,7 @@ struct LinearFetiResult {
   /// Reaction force per global node (gatherReactions), rank 0 only.
   std::vector<std::array<double, 3>> reaction;
   std::array<double, 3> appliedLoad{};  ///< sum of the nodal loads (every rank)
+  double appliedLoadMagnitude = 0.0;    ///< sum of their lengths (loadMagnitude)
 };
 
 /// Solves the linear T-FETI problem. `owned` are this rank's assembled subdomain systems

@@ -42,15 +42,16 @@ struct ForceBalance {
   std::vector<ConditionReaction> reactions;
   std::array<double, 3> totalReaction{};  ///< every prescribed component once
   std::array<double, 3> appliedLoad{};    ///< sum of the nodal loads f
-  /// |totalReaction + appliedLoad| / |appliedLoad| (contact forces are internal and cancel).
-  /// Without a load (prescribed displacements only) the scale is the sum of the nodal
-  /// reaction magnitudes instead.
+  /// |totalReaction + appliedLoad| / scale (contact forces are internal and cancel), the
+  /// scale the largest of |appliedLoad|, the sum of the nodal loads' lengths and the sum of
+  /// the nodal reactions' lengths: not zero when the loads cancel (opposite pressures) or
+  /// vanish (prescribed displacements only).
   double relativeImbalance = 0.0;
 };
 
 /// Reactions per condition and the balance, from the nodal reactions (gatherReactions) and
 /// the applied load (totalLoad).
 ForceBalance forceBalance(const Scene& scene, const std::vector<std::array<double, 3>>& nodalReaction,
-                          const std::array<double, 3>& appliedLoad);
+                          const std::array<double, 3>& appliedLoad, double appliedLoadMagnitude);
 
 }  // namespace tribos::stack

@@ -34,6 +34,9 @@ struct SceneSolveResult {
   const std::array<double, 3>& appliedLoad() const {
     return contactProblem ? contactSolve.appliedLoad : linear.appliedLoad;
   }
+  double appliedLoadMagnitude() const {
+    return contactProblem ? contactSolve.appliedLoadMagnitude : linear.appliedLoadMagnitude;
+  }
 };
 
 /// Whether the scene is solved as a contact problem (a contact pair that is not bonded).
