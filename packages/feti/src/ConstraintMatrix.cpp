@@ -203,10 +203,19 @@ ContactNode contactFrame(const mesh::ContactPair& pair, const mesh::MortarRow& m
   return node;
 }
 
+/// |dir|^2 over the components of `node` that no condition prescribes (1: none prescribed).
+double freeAlong(const Prescribed& prescribed, LO node, const Vec3& dir) {
+  if (!prescribed.any(node)) return 1.0;
+  double free = 0.0;
+  for (int c = 0; c < 3; ++c)
+    if (!prescribed.fixed[3 * static_cast<size_t>(node) + c]) free += dir[c] * dir[c];
+  return free;
+}
+
 /// The row of contact node `node` along direction d (0: nu, 1: t1, 2: t2) over its nodes
 /// `sides` (+1 on the slave, -w_i on master vertex i), its scale recorded in `node`; or
 /// false when it is dropped (the entries it appended are removed): a row (almost) entirely
-/// on prescribed components, or a tangential row of a slave held along that tangent.
+/// on prescribed components, or a tangential row on a symmetry plane (both sides held along it).
 bool contactRow(int d, ContactNode& node, const std::vector<std::pair<LO, double>>& sides, const RowContext& ctx,
                 RowList& list, Row& row) {
   const Vec3* directions[3] = {&node.normal, &node.t1, &node.t2};
@@ -241,15 +250,20 @@ bool contactRow(int d, ContactNode& node, const std::vector<std::pair<LO, double
     }
   }
   // A row (almost) entirely on prescribed components is redundant: removed, counted.
-  // A slave node held along t_j but free otherwise (a symmetry plane with normal t_j) cannot
-  // slip along it: the friction force along t_j is the displacement condition's
-  // reaction. What would remain of the row (master nodes off the plane, through the
-  // mortar weights) is no physical slip; its multiplier, bounded by F g along an
-  // almost empty row, makes a needle-thin ellipse on which MPGP crawls (measured on
-  // the Hertz half models: 24:1 semi-axes, 20 000 proportioning steps).
+  // On a symmetry plane with normal t_j (the slave node and its nearest master node both
+  // held along t_j, the slave free otherwise) nothing slips along t_j: the friction force
+  // along it is the displacement condition's reaction. What would remain of the row (master
+  // nodes off the plane, through the mortar weights) is no physical slip; its multiplier,
+  // bounded by F g along an almost empty row, makes a needle-thin ellipse on which MPGP
+  // crawls (measured on the Hertz half models: 24:1 semi-axes, 20 000 proportioning steps).
+  // Where only the slave is held along t_j (a roller on one body at the contact edge) the
+  // master can slip past it: the row stays, the slave's prescribed part in c, and Coulomb's
+  // law acts on the master's tangential displacement (issue 30).
   // (A slave clamped in every component keeps its rows: the master slides on a fixed
   // point, and the friction acts on the master alone.)
-  if (!(free2 > 1e-16 * full2) || (d > 0 && !(slaveFree2 > 1e-12) && !prescribed.all(node.slaveNode))) {
+  const bool symmetryPlane = d > 0 && !(slaveFree2 > 1e-12) && !prescribed.all(node.slaveNode) &&
+                             !(freeAlong(prescribed, node.masterNode, dir) > 1e-12);
+  if (!(free2 > 1e-16 * full2) || symmetryPlane) {
     list.drop(row);
     return false;
   }
