@@ -301,8 +301,17 @@ void addContactRows(const mesh::Mesh& mesh, const ConstraintSpec& spec, const Ro
   constexpr size_t kSample = 5;
   B.unpairedSample.assign(search.unpaired.begin(), search.unpaired.begin() + std::min(kSample, search.unpaired.size()));
   B.searchDistance = spec.searchDistance;
-  B.overlappingPairs = search.overlapping;
-  B.largestOverlap = search.largestOverlap;
+  // The initial overlaps of the rows (weighted where mortar), every pair on every rank.
+  for (const auto& side : masterSides) {
+    if (side.gap < 0.0) {
+      ++B.overlappingPairs;
+      B.largestOverlap = std::max(B.largestOverlap, -side.gap);
+    }
+    if (side.gapLimited > 0.0) {
+      ++B.limitedMortarGaps;
+      B.largestGapLimit = std::max(B.largestGapLimit, side.gapLimited);
+    }
+  }
   const int numDirections = spec.tangentialRows ? 3 : 1;
   list.rows.reserve(numDirections * search.pairs.size());
   for (size_t p = 0; p < search.pairs.size(); ++p) {

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 
 namespace tribos::mesh {
@@ -58,11 +59,13 @@ double triangleArea(const Vec3& a, const Vec3& b, const Vec3& c) {
 }
 
 /// The integrals of one slave node: D_i, M_ij, int psi_i (chi(x) - x), and int psi_i over
-/// the covered part (sum_j M_ij).
+/// the covered part (sum_j M_ij); and the range of the pointwise gap (chi(x) - x) . nu_i
+/// over its support.
 struct NodeIntegrals {
   double D = 0.0, covered = 0.0;
   std::map<LO, double> M;
   Vec3 gapVector{0.0, 0.0, 0.0};
+  double gapMin = std::numeric_limits<double>::infinity(), gapMax = -std::numeric_limits<double>::infinity();
 };
 }  // namespace
 
@@ -128,7 +131,12 @@ std::vector<MortarRow> dualMortarRows(const Mesh& mesh, const std::string& slave
         I.covered += omega * psi;
         for (int j = 0; j < 3; ++j)
           if (chi.weights[j] != 0.0) I.M[chi.nodes[j]] += omega * psi * chi.weights[j];
-        for (int d = 0; d < 3; ++d) I.gapVector[d] += omega * psi * (chi.point[d] - xq[d]);
+        const Vec3 gap{chi.point[0] - xq[0], chi.point[1] - xq[1], chi.point[2] - xq[2]};
+        for (int d = 0; d < 3; ++d) I.gapVector[d] += omega * psi * gap[d];
+        const Vec3& nu = search.pairs[p].normal;
+        const double along = gap[0] * nu[0] + gap[1] * nu[1] + gap[2] * nu[2];
+        I.gapMin = std::min(I.gapMin, along);
+        I.gapMax = std::max(I.gapMax, along);
       }
     }
   }
@@ -159,8 +167,17 @@ std::vector<MortarRow> dualMortarRows(const Mesh& mesh, const std::string& slave
         continue;
       }
     }
-    row.gap = (I.gapVector[0] * pair.normal[0] + I.gapVector[1] * pair.normal[1] + I.gapVector[2] * pair.normal[2]) /
-              I.covered;
+    // The dual basis is negative on part of the support: where the gap varies much within it
+    // (a master that curves away within one slave element: a fillet of 1.5 slave elements)
+    // the weighted gap can leave the range of the gap itself, a weighted overlap where the
+    // surfaces are apart (the rounded punch then rose under a downward load). Kept within
+    // the range of the pointwise gap over the support: unchanged where it already is
+    // (the Hertz scenes, where the gap varies slowly), never an overlap where none is.
+    const double weighted =
+        (I.gapVector[0] * pair.normal[0] + I.gapVector[1] * pair.normal[1] + I.gapVector[2] * pair.normal[2]) /
+        I.covered;
+    row.gap = std::clamp(weighted, I.gapMin, I.gapMax);
+    row.gapLimited = std::abs(row.gap - weighted);
     rows[p] = std::move(row);
   }
   return rows;

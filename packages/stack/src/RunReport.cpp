@@ -193,12 +193,31 @@ nlohmann::json setupSummary(const Scene& scene, const SetupReport& report, const
   j["contact_nodes_paired"] = B.contact.size();
   j["contact_nodes_unpaired"] = B.unpairedSlaveNodes;
   j["contact_initial_overlaps"] = B.overlappingPairs;
+  j["contact_limited_mortar_gaps"] = B.limitedMortarGaps;
+  j["contact_largest_gap_limit"] = B.largestGapLimit;
   j["contact_largest_initial_overlap"] = B.largestOverlap;
   j["times"] = {{"mesh_s", scene.meshSeconds},
                 {"decomposition_s", scene.decompositionSeconds},
                 {"assembly_s", report.assemblySeconds}};
   return j;
 }
+
+namespace {
+/// A line where mortar gaps were kept within the gap between the surfaces
+/// (ConstraintMatrix::limitedMortarGaps), naming the interface; empty where none were.
+/// Compare the change with the displacements expected: where it is not small against them,
+/// the slave mesh is too coarse for the master's curvature.
+std::string limitedGapsWarning(const Scene& scene, const feti::ConstraintMatrix& B) {
+  if (B.limitedMortarGaps == 0) return "";
+  std::ostringstream line;
+  line << "  contact " << scene.contact.slaveSideSet << " -> " << scene.contact.masterSideSet << ": "
+       << B.limitedMortarGaps << " mortar gaps kept within the gap between the surfaces (changed by up to "
+       << B.largestGapLimit
+       << "): the slave elements are coarse for the master's curvature there; if that is not small against "
+          "the displacements, refine the slave side or use Contact/Discretization = Node To Surface\n";
+  return line.str();
+}
+}  // namespace
 
 std::string setupReport(const std::string& input, const Scene& scene, const SetupReport& report,
                         const feti::ConstraintMatrix& B, double setupSeconds, double constraintSeconds) {
@@ -215,7 +234,8 @@ std::string setupReport(const std::string& input, const Scene& scene, const Setu
                     std::to_string(B.unpairedSlaveNodes) +
                     " out of reach (no master face facing them within Contact/Search Distance: no rows), " +
                     std::to_string(B.overlappingPairs) + " with initial overlap" +
-                    (B.overlappingPairs > 0 ? " (largest " + std::to_string(B.largestOverlap) + ")" : "") + "\n"
+                    (B.overlappingPairs > 0 ? " (largest " + std::to_string(B.largestOverlap) + ")" : "") + "\n" +
+                    limitedGapsWarning(scene, B)
               : std::string("  contact: none (linear T-FETI)\n"))
       << "  set-up: " << setupSeconds << " s (assembly " << report.assemblySeconds << " s, B " << constraintSeconds
       << " s)\n";

@@ -107,8 +107,12 @@ struct ConstraintMatrix {
   GO unpairedSlaveNodes = 0;         ///< slave nodes with no master face within the search distance
   std::vector<LO> unpairedSample;    ///< the first few of them (global node ids), for messages
   double searchDistance = 0.0;       ///< Contact/Search Distance, for messages
-  GO overlappingPairs = 0;           ///< contact nodes with a negative initial gap
+  GO overlappingPairs = 0;           ///< contact nodes whose row has a negative initial gap
   double largestOverlap = 0.0;       ///< max(-gap) over them
+  /// Mortar rows whose weighted gap was kept within the pointwise gap over the node's support
+  /// (mesh::MortarRow::gapLimited): slave elements coarse for the master's curvature.
+  GO limitedMortarGaps = 0;
+  double largestGapLimit = 0.0;  ///< max |weighted gap - gap kept| over them
   std::vector<SubdomainBlock> blocks;  ///< index = global subdomain
   GO count(RowKind k) const;
 };

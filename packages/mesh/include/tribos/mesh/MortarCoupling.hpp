@@ -17,7 +17,10 @@
 /// evaluated at the projection chi of the slave point on the master surface. Since
 /// sum_j phi_j = 1, sum_j M_ij = int psi_i = D_i: the weights sum to one, as the
 /// node-to-surface weights do; some may be negative. The initial gap is weighted the same
-/// way: d_i = (int psi_i (chi(x) - x) dGamma / D_i) . nu_i.
+/// way, d_i = (int psi_i (chi(x) - x) dGamma / D_i) . nu_i, and kept within the range of the
+/// pointwise gap (chi(x) - x) . nu_i over the node's support: psi_i < 0 on part of it, so
+/// where the gap varies much within one slave element (a master curving away, a fillet of
+/// 1.5 slave elements) the weighted gap could be an overlap where the surfaces are apart.
 ///
 /// The integrals are evaluated by quadrature on the slave triangles (each cut into
 /// kSubdivisions^2 sub-triangles, 3-point rule exact for quadratics on each), projecting
@@ -48,6 +51,10 @@ struct MortarRow {
   std::vector<double> weights;   ///< w_ij, sum 1
   double gap = 0.0;              ///< d_i along the pair's normal (< 0: initial overlap)
   bool nodeToSurface = false;    ///< the node kept its node-to-surface row (header)
+  /// How far the weighted gap left the range of the pointwise gap over the node's support
+  /// (it is kept at its edge; 0 where it did not): the slave elements are coarse for the
+  /// master's curvature there.
+  double gapLimited = 0.0;
 };
 
 /// One row per pair of `search` (same order). `master` must be built on the master set
