@@ -241,15 +241,19 @@ void stiffnessPattern(const NodeGraph& g, LO numNodes, CsrMatrix& K) {
   K.values.assign(K.colInd.size(), 0.0);
 }
 
-/// The traction loads of the faces whose element lies in this subdomain, into f (each face
-/// is loaded once over all subdomains, so the subdomain loads sum to the global one).
+/// The traction and pressure loads of the faces whose element lies in this subdomain, into f
+/// (each face is loaded once over all subdomains, so the subdomain loads sum to the global
+/// one). A pressure q on a face of outward normal n and area A loads each vertex with
+/// -q n A / 3 (the consistent load of the constant traction -q n).
 void addTractionLoads(const mesh::Mesh& mesh, const mesh::Subdomain& subdomain, const LocalElements& el,
                       const Loads& loads, std::vector<double>& f) {
   for (const auto& traction : loads.tractions) {
     const auto& set = mesh.sideSet(traction.sideSet);  // InputError naming a missing set
     std::vector<LO> faceNodes;
+    std::vector<std::array<double, 3>> faceNormals;  // outward, of length twice the area
     for (size_t face = 0; face < set.elements.size(); ++face) {
       if (!std::binary_search(subdomain.elements.begin(), subdomain.elements.end(), set.elements[face])) continue;
+      if (traction.pressure != 0.0) faceNormals.push_back(mesh.faceNormal(set.elements[face], set.sides[face]));
       const auto& tet = mesh.tets[set.elements[face]];
       for (int v : mesh::kTetFaceVertices[set.sides[face]])
         faceNodes.push_back(static_cast<LO>(
@@ -263,6 +267,9 @@ void addTractionLoads(const mesh::Mesh& mesh, const mesh::Subdomain& subdomain, 
     for (LO face = 0; face < numFaces; ++face)
       for (int v = 0; v < 3; ++v)
         for (int c = 0; c < 3; ++c) f[3 * faceNodes[3 * face + v] + c] += fe[9 * face + 3 * v + c];
+    for (size_t face = 0; face < faceNormals.size(); ++face)
+      for (int v = 0; v < 3; ++v)
+        for (int c = 0; c < 3; ++c) f[3 * faceNodes[3 * face + v] + c] -= traction.pressure * faceNormals[face][c] / 6.0;
   }
 }
 

@@ -161,14 +161,15 @@ void readLoads(const ParameterList& list, const std::string& source, bool paperD
     const auto nodeSet = getOr(load, "Node Set", std::string());
     const auto block = getOr(load, "Element Block", std::string());
     core::requireInput(sideSet.empty() + nodeSet.empty() + block.empty() == 2,
-                       where + ": give exactly one of \"Side Set\" or \"Node Set\" (with Traction) or \"Element "
-                               "Block\" (with Volume Force)");
+                       where + ": give exactly one of \"Side Set\" or \"Node Set\" (with Traction and/or "
+                               "Pressure) or \"Element Block\" (with Volume Force)");
     try {
       if (!nodeSet.empty())  // its boundary faces, as a side set of the mesh (meshio writes node sets only)
         sideSet = scene.mesh.sideSets[mesh::addSideSetFromNodeSet(scene.mesh, nodeSet)].name;
       if (!sideSet.empty()) {
         scene.mesh.sideSet(sideSet);  // existence check, names the set
-        scene.loads.tractions.push_back(fem::Traction{sideSet, vector3(load, "Traction", where)});
+        scene.loads.tractions.push_back(
+            fem::Traction{sideSet, vector3(load, "Traction", where), getOr(load, "Pressure", 0.0)});
       } else {
         const int b = scene.mesh.blockIndex(block);
         scene.loads.volumeForce.resize(scene.mesh.blocks.size(), {0.0, 0.0, 0.0});

@@ -104,14 +104,19 @@ void materialParameters(ParameterList& pl) {
 
 void loadParameters(ParameterList& pl) {
   ParameterList& load = pl.sublist("*", false,
-                                   "one sublist per load, any name: a constant traction on a side set "
-                                   "(or on the boundary faces of a node set) or a volume force on an element block");
-  load.set("Side Set", std::string(""), "side set that carries the traction (Traction)");
+                                   "one sublist per load, any name: a constant traction and/or a normal pressure on a "
+                                   "side set (or on the boundary faces of a node set) or a volume force on an element "
+                                   "block");
+  load.set("Side Set", std::string(""), "side set that carries the traction (Traction, Pressure)");
   load.set("Node Set", std::string(""),
            "instead of Side Set: the traction acts on the boundary faces whose three nodes all lie in this node set "
            "(meshes with node sets only, e.g. written by meshio)");
   load.set("Traction", Teuchos::Array<double>(3, 0.0), "{px, py, pz}: traction density [stress]",
            core::finiteArray(3, core::kMaxMagnitude));
+  load.set("Pressure", 0.0,
+           "pressure normal to each face of the side set (or node set) [stress], positive in compression (it "
+           "pushes the face inwards); added to Traction",
+           core::closedInterval(-core::kMaxMagnitude, core::kMaxMagnitude));
   load.set("Element Block", std::string(""), "element block that carries the volume force");
   load.set("Volume Force", Teuchos::Array<double>(3, 0.0), "{bx, by, bz}: force per volume",
            core::finiteArray(3, core::kMaxMagnitude));

@@ -105,3 +105,37 @@ TEST(Loads, volumeForceResultantIsDensityTimesVolumePerBody) {
   for (LO i = 0; i < sys.K.n; ++i) fz[i % 3] += sys.f[i];
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(fz[c], (c + 1.0) * boxVolume, 1e-12 * 3.0 * boxVolume);
 }
+
+TEST(Loads, pressureOnACurvedFacePushesAlongItsNormalWithTheProjectedAreaResultant) {
+  // Box [0, 2] x [0, 0.5] x [0, 1] whose top bulges into the arc z = 1 + sqrt(R^2 - (x - 1)^2) -
+  // sqrt(R^2 - 1), R = 1.5 (the nodes below follow in proportion to their height). A pressure q
+  // on the top pushes every face along its inward normal: the resultant is -q times the
+  // projected area 2 x 0.5 along z and nothing along x and y (the arc is symmetric, its ends at
+  // one height), exactly for the faceted surface too (its vector area is fixed by its edge).
+  mesh::Mesh box = fem::testing::structuredBox(8, 2, 4, 0.25);
+  constexpr double kR = 1.5, kQ = 3.0;
+  for (auto& x : box.coords) x[2] += x[2] * (std::sqrt(kR * kR - (x[0] - 1.0) * (x[0] - 1.0)) - std::sqrt(kR * kR - 1.0));
+  fem::Loads loads;
+  loads.tractions = {{"zmax", {0.0, 0.0, 0.0}, kQ}};
+  const auto sys = fem::assembleGlobal(box, {kSteel}, loads);
+  double force[3] = {0, 0, 0};
+  for (LO a = 0; a < box.numNodes(); ++a)
+    for (int c = 0; c < 3; ++c) force[c] += sys.f[3 * a + c];
+  EXPECT_NEAR(force[0], 0.0, 1e-12 * kQ);
+  EXPECT_NEAR(force[1], 0.0, 1e-12 * kQ);
+  EXPECT_NEAR(force[2], -kQ * 2.0 * 0.5, 1e-12 * kQ);
+  // Off the crest the face tilts, and the load with it, towards the crest: an x-component of
+  // the sign of 1 - x.
+  for (LO a = 0; a < box.numNodes(); ++a) {
+    const double dx = box.coords[a][0] - 1.0;
+    if (sys.f[3 * a + 2] == 0.0 || std::abs(dx) < 0.3) continue;
+    EXPECT_LT(sys.f[3 * a] * dx, 0.0) << "node " << a;
+  }
+  // On a flat face a pressure is the traction -q n: the same loads to round-off.
+  fem::Loads pressure, traction;
+  pressure.tractions = {{"zmin", {0.0, 0.0, 0.0}, kQ}};
+  traction.tractions = {{"zmin", {0.0, 0.0, kQ}}};  // the bottom's outward normal is -z
+  const auto byPressure = fem::assembleGlobal(box, {kSteel}, pressure);
+  const auto byTraction = fem::assembleGlobal(box, {kSteel}, traction);
+  for (size_t i = 0; i < byPressure.f.size(); ++i) EXPECT_NEAR(byPressure.f[i], byTraction.f[i], 1e-14 * kQ);
+}

@@ -26,10 +26,13 @@ struct CsrMatrix {
   double at(LO i, LO j) const;
 };
 
-/// Constant surface traction p on the faces of a side set.
+/// Constant surface traction p on the faces of a side set, plus a pressure normal to each
+/// face (positive in compression: the face is pushed along its inward normal, so a curved
+/// face is pressed along its own normal everywhere).
 struct Traction {
   std::string sideSet;
   std::array<double, 3> p{0, 0, 0};
+  double pressure = 0.0;
 };
 
 struct Loads {
