@@ -240,3 +240,27 @@ TEST(results, loadsThatCancelBalanceToRoundOff) {
                                            s.linear.appliedLoadMagnitude);
   EXPECT_LE(balance.relativeImbalance, 1e-10);
 }
+
+// Overload said early (issue 30): a box held on another by contact and friction alone,
+// sheared at 1.5 times what friction carries (F = 0.3, shear 0.45 of the pressure). There is
+// no equilibrium: SMALSE-M's ||G mu|| stalls, and the run stops within the stall window (not
+// at Solver/Max Outer Iterations = 100), not converged, naming the interface, its friction
+// capacity F N and the load along the contact plane.
+TEST(results, anOverloadedFrictionJointStopsEarlyNamingItsCapacity) {
+  const auto lower = test::boxMesh({0.0, 0.0, 0.0}, {1.0, 1.0, 1.0}, {2, 2, 2}, "lower");
+  const auto upper = test::boxMesh({0.0, 0.0, 1.0}, {1.0, 1.0, 0.5}, {3, 3, 2}, "upper");
+  const std::vector<std::string> o = {
+      "Mesh/Subdomains=4", "Materials/lower/Young Modulus=1000", "Materials/lower/Poisson Ratio=0.3",
+      "Materials/upper/Young Modulus=1000", "Materials/upper/Poisson Ratio=0.3", "Solver/Verbose=false",
+      "Contact/Friction Model=Coulomb", "Contact/F1=0.3", "Contact/F2=0.3", "Contact/Slave Side Set=lower_z1",
+      "Contact/Master Side Set=upper_z0", "Boundary/Dirichlet Node Sets={lower_z0}", "Loads/shear/Side Set=upper_z1",
+      "Loads/shear/Traction={0.45, 0, -1}"};
+  const auto s = test::solveBoxScene(test::mergeMeshes(lower, upper), o);
+  const auto& r = s.contact.contact;
+  EXPECT_FALSE(r.converged);
+  EXPECT_TRUE(r.counters.stalled);
+  EXPECT_LE(r.counters.outerIterations, 40);
+  for (const char* words : {"stall window = 20", "lower_z1 -> upper_z0", "friction capacity F N = 0.3 x 1",
+                            "against an applied load of 0.45"})
+    EXPECT_NE(r.message.find(words), std::string::npos) << "missing \"" << words << "\" in: " << r.message;
+}

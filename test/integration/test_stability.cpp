@@ -152,16 +152,20 @@ TEST_F(Stability, aBodyHeldByFrictionOnlyConvergesWithStickNodes) {
 }
 
 TEST_F(Stability, aLoadBeyondWhatFrictionHoldsStagnatesAndSaysSo) {
-  // F = 0.01 cannot carry the 100 N shear: no equilibrium, the iterations stagnate at the
-  // outer cap. It was an internal error (G_I G_I^T singular, exit 1, no output); now exit 3
-  // with the results written and the cap named. Whether the rigid-body recovery of the last
+  // F = 0.01 cannot carry the 100 N shear: no equilibrium, ||G mu|| stagnates. It was an
+  // internal error (G_I G_I^T singular, exit 1, no output), then exit 3 at the outer cap
+  // (100); now exit 3 once ||G mu|| has not halved over Solver/SMALSE-M/stall window = 20
+  // outer iterations (21 here), with the results written, naming the interface and its
+  // friction capacity against the load along the contact plane. Whether the rigid-body recovery of the last
   // iterate also fails ("no equilibrium found" added to the message) depends on round-off in
   // that iterate (it changes with the operator's evaluation order), so it is not asserted.
   const auto r = solve(kHeldByFriction + friction(0.01));
   ASSERT_EQ(r.status, 3) << r.output;
   EXPECT_FALSE(r.summary.at("converged").get<bool>());
   const auto message = r.summary.at("message").get<std::string>();
-  EXPECT_TRUE(contains(message, "stopped: Solver/Max Outer Iterations = 100 reached")) << message;
+  EXPECT_TRUE(contains(message, "stopped: ||G mu|| stalled (not halved over Solver/SMALSE-M/stall window = 20")) << message;
+  EXPECT_TRUE(contains(message, "friction capacity F N = 0.01 x ")) << message;
+  EXPECT_LE(r.summary.at("outer_iterations").get<int>(), 30);
   EXPECT_FALSE(contains(r.output, "internal error")) << r.output;
 }
 

@@ -36,6 +36,7 @@ class RunTally {
     total_.normA = k.normA;
     total_.converged = k.converged;
     total_.nonFinite = total_.nonFinite || k.nonFinite;
+    total_.stalled = total_.stalled || k.stalled;
   }
   qp::SmalseProgress withEarlierRuns(qp::SmalseProgress p) const {
     p.operatorApplications += applicationsBefore_;

@@ -216,7 +216,18 @@ bool SmalseRun::updateMultipliers(int k, const MpgpCounters& inner, const OuterH
     counters_.converged = true;
     return true;
   }
+  if (stalled(counters_.equalityResidual)) {
+    counters_.stalled = true;
+    return true;
+  }
   return s_.stopRequested && s_.stopRequested();
+}
+
+bool SmalseRun::stalled(double equalityResidual) {
+  equalityHistory_.push_back(equalityResidual);
+  const size_t window = static_cast<size_t>(s_.stallWindow), n = equalityHistory_.size();
+  return window > 0 && n > window && equalityResidual > 100.0 * s_.tolerance &&
+         equalityResidual > 0.5 * equalityHistory_[n - 1 - window];
 }
 
 // Optional penalty growth when ||G mu|| decreased by less than the target ratio.

@@ -5,6 +5,7 @@
 // optional penalty growth, with the caller's hook (the Coulomb fixed point) between them.
 // SmalseM::solve is the sequence.
 #include <memory>
+#include <vector>
 
 #include "EqualityNorm.hpp"
 #include "MultiplierRelaxation.hpp"
@@ -62,6 +63,9 @@ class SmalseRun {
   // g = A_rho mu - b holds for the mu and b of the last inner solve; true until rho changes.
   bool gradientHolds_ = false;
   double previousL_ = 0.0, previousGmu_ = 0.0;
+  std::vector<double> equalityHistory_;  ///< ||A|| ||G mu|| / ||c|| per outer iteration (stall test)
+  /// Whether ||G mu|| stalled (SmalseSettings::stallWindow) at this outer iteration.
+  bool stalled(double equalityResidual);
   MultiplierRelaxation relaxation_;
   // The outer iteration in progress, the last inner ||G mu|| and the inner stopping bound,
   // for the progress of long inner solves.

@@ -52,6 +52,11 @@ const core::ParameterTable<SmalseSettings>& smalseTable() {
                "outer test on ||G mu|| = ||Q mu||: \"Conventional\" (||A|| ||Q mu|| <= epsilon ||c||) or \"Paper\" "
                "(||Q mu|| <= epsilon M_0 ||mu||)",
                kEqualityTestNames)
+          .add("stall window", &SmalseSettings::stallWindow,
+               "stop, not converged, when ||G mu|| has not halved over this many outer iterations while above 100 "
+               "epsilon: the bodies' balance G lambda = e cannot be met inside the constraints (loads beyond what "
+               "contact and friction carry); 0: never",
+               core::intRange(0, kMaxCount))
           .add("rho growth", &SmalseSettings::rhoGrowth,
                "rho is multiplied by it (rho update Ratio; Model: by at most it) after an outer iteration that "
                "reduced ||G mu|| by less than the rho target ratio (1: fixed rho, the paper's algorithm)",

@@ -140,6 +140,10 @@ void nameTheLimit(const WallClockBudget& budget, const RunRecord& runs, const qp
   } else if (!result.counters.converged && runs.lastOuterIteration >= smalse.maxOuterIterations) {
     message = capMessage("Solver/Max Outer Iterations", smalse.maxOuterIterations,
                          relativeResiduals(result.counters, smalse.tolerance));
+  } else if (result.counters.stalled) {
+    message = "stopped: ||G mu|| stalled (not halved over Solver/SMALSE-M/stall window = " +
+              std::to_string(smalse.stallWindow) + " outer iterations) " +
+              relativeResiduals(result.counters, smalse.tolerance);
   } else if (exact && result.counters.converged && result.fixedPointIterations >= friction.maxFixedPointIterations) {
     std::ostringstream detail;
     detail << "(slip bound change " << result.fixedPointChange << ", epsilon = " << smalse.tolerance << ")";
@@ -151,6 +155,38 @@ void nameTheLimit(const WallClockBudget& budget, const RunRecord& runs, const qp
     message += "; " + std::to_string(runs.innerSolvesAtCap) + " inner solve(s) ended at Solver/MPGP/max iterations = " +
                std::to_string(smalse.mpgp.maxIterations);
   result.message = result.note.empty() ? message : message + "; " + result.note;
+}
+
+/// Where SMALSE-M stalled on the bodies' balance: the friction the interface can carry against
+/// the applied load along the contact plane, in the message (every rank the same numbers:
+/// the normal force from rank 0, the mean contact normal summed over the ranks' nodes).
+void addOverloadNote(const Scene& scene, const feti::ConstraintMatrix& B, const contact::FrictionSettings& friction,
+                     MPI_Comm comm, ContactSolveResult& out) {
+  if (!out.contact.counters.stalled) return;
+  double normalForce = out.totalNormalForce;
+  MPI_Bcast(&normalForce, 1, MPI_DOUBLE, 0, comm);
+  std::array<double, 3> mine{0.0, 0.0, 0.0}, normal{0.0, 0.0, 0.0};
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  for (const auto& node : B.contact)
+    if (B.firstRowOfRank.empty() || (node.normalRow >= B.firstRowOfRank[rank] && node.normalRow < B.firstRowOfRank[rank + 1]))
+      for (int c = 0; c < 3; ++c) mine[c] += node.normal[c];
+  MPI_Allreduce(mine.data(), normal.data(), 3, MPI_DOUBLE, MPI_SUM, comm);
+  const double length = std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
+  if (!(length > 0.0)) return;
+  const auto& f = out.appliedLoad;
+  const double along = (f[0] * normal[0] + f[1] * normal[1] + f[2] * normal[2]) / length;
+  const double total2 = f[0] * f[0] + f[1] * f[1] + f[2] * f[2];
+  const double tangential = std::sqrt(std::max(total2 - along * along, 0.0));
+  const double F = friction.model == contact::FrictionModel::None ? 0.0 : std::max(friction.F1, friction.F2);
+  std::ostringstream note;
+  note << "the loads may exceed what contact and friction can carry at " << scene.contact.slaveSideSet << " -> "
+       << scene.contact.masterSideSet << ": its friction capacity F N = " << F << " x " << normalForce << " = "
+       << F * normalForce << " against an applied load of " << tangential
+       << " along the contact plane (where contact and friction alone hold the loaded body, reduce that load or "
+          "raise the friction coefficient)";
+  out.contact.note = out.contact.note.empty() ? note.str() : out.contact.note + "; " + note.str();
+  out.contact.message += "; " + note.str();
 }
 
 /// Contact fields on the global mesh (rank 0): every contact node's rows belong to one rank,
@@ -236,6 +272,7 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
 
   out.reaction = gatherReactions(scene, B, out.contact.lambda, comm);
   gatherContactFields(scene, B, comm, out);
+  addOverloadNote(scene, B, friction, comm, out);
   return out;
 }
 

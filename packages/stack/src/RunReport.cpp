@@ -150,8 +150,9 @@ std::string contactReport(const ContactSolveResult& contactSolve) {
       << r.counters.outerIterations << " outer, " << r.counters.innerIterations << " inner iterations, "
       << r.counters.operatorApplications << " PFP applications, " << r.fixedPointIterations
       << " slip-bound updates\n"
-      << "  contact nodes: " << r.statusCounts[0] << " no contact, " << r.statusCounts[1] << " stick, "
-      << r.statusCounts[2] << " slip; total normal force " << contactSolve.totalNormalForce << "\n"
+      << "  contact nodes" << (r.converged ? "" : " (of the last iterate, not a solution)") << ": "
+      << r.statusCounts[0] << " no contact, " << r.statusCounts[1] << " stick, " << r.statusCounts[2]
+      << " slip; total normal force " << contactSolve.totalNormalForce << "\n"
       << "  KKT (each <= " << r.kktTolerance << " for \"converged\"): equilibrium " << r.kkt.equilibrium
       << ", gluing/Dirichlet " << r.kkt.equality << ", penetration " << r.kkt.nonPenetration
       << ", complementarity " << r.kkt.complementarity << ", normal sign " << r.kkt.normalSign

@@ -53,6 +53,10 @@ struct SmalseSettings {
   double M0 = 1.0;             ///< M_0 > 0, relative to ||A|| (M has the units of A); paper: 1e-6
   double betaM = 0.9;          ///< M_{k+1} = betaM M_k when the Lagrangian does not grow enough (paper: 0.1)
   int maxOuterIterations = 100;
+  /// Stop (not converged, SmalseCounters::stalled) when ||G mu|| has not halved over this many
+  /// outer iterations while above 100 epsilon: the equality G lambda = e (every body's
+  /// balance) cannot be met inside Omega, e.g. loads beyond what friction can carry. 0: never.
+  int stallWindow = 20;
   /// Conventional: ||A|| ||Q mu|| <= eps ||c||;  Paper: ||Q mu|| <= eps M_0 ||mu||
   /// (M_0 relative, so the paper's eps M_0 = 1e-11 needs a tolerance above round-off).
   EqualityTest equalityTest = EqualityTest::Conventional;
@@ -107,6 +111,7 @@ struct SmalseCounters {
   double productSeconds = 0.0, preconditionerSeconds = 0.0;
   bool converged = false;
   bool nonFinite = false;  ///< stopped on a NaN or infinite norm (||PFP||, ||g^P||, ||G mu||)
+  bool stalled = false;    ///< stopped because ||G mu|| stalled (SmalseSettings::stallWindow)
 };
 
 /// Called after every outer iteration with (k, mu, ||g^P||/||c||, ||A|| ||Q mu||/||c||,
