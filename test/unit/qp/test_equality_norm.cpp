@@ -51,14 +51,23 @@ test::EqualityQp randomQp(int n, int rows, unsigned seed, unsigned spdSeed) {
     for (double& v : row) v = normal(gen);
   return test::makeEqualityQp(test::randomSpd(n, 10.0, spdSeed), G, std::vector<double>(n, 1.0));
 }
+
+/// randomQp's problem and the vectors of a test on its map: x random, p and scratch.
+struct NormScene {
+  NormScene(int n, int rows, unsigned seed, unsigned spdSeed)
+      : qp(randomQp(n, rows, seed, spdSeed)), map(test::makeMap(n, test::selfComm())), x(map), p(map), scratch(map) {
+    x.randomize();
+  }
+  test::EqualityQp qp;
+  Teuchos::RCP<const qp::Map> map;
+  qp::Vector x, p, scratch;
+};
 }  // namespace
 
 TEST(EqualityNorm, followsCgStepsRecomputesAfterOtherStepsAndRefreshes) {
-  const int n = 14;
-  const auto qp = randomQp(n, 3, 4, 3);
-  auto map = test::makeMap(n, test::selfComm());
-  qp::Vector x(map), p(map), scratch(map);
-  x.randomize();
+  NormScene scene(14, 3, 4, 3);
+  const auto& qp = scene.qp;
+  qp::Vector &x = scene.x, &p = scene.p, &scratch = scene.scratch;
   CoordinateProjector Q(qp);
   const int refreshEvery = 3;
   qp::EqualityNorm norm(Q, refreshEvery);
@@ -94,11 +103,9 @@ TEST(EqualityNorm, followsCgStepsRecomputesAfterOtherStepsAndRefreshes) {
 }
 
 TEST(EqualityNorm, withoutCoordinatesEveryNormProjects) {
-  const int n = 8;
-  const auto qp = randomQp(n, 2, 5, 4);
-  auto map = test::makeMap(n, test::selfComm());
-  qp::Vector x(map), p(map), scratch(map);
-  x.randomize();
+  NormScene scene(8, 2, 5, 4);
+  const auto& qp = scene.qp;
+  qp::Vector &x = scene.x, &p = scene.p, &scratch = scene.scratch;
   test::DenseProjector Q(qp.Q);
   qp::EqualityNorm norm(Q);
   norm.restart();
@@ -116,11 +123,9 @@ TEST(EqualityNorm, takesTheCoordinatesThatTheLastProductHandedOver) {
   // those of p from it, and a norm after gradientFromProduct those of x, without calling Q's
   // coordinates. Without the report the norm computes them (x moved otherwise); a product that
   // gave none (null) leaves Q to compute them too.
-  const int n = 12;
-  const auto qp = randomQp(n, 3, 7, 5);
-  auto map = test::makeMap(n, test::selfComm());
-  qp::Vector x(map), p(map), scratch(map);
-  x.randomize();
+  NormScene scene(12, 3, 7, 5);
+  const auto& qp = scene.qp;
+  qp::Vector &x = scene.x, &p = scene.p, &scratch = scene.scratch;
   CoordinateProjector Q(qp);
   qp::EqualityCoordinates product;  // of the last "product's" input, as A_rho would keep them
   bool given = true;
