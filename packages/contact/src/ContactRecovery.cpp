@@ -139,13 +139,16 @@ ContactNodeResult contactNodeResult(const NodeContext& x, const feti::ContactNod
   const double g = x.coulomb ? std::max(x.lam(r, 0), 0.0) : x.slip[k];
   out.slipBound = node.rowScale * g;
   const auto lt = tangential(lc, x.lam, k);
-  std::array<double, 2> v{0.0, 0.0};  // tangential slip T u (row-scaled: lambda_t^T v is the power)
+  // Tangential slip T u (row-scaled: lambda_t^T v is the power), prescribed components
+  // included: a row keeps a slave held along its tangent where the master is free (a roller on
+  // one body), and the prescribed part lives in c = -scale known (0 without one).
+  std::array<double, 2> v{0.0, 0.0};
   for (int j = 0; j < 2; ++j) {
     const LO t = lc.tangentialRow[k][j];
     if (t < 0) continue;
     out.force[j + 1] = node.tangentialScale[j] * lt[j];
-    out.relativeDisplacement[j + 1] = x.bu(t, 0) / node.tangentialScale[j];
-    v[j] = x.bu(t, 0);
+    v[j] = x.bu(t, 0) - B.c[first + t];
+    out.relativeDisplacement[j + 1] = v[j] / node.tangentialScale[j];
   }
   const auto state = frictionState(lt, lc.tangentialRow[k], lc.axisScale[k], x.F, g, x.tinyForce);
   // The law itself, without the status tests' round-off floor (which would count the

@@ -68,9 +68,13 @@ double TotalFeti::equilibriumResidual(const DualVector& lambda, const std::vecto
     for (LO r = 0; r < L.m(); ++r) L.in[r] = lo[L.overlapIndex[r]];
     applyBlockTranspose(*L.block, L.rowOrder, L.in.data(), L.x.data(), L.n());
     L.system.K.apply(u[i].data(), L.y.data());
+    // A NaN anywhere stays a NaN (std::max would drop it): never a residual of 0 for it.
+    auto keepLarger = [](double& largest, double v) {
+      if (!(v <= largest)) largest = v;
+    };
     for (LO k = 0; k < L.n(); ++k) {
-      worst[0] = std::max(worst[0], std::abs(L.y[k] - L.system.f[k] + L.x[k]));
-      worst[1] = std::max(worst[1], std::max(std::abs(L.system.f[k]), std::abs(L.x[k])));
+      keepLarger(worst[0], std::abs(L.y[k] - L.system.f[k] + L.x[k]));
+      keepLarger(worst[1], std::max(std::abs(L.system.f[k]), std::abs(L.x[k])));
     }
   }
   Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 2, worst, global);

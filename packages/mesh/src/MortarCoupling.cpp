@@ -176,6 +176,10 @@ std::vector<MortarRow> dualMortarRows(const Mesh& mesh, const std::string& slave
     const double weighted =
         (I.gapVector[0] * pair.normal[0] + I.gapVector[1] * pair.normal[1] + I.gapVector[2] * pair.normal[2]) /
         I.covered;
+    if (!(I.gapMin <= I.gapMax) || !std::isfinite(weighted)) {  // no finite projection: never a clamp on it
+      rows[p] = fallback;
+      continue;
+    }
     row.gap = std::clamp(weighted, I.gapMin, I.gapMax);
     row.gapLimited = std::abs(row.gap - weighted);
     rows[p] = std::move(row);

@@ -216,7 +216,7 @@ bool SmalseRun::updateMultipliers(int k, const MpgpCounters& inner, const OuterH
     counters_.converged = true;
     return true;
   }
-  if (stalled(counters_.equalityResidual)) {
+  if (!done && stalled(counters_.equalityResidual)) {
     counters_.stalled = true;
     return true;
   }

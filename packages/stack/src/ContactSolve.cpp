@@ -178,13 +178,27 @@ void addOverloadNote(const Scene& scene, const feti::ConstraintMatrix& B, const 
   const double along = (f[0] * normal[0] + f[1] * normal[1] + f[2] * normal[2]) / length;
   const double total2 = f[0] * f[0] + f[1] * f[1] + f[2] * f[2];
   const double tangential = std::sqrt(std::max(total2 - along * along, 0.0));
-  const double F = friction.model == contact::FrictionModel::None ? 0.0 : std::max(friction.F1, friction.F2);
+  const std::string interface = scene.contact.slaveSideSet + " -> " + scene.contact.masterSideSet;
   std::ostringstream note;
-  note << "the loads may exceed what contact and friction can carry at " << scene.contact.slaveSideSet << " -> "
-       << scene.contact.masterSideSet << ": its friction capacity F N = " << F << " x " << normalForce << " = "
-       << F * normalForce << " against an applied load of " << tangential
-       << " along the contact plane (where contact and friction alone hold the loaded body, reduce that load or "
-          "raise the friction coefficient)";
+  if (friction.model == contact::FrictionModel::Tresca) {
+    // Tresca's bound is the given slip bound per node, not F lambda_nu: no capacity to quote.
+    note << "no equilibrium within the contact constraints at " << interface
+         << ": the loads may exceed what contact and the given slip bounds (Tresca) can carry";
+  } else {
+    const double F = friction.model == contact::FrictionModel::None ? 0.0 : std::max(friction.F1, friction.F2);
+    const bool beyond = F * normalForce < tangential;
+    note << (beyond ? "the loads may exceed what contact and friction can carry at "
+                    : "no equilibrium within the contact constraints at ")
+         << interface << ": its friction capacity F N = " << F << " x " << normalForce << " = " << F * normalForce
+         << (beyond ? " against " : ", more than ") << "an applied load of " << tangential
+         << " along the contact plane";
+    if (beyond)
+      note << " (where contact and friction alone hold the loaded body, reduce that load or raise the friction "
+              "coefficient)";
+    else if (friction.model == contact::FrictionModel::Coulomb && friction.fixedPoint == contact::FixedPoint::Exact)
+      note << " (Contact/Fixed Point = Exact starts frictionless, where a body held by friction alone has no "
+              "equilibrium: use Inexact)";
+  }
   out.contact.note = out.contact.note.empty() ? note.str() : out.contact.note + "; " + note.str();
   out.contact.message += "; " + note.str();
 }

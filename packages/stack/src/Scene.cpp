@@ -171,6 +171,9 @@ void readLoads(const ParameterList& list, const std::string& source, bool paperD
         scene.loads.tractions.push_back(
             fem::Traction{sideSet, vector3(load, "Traction", where), getOr(load, "Pressure", 0.0)});
       } else {
+        core::requireInput(getOr(load, "Pressure", 0.0) == 0.0,
+                           where + ": Pressure acts on faces: give it with \"Side Set\" or \"Node Set\", not "
+                                   "with \"Element Block\"");
         const int b = scene.mesh.blockIndex(block);
         scene.loads.volumeForce.resize(scene.mesh.blocks.size(), {0.0, 0.0, 0.0});
         const auto force = vector3(load, "Volume Force", where);

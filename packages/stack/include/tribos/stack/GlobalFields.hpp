@@ -35,8 +35,8 @@ std::vector<std::array<double, 3>> gatherReactions(const Scene& scene, const fet
 /// volume force is assembled into exactly one subdomain), on every rank. Collective.
 std::array<double, 3> totalLoad(const std::vector<fem::SubdomainSystem>& owned, MPI_Comm comm);
 /// The sum over every subdomain node of |f| (the nodal load's length), on every rank with the
-/// same bits on every layout: the size of the loads where they cancel in totalLoad (opposite
-/// pressures). Collective.
+/// same bits on every number of ranks (for one decomposition): the size of the loads where
+/// they cancel in totalLoad (opposite pressures). Collective.
 double loadMagnitude(const std::vector<fem::SubdomainSystem>& owned, MPI_Comm comm);
 
 /// Tributary area of every node of a side set (a third of each adjacent face's area); zero
