@@ -24,7 +24,7 @@ namespace tribos::mesh {
 namespace {
 struct Triangle {
   std::array<long long, 3> nodes;
-  int physical;
+  std::vector<int> physicals;  ///< every physical group of its surface (several may name it)
   long long tag;
 };
 struct Tet {
@@ -266,7 +266,9 @@ void readElements(Tokens& in, GmshContent& content) {
       std::array<long long, 4> v{};
       for (int k = 0; k < perElement; ++k) v[k] = in.integer("a node tag of element " + std::to_string(tag), 1);
       if (type == 4) content.tets.push_back({v, group, tag});
-      if (type == 2) content.triangles.push_back({{v[0], v[1], v[2]}, group, tag});
+      if (type == 2)
+        content.triangles.push_back(
+            {{v[0], v[1], v[2]}, physical == content.entityPhysical.end() ? std::vector<int>{} : physical->second, tag});
     }
     seen += inBlock;
   }
@@ -386,40 +388,57 @@ class MeshBuilder {
     }
   }
 
-  /// Side sets from the physical surfaces; a surface between two bodies gives one per body.
+  /// Side sets (and node sets of the same name) from the physical surfaces: every group of a
+  /// surface, also where several name the same faces. A group on the faces of several bodies
+  /// (an interface, or faces of separate bodies) gives one set per body, <group>_<body>, and
+  /// the whole group as well, <group>.
   void addSurfaces() {
     std::map<int, std::map<int, SideSet>> sets;  // surface tag -> body -> set
-    for (const auto& tri : content_.triangles) {
-      if (tri.physical == 0) continue;
-      const std::string triangle =
-          "triangle " + std::to_string(tri.tag) + " of Physical Surface \"" + surfaceName(content_, tri.physical) + "\"";
-      FaceKey key = tri.nodes;
-      for (long long n : key)
-        if (!content_.nodes.count(n))
-          fail(triangle + " references node " + std::to_string(n) + ", which $Nodes does not define");
-      std::sort(key.begin(), key.end());
-      const auto it = faces_.find(key);
-      if (it == faces_.end()) fail(triangle + " is not a face of any tetrahedron");
-      for (const auto& [element, side] : it->second) {
-        auto& set = sets[tri.physical][content_.tets[element].physical];
-        set.elements.push_back(element);
-        set.sides.push_back(side);
-      }
-    }
+    for (const auto& tri : content_.triangles)
+      for (int group : tri.physicals)
+        if (group != 0) addTriangle(tri, group, sets);
     int id = 1;
-    for (auto& [surface, byBody] : sets)
+    for (auto& [surface, byBody] : sets) {
+      const std::string base = surfaceName(content_, surface);
+      SideSet whole{base, 0, {}, {}};
       for (auto& [body, set] : byBody) {
-        const std::string base = surfaceName(content_, surface);
         set.name = byBody.size() > 1 ? base + "_" + mesh_.blocks[blockOfBody_[body]].name : base;
-        set.id = id++;
-        NodeSet nodes{set.name, set.id, {}};
-        for (size_t f = 0; f < set.elements.size(); ++f)
-          for (int v : kTetFaceVertices[set.sides[f]]) nodes.nodes.push_back(mesh_.tets[set.elements[f]][v]);
-        std::sort(nodes.nodes.begin(), nodes.nodes.end());
-        nodes.nodes.erase(std::unique(nodes.nodes.begin(), nodes.nodes.end()), nodes.nodes.end());
-        mesh_.sideSets.push_back(set);
-        mesh_.nodeSets.push_back(std::move(nodes));
+        addSideAndNodeSet(set, id++);
+        whole.elements.insert(whole.elements.end(), set.elements.begin(), set.elements.end());
+        whole.sides.insert(whole.sides.end(), set.sides.begin(), set.sides.end());
       }
+      if (byBody.size() > 1) addSideAndNodeSet(whole, id++);
+    }
+  }
+
+  /// The faces of one triangle of physical group `group`, in the set of each body it bounds.
+  void addTriangle(const Triangle& tri, int group, std::map<int, std::map<int, SideSet>>& sets) {
+    const std::string triangle =
+        "triangle " + std::to_string(tri.tag) + " of Physical Surface \"" + surfaceName(content_, group) + "\"";
+    FaceKey key = tri.nodes;
+    for (long long n : key)
+      if (!content_.nodes.count(n))
+        fail(triangle + " references node " + std::to_string(n) + ", which $Nodes does not define");
+    std::sort(key.begin(), key.end());
+    const auto it = faces_.find(key);
+    if (it == faces_.end()) fail(triangle + " is not a face of any tetrahedron");
+    for (const auto& [element, side] : it->second) {
+      auto& set = sets[group][content_.tets[element].physical];
+      set.elements.push_back(element);
+      set.sides.push_back(side);
+    }
+  }
+
+  /// `set` with id `id`, and the node set of its faces' nodes under the same name and id.
+  void addSideAndNodeSet(SideSet set, int id) {
+    set.id = id;
+    NodeSet nodes{set.name, id, {}};
+    for (size_t f = 0; f < set.elements.size(); ++f)
+      for (int v : kTetFaceVertices[set.sides[f]]) nodes.nodes.push_back(mesh_.tets[set.elements[f]][v]);
+    std::sort(nodes.nodes.begin(), nodes.nodes.end());
+    nodes.nodes.erase(std::unique(nodes.nodes.begin(), nodes.nodes.end()), nodes.nodes.end());
+    mesh_.sideSets.push_back(std::move(set));
+    mesh_.nodeSets.push_back(std::move(nodes));
   }
 
   GmshContent& content_;

@@ -168,3 +168,28 @@ TEST(GmshReader, randomDamageGivesMeshesOrInputErrorsOnly) {
   }
   EXPECT_GT(errors, 1000);  // the damage is found, not silently read
 }
+
+TEST(GmshReader, everyPhysicalGroupOfASurfaceAndTheWholeOfAGroupOverSeveralBodies) {
+  // A surface in two physical groups gives a side set (and node set) for each (issue 30: the
+  // second was dropped).
+  std::string text = TinyGmsh().addCube().text();
+  const std::string names = "$PhysicalNames\n2\n2 1 \"bottom\"\n3 2 \"cube\"\n";
+  const std::string surface = "1 0 0 0 1 1 0 1 1 0\n";
+  ASSERT_NE(text.find(names), std::string::npos);
+  ASSERT_NE(text.find(surface), std::string::npos);
+  text.replace(text.find(names), names.size(), "$PhysicalNames\n3\n2 1 \"bottom\"\n2 3 \"base\"\n3 2 \"cube\"\n");
+  text.replace(text.find(surface), surface.size(), "1 0 0 0 1 1 0 2 1 3 0\n");
+  const auto mesh = mesh::parseGmsh(text, kSource, false);
+  EXPECT_EQ(mesh.sideSet("bottom").elements.size(), 2u);
+  EXPECT_EQ(mesh.sideSet("base").elements.size(), 2u);
+  EXPECT_EQ(mesh.nodeSet("base").nodes, mesh.nodeSet("bottom").nodes);
+  // A group on the faces of two bodies (the sample's "interface", split into one body each):
+  // a set per body and the whole group, which a contact interface may name as one surface.
+  const auto sample = mesh::readGmsh(tribos::test::sourceDir() + "/input/meshes/block_on_plate.msh", true);
+  const auto& plate = sample.sideSet("interface_plate");
+  const auto& block = sample.sideSet("interface_block");
+  const auto& whole = sample.sideSet("interface");
+  EXPECT_EQ(whole.elements.size(), plate.elements.size() + block.elements.size());
+  EXPECT_EQ(sample.nodeSet("interface").nodes.size(),
+            sample.nodeSet("interface_plate").nodes.size() + sample.nodeSet("interface_block").nodes.size());
+}
