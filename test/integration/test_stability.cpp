@@ -151,6 +151,25 @@ TEST_F(Stability, aBodyHeldByFrictionOnlyConvergesWithStickNodes) {
   EXPECT_GT(held.summary.at("contact_nodes").at("stick").get<int>(), 0);
 }
 
+TEST_F(Stability, theInterfaceSummaryAgreesWithTheTotals) {
+  // summary.interfaces (issue 30): the paper's scene has one interface; its counts and normal
+  // force are the totals', and with every touching node sliding its friction force is F N.
+  const auto r = solve("");
+  expectConverged(r, "paper");
+  ASSERT_EQ(r.summary.at("interfaces").size(), 1u);
+  const auto& i = r.summary.at("interfaces")[0];
+  EXPECT_EQ(i.at("interface").get<std::string>(), "contact_aluminium -> contact_steel");
+  for (const char* status : {"no_contact", "stick", "slip"})
+    EXPECT_EQ(i.at(status).get<int>(), r.summary.at("contact_nodes").at(status).get<int>()) << status;
+  const double N = r.summary.at("total_normal_force").get<double>();
+  EXPECT_EQ(i.at("normal_force").get<double>(), N);
+  ASSERT_EQ(i.at("stick").get<int>(), 0);  // all slide on the paper's scene: |f_t| = F f_nu per node
+  EXPECT_NEAR(i.at("friction_force").get<double>(), 0.3 * N, 1e-3 * 0.3 * N);
+  EXPECT_GT(i.at("peak_pressure").get<double>(), 0.0);
+  EXPECT_GE(i.at("largest_opening").get<double>(), 0.0);
+  EXPECT_LE(i.at("largest_overlap").get<double>(), 1e-6);
+}
+
 TEST_F(Stability, aLoadBeyondWhatFrictionHoldsStagnatesAndSaysSo) {
   // F = 0.01 cannot carry the 100 N shear: no equilibrium, ||G mu|| stagnates. It was an
   // internal error (G_I G_I^T singular, exit 1, no output), then exit 3 at the outer cap

@@ -268,6 +268,7 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
   auto runs = std::make_shared<RunRecord>();
   attachRunRecord(runs, smalse.mpgp.maxIterations, friction);
   out.chain = describeContactChain(tribos);
+  out.interfaceName = scene.contact.slaveSideSet + " -> " + scene.contact.masterSideSet;
 
   out.appliedLoad = totalLoad(owned, comm);
   out.appliedLoadMagnitude = loadMagnitude(owned, comm);

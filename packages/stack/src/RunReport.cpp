@@ -3,6 +3,7 @@
 #include <Teuchos_ParameterList.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <iomanip>
 #include <sstream>
@@ -73,6 +74,42 @@ nlohmann::json historyJson(const std::vector<OuterIterationRecord>& history) {
 }
 
 // The contact solve's part of the summary.
+/// One entry per contact interface (issue 30; one interface today): its name, normal force,
+/// friction force (the sum of the nodal tangential force lengths), node counts, peak pressure
+/// and the largest opening and overlap after deformation, from rank 0's gathered fields.
+nlohmann::json interfaceSummary(const ContactSolveResult& c) {
+  int counts[3] = {0, 0, 0};
+  double friction = 0.0, peakPressure = 0.0, opening = 0.0, overlap = 0.0;
+  for (size_t n = 0; n < c.contactStatus.size(); ++n) {
+    if (c.contactMaster.empty() || c.contactMaster[n] == 0.0) continue;  // not a contact node
+    ++counts[static_cast<int>(c.contactStatus[n])];
+    friction += std::hypot(c.contactT1[n], c.contactT2[n]);
+    peakPressure = std::max(peakPressure, c.contactPressure[n]);
+    opening = std::max(opening, c.contactOpening[n]);
+    overlap = std::max(overlap, -c.contactOpening[n]);
+  }
+  return nlohmann::json::array({{{"interface", c.interfaceName},
+                                 {"normal_force", c.totalNormalForce},
+                                 {"friction_force", friction},
+                                 {"no_contact", counts[0]},
+                                 {"stick", counts[1]},
+                                 {"slip", counts[2]},
+                                 {"peak_pressure", peakPressure},
+                                 {"largest_opening", opening},
+                                 {"largest_overlap", overlap}}});
+}
+
+/// The console line of each interface (interfaceSummary's numbers).
+std::string interfaceLine(const ContactSolveResult& c) {
+  std::ostringstream line;
+  for (const auto& i : interfaceSummary(c))
+    line << "  interface " << i["interface"].get<std::string>() << ": normal force " << i["normal_force"].get<double>()
+         << ", friction force " << i["friction_force"].get<double>() << ", peak pressure "
+         << i["peak_pressure"].get<double>() << ", largest opening " << i["largest_opening"].get<double>()
+         << ", largest overlap " << i["largest_overlap"].get<double>() << "\n";
+  return line.str();
+}
+
 void addContactSummary(const ContactSolveResult& contactSolve, double tolerance, nlohmann::json& summary) {
   const auto& r = contactSolve.contact;
   summary["solver"] = contactSolve.chain;
@@ -109,6 +146,7 @@ void addContactSummary(const ContactSolveResult& contactSolve, double tolerance,
   summary["total_normal_force"] = contactSolve.totalNormalForce;
   summary["total_contact_force"] = contactSolve.totalContactForce;
   summary["contact_force_on_master"] = contactSolve.totalContactForce;
+  summary["interfaces"] = interfaceSummary(contactSolve);
   summary["times"]["factorization_s"] = contactSolve.factorizationSeconds;
   summary["times"]["solve_s"] = contactSolve.solveSeconds;
   // Of solve_s: the SMALSE-M runs, and of them the work outside A, M^-1, Q and the
@@ -153,6 +191,7 @@ std::string contactReport(const ContactSolveResult& contactSolve) {
       << "  contact nodes" << (r.converged ? "" : " (of the last iterate, not a solution)") << ": "
       << r.statusCounts[0] << " no contact, " << r.statusCounts[1] << " stick, " << r.statusCounts[2]
       << " slip; total normal force " << contactSolve.totalNormalForce << "\n"
+      << interfaceLine(contactSolve)
       << "  KKT (each <= " << r.kktTolerance << " for \"converged\"): equilibrium " << r.kkt.equilibrium
       << ", gluing/Dirichlet " << r.kkt.equality << ", penetration " << r.kkt.nonPenetration
       << ", complementarity " << r.kkt.complementarity << ", normal sign " << r.kkt.normalSign

@@ -53,6 +53,7 @@ struct ContactSolveResult {
   long long factorNonzeros = 0;       ///< feti::TotalFeti::factorNonzeros
   double bytesPerFApplication = 0.0;  ///< feti::TotalFeti::bytesPerFApplication
   std::string chain;                ///< the solver chain that was built, for verbose output
+  std::string interfaceName;        ///< "slave set -> master set"
   std::vector<OuterIterationRecord> history;  ///< one per outer iteration (rank 0)
 };
 
