@@ -54,6 +54,7 @@
 #include "tribos/stack/LinearFetiSolve.hpp"
 #include "tribos/stack/Scene.hpp"
 #include "tribos/stack/SceneParameters.hpp"
+#include "tribos/stack/SceneSolve.hpp"
 #include "tribos/stack/SubdomainSetup.hpp"
 
 using namespace tribos;
@@ -240,7 +241,7 @@ int main(int argc, char** argv) {
     }
     if (const int threads = params.sublist("Parallel").get<int>("Threads"); threads > 0) core::setNumThreads(threads);
     const auto scene = stack::buildScene(params, input, MPI_COMM_WORLD);
-    if (scene.contact.hasContact() && scene.contact.frictionModel != contact::FrictionModel::Bonded) {
+    if (stack::isContactProblem(scene)) {
       if (rank == 0) std::cerr << input << ": a contact scene; give a bonded one or no contact\n";
       MPI_Finalize();
       return 2;

@@ -21,6 +21,7 @@
 #include "tribos/stack/LinearFetiSolve.hpp"
 #include "tribos/stack/Scene.hpp"
 #include "tribos/stack/SceneParameters.hpp"
+#include "tribos/stack/SceneSolve.hpp"
 #include "tribos/stack/SubdomainSetup.hpp"
 #include "WorldRank.hpp"
 
@@ -51,10 +52,11 @@ struct SolvedBoxScene {
   stack::Scene scene;
   feti::ConstraintMatrix B;
   stack::ContactSolveResult contact;  ///< contact scenes
-  stack::LinearFetiResult linear;     ///< scenes without a contact pair
+  stack::LinearFetiResult linear;     ///< scenes without a contact pair, or bonded ones only
+  bool contactProblem = false;        ///< stack::isContactProblem: which of the two ran
   /// Displacement of every global node (rank 0), from whichever solver ran.
   const std::vector<std::array<double, 3>>& displacement() const {
-    return scene.contact.hasContact() ? contact.displacement.value : linear.displacement;
+    return contactProblem ? contact.displacement.value : linear.displacement;
   }
 };
 
@@ -70,7 +72,8 @@ inline SolvedBoxScene solveBoxScene(const mesh::Mesh& mesh, const std::vector<st
   stack::assembleOwnedSubdomains(s.scene, MPI_COMM_WORLD, systems);
   s.B = feti::buildConstraintMatrix(s.scene.mesh, s.scene.decomposition, stack::constraintSpec(s.scene), size);
   feti::requireRestrainedBodies(s.scene.mesh, s.scene.decomposition, s.B);
-  if (s.scene.contact.hasContact())
+  s.contactProblem = stack::isContactProblem(s.scene);
+  if (s.contactProblem)
     s.contact = stack::solveContactScene(s.scene, std::move(systems), s.B, input.params, MPI_COMM_WORLD);
   else
     s.linear = stack::solveLinearFeti(s.scene, std::move(systems), s.B, input.params.sublist("FETI"),

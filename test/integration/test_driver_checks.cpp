@@ -52,6 +52,33 @@ TEST(tribosDriver, aFreeRigidMotionIsAnInputErrorBeforeTheSolve) {
   EXPECT_FALSE(contains(run.output, "found no master face")) << run.output;
 }
 
+TEST(tribosDriver, threeBodiesOnTwoInterfacesCarryTheLoadThroughEach) {
+  // three_bodies.xml (issue 30): a rounded punch on a block on a clamped foundation, two
+  // Contact/<name> interfaces with their own friction coefficients. Each interface carries the
+  // punch's load: 50 MPa on its 10 x 10 top is 5000 N down, 2 MPa is 200 N along x.
+  const auto summary = std::filesystem::temp_directory_path() / ("tribos_three_" + std::to_string(::getpid()) + ".json");
+  const auto run = runCommand(kDriver + " --input " + quote(input("three_bodies.xml")) +
+                              " --set Solver/Verbose=false --summary " + quote(summary.string()));
+  ASSERT_EQ(run.status, 0) << run.output;
+  nlohmann::json j;
+  std::ifstream(summary) >> j;
+  std::filesystem::remove(summary);
+  ASSERT_EQ(j.at("interfaces").size(), 2u);
+  // The force on each master: the punch above its slave is pushed up and back, the foundation
+  // below its slave down and along.
+  const double sign[2] = {1.0, -1.0};
+  for (int k = 0; k < 2; ++k) {
+    const auto& i = j.at("interfaces")[k];
+    SCOPED_TRACE(i.at("name").get<std::string>());
+    EXPECT_NEAR(i.at("normal_force").get<double>(), 5000.0, 10.0);  // the fillet's slope tilts a little of it
+    EXPECT_NEAR(i.at("contact_force")[2].get<double>(), sign[k] * 5000.0, 5000.0 * 1e-4);
+    EXPECT_NEAR(i.at("contact_force")[0].get<double>(), -sign[k] * 200.0, 5000.0 * 1e-4);
+    EXPECT_NEAR(i.at("contact_force")[1].get<double>(), 0.0, 5000.0 * 1e-4);
+  }
+  EXPECT_EQ(j.at("interfaces")[0].at("name"), "punch_on_block");
+  EXPECT_TRUE(contains(run.output, "interface block_on_foundation block_bottom -> foundation_top: ")) << run.output;
+}
+
 TEST(tribosDriver, aBodyFreeBecauseItsContactFoundNothingNamesTheSearchDistance) {
   // The paper's bricks 0.5 apart with the upper brick unclamped: its contact, searched within
   // 0.1, finds no master face, so nothing holds it; the message says why and which nodes.

@@ -51,7 +51,7 @@ double relativeErrorAgainstDirect(const std::vector<std::string>& overrides, sta
   for (const auto& name : scene.dirichletNodeSets)
     for (LO n : scene.mesh.nodeSet(name).nodes) fixed.push_back(n);
   std::vector<std::pair<LO, LO>> tied;
-  if (scene.contact.hasContact())
+  if (!scene.contacts.empty())
     for (const auto& c : B.contact) tied.push_back({c.slaveNode, c.masterNode});
   const auto reference = test::directSolve(scene.mesh, scene.materials, scene.loads, fixed, tied);
   double diff = 0.0, norm = 0.0;

@@ -40,7 +40,7 @@ struct PunchResult {
   double punchTopUz = 0.0;  ///< mean u_z over the punch's top nodes
   double force = 0.0;       ///< contact force on the punch, z
   int openUnderFlat = 0, underFlat = 0;  ///< slave nodes with x < 2 (under the flat face) open, all
-  long long limitedGaps = 0;             ///< feti::ConstraintMatrix::limitedMortarGaps
+  long long limitedGaps = 0;             ///< feti::ContactInterfaceRows::limitedMortarGaps
 };
 
 PunchResult solvePunch(const std::string& discretization, int blockCellsX, int punchCellsX, int refine = 1) {
@@ -61,7 +61,7 @@ PunchResult solvePunch(const std::string& discretization, int blockCellsX, int p
   const auto s = test::solveBoxScene(test::mergeMeshes(block, punch), o);
   PunchResult r;
   r.converged = s.contact.contact.converged;
-  r.limitedGaps = s.B.limitedMortarGaps;
+  r.limitedGaps = s.B.interfaces.at(0).limitedMortarGaps;
   if (worldRank() != 0) return r;
   const auto& u = s.displacement();
   const auto& top = s.scene.mesh.nodeSet("punch_z1").nodes;

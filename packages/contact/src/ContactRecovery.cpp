@@ -22,8 +22,8 @@ std::array<double, 2> tangential(const LocalContact& lc, const HostView& lam, si
 }
 
 /// The rows of this rank's owned rows (entry i: row first + i) whose dual constraints are
-/// inactive: gluing and Dirichlet rows, normal rows in contact, tangential rows inside their
-/// ellipse. Each rank masks its own rows of G, so no rank needs the n_d-sized mask.
+/// inactive: gluing and Dirichlet rows, the rows of bonded nodes, normal rows in contact,
+/// tangential rows inside their ellipse. Each rank masks its own rows of G, so no rank needs the n_d-sized mask.
 std::vector<char> inactiveRows(const feti::ConstraintMatrix& B, int rank, const DualContactProblem& problem,
                                const HostView& lam, double tau, double tinyForce) {
   const GO first = B.firstRowOfRank[rank];
@@ -35,10 +35,13 @@ std::vector<char> inactiveRows(const feti::ConstraintMatrix& B, int rank, const 
   const auto& lc = problem.contact();
   for (size_t k = 0; k < lc.node.size(); ++k) {
     const LO r = lc.normalRow[k];
-    if (lam(r, 0) > tinyForce) inactive[r] = 1;
+    if (lam(r, 0) > tinyForce || lc.model[k] == FrictionModel::Bonded) inactive[r] = 1;
+    if (lc.model[k] == FrictionModel::Bonded)
+      for (LO t : lc.tangentialRow[k])
+        if (t >= 0) inactive[t] = 1;
     if (lc.ellipse[k] < 0) continue;
-    const auto state = frictionState(tangential(lc, lam, k), lc.tangentialRow[k], lc.axisScale[k],
-                                     problem.coefficients(), problem.slipBounds()[k], tinyForce);
+    const auto state = frictionState(tangential(lc, lam, k), lc.tangentialRow[k], lc.axisScale[k], lc.F[k],
+                                     problem.slipBounds()[k], tinyForce);
     if (!state.degenerate && state.normalised < 1.0 - tau)
       for (LO t : lc.tangentialRow[k])
         if (t >= 0) inactive[t] = 1;
@@ -104,19 +107,54 @@ struct ContactResiduals {
 /// What the KKT report of one contact node reads.
 struct NodeContext {
   const LocalContact& lc;
-  const std::array<double, 2>& F;
   const std::vector<double>& slip;
   const HostView& lam;
   const HostView& bu;
   double tau, tinyForce, uScale, lScale;
-  bool coulomb;
 };
+
+/// Tangential forces and relative displacements of contact node k into `out`; returns the
+/// tangential slip T u - c (row-scaled: lambda_t^T v is the power), prescribed components
+/// included: a row keeps a slave held along its tangent where the master is free (a roller on
+/// one body), and the prescribed part lives in c = -scale known (0 without one).
+std::array<double, 2> tangentialSlip(const NodeContext& x, const feti::ContactNode& node, GO first, size_t k,
+                                     const feti::ConstraintMatrix& B, const std::array<double, 2>& lt,
+                                     ContactNodeResult& out) {
+  std::array<double, 2> v{0.0, 0.0};
+  for (int j = 0; j < 2; ++j) {
+    const LO t = x.lc.tangentialRow[k][j];
+    if (t < 0) continue;
+    out.force[j + 1] = node.tangentialScale[j] * lt[j];
+    v[j] = x.bu(t, 0) - B.c[first + t];
+    out.relativeDisplacement[j + 1] = v[j] / node.tangentialScale[j];
+  }
+  return v;
+}
+
+/// A bonded node (tied: every row an equality): its residuals are those of B u = c, its
+/// status "stick".
+ContactNodeResult bondedNodeResult(const NodeContext& x, const feti::ContactNode& node, GO first, size_t k,
+                                   const feti::ConstraintMatrix& B, ContactResiduals& res) {
+  const LO r = x.lc.normalRow[k];
+  const double gap = x.bu(r, 0) - B.c[first + r];
+  res.penetration = std::max(res.penetration, std::abs(gap));
+  ContactNodeResult out;
+  out.slaveNode = node.slaveNode;
+  out.force[0] = node.rowScale * x.lam(r, 0);
+  out.relativeDisplacement[0] = x.bu(r, 0) / node.rowScale;
+  out.opening = -gap / node.rowScale;
+  out.status = ContactStatus::Stick;
+  const auto v = tangentialSlip(x, node, first, k, B, tangential(x.lc, x.lam, k), out);
+  res.stickRule = std::max(res.stickRule, std::hypot(v[0], v[1]) / x.uScale);
+  return out;
+}
 
 /// Contact node k: its forces, relative displacements, opening and status, and its terms of
 /// the contact residuals.
 ContactNodeResult contactNodeResult(const NodeContext& x, const feti::ContactNode& node, GO first, size_t k,
                                     const feti::ConstraintMatrix& B, ContactResiduals& res) {
   const auto& lc = x.lc;
+  if (lc.model[k] == FrictionModel::Bonded) return bondedNodeResult(x, node, first, k, B, res);
   const LO r = lc.normalRow[k];
   const double gap = x.bu(r, 0) - B.c[first + r];  // N u - c <= 0
   res.penetration = std::max(res.penetration, gap);
@@ -131,30 +169,22 @@ ContactNodeResult contactNodeResult(const NodeContext& x, const feti::ContactNod
   out.force[0] = node.rowScale * x.lam(r, 0);
   out.relativeDisplacement[0] = x.bu(r, 0) / node.rowScale;
   out.opening = -gap / node.rowScale;
-  // In contact without friction the node slides freely: "slip".
+  // In contact without friction the node slides freely: "slip". A frictional node without
+  // tangential rows is held along both tangents on both sides (a symmetry axis): "stick".
   const bool touching = x.lam(r, 0) > x.tinyForce;
-  out.status = !touching ? ContactStatus::NoContact : (lc.ellipse[k] >= 0 ? ContactStatus::Stick : ContactStatus::Slip);
+  const bool heldAlongTangents = lc.ellipse[k] >= 0 || lc.model[k] != FrictionModel::None;
+  out.status = !touching ? ContactStatus::NoContact : (heldAlongTangents ? ContactStatus::Stick : ContactStatus::Slip);
   if (lc.ellipse[k] < 0) return out;
   // The bound of the friction law: Coulomb's is lambda_nu itself, Tresca's the given g.
-  const double g = x.coulomb ? std::max(x.lam(r, 0), 0.0) : x.slip[k];
+  const double g = lc.model[k] == FrictionModel::Coulomb ? std::max(x.lam(r, 0), 0.0) : x.slip[k];
   out.slipBound = node.rowScale * g;
   const auto lt = tangential(lc, x.lam, k);
-  // Tangential slip T u (row-scaled: lambda_t^T v is the power), prescribed components
-  // included: a row keeps a slave held along its tangent where the master is free (a roller on
-  // one body), and the prescribed part lives in c = -scale known (0 without one).
-  std::array<double, 2> v{0.0, 0.0};
-  for (int j = 0; j < 2; ++j) {
-    const LO t = lc.tangentialRow[k][j];
-    if (t < 0) continue;
-    out.force[j + 1] = node.tangentialScale[j] * lt[j];
-    v[j] = x.bu(t, 0) - B.c[first + t];
-    out.relativeDisplacement[j + 1] = v[j] / node.tangentialScale[j];
-  }
-  const auto state = frictionState(lt, lc.tangentialRow[k], lc.axisScale[k], x.F, g, x.tinyForce);
+  const auto v = tangentialSlip(x, node, first, k, B, lt, out);
+  const auto state = frictionState(lt, lc.tangentialRow[k], lc.axisScale[k], lc.F[k], g, x.tinyForce);
   // The law itself, without the status tests' round-off floor (which would count the
   // whole |lambda_t| of a node whose bound is below it).
   res.admissibility =
-      std::max(res.admissibility, frictionState(lt, lc.tangentialRow[k], lc.axisScale[k], x.F, g, 0.0).excess);
+      std::max(res.admissibility, frictionState(lt, lc.tangentialRow[k], lc.axisScale[k], lc.F[k], g, 0.0).excess);
   const double vNorm = std::hypot(out.relativeDisplacement[1], out.relativeDisplacement[2]);
   const bool onBoundary = state.degenerate || state.normalised >= 1.0 - x.tau;
   if (touching && onBoundary && (state.degenerate || vNorm > x.tau * x.uScale)) {
@@ -202,7 +232,7 @@ double equalityResiduals(const feti::TotalFeti& feti, const feti::ConstraintMatr
 }
 }  // namespace
 
-void reportKkt(const feti::TotalFeti& feti, const feti::ConstraintMatrix& B, const FrictionSettings& friction,
+void reportKkt(const feti::TotalFeti& feti, const feti::ConstraintMatrix& B,
                const DualContactProblem& problem, const RecoveredLambda& recovered, ContactResult& result) {
   const auto& comm = *feti.comm();
   const auto& lc = problem.contact();
@@ -213,8 +243,7 @@ void reportKkt(const feti::TotalFeti& feti, const feti::ConstraintMatrix& B, con
   const auto lam = recovered.lambda->getLocalViewHost(Tpetra::Access::ReadOnly);
   const double uScale = equalityResiduals(feti, B, *recovered.lambda, bu, result);
   const double lScale = std::max(recovered.lambdaNuMax, recovered.tinyForce);
-  const NodeContext context{lc,  problem.coefficients(), problem.slipBounds(), lam,     bu,
-                            recovered.tau, recovered.tinyForce, uScale, lScale, friction.model == FrictionModel::Coulomb};
+  const NodeContext context{lc, problem.slipBounds(), lam, bu, recovered.tau, recovered.tinyForce, uScale, lScale};
   ContactResiduals res;
   for (size_t k = 0; k < lc.node.size(); ++k) {
     const auto out = contactNodeResult(context, B.contact[lc.node[k]], first, k, B, res);

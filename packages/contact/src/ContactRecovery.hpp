@@ -22,7 +22,7 @@ RecoveredLambda recoverPrimal(const feti::TotalFeti& feti, const feti::Constrain
                               ContactResult& result);
 
 /// Step (5): result.kkt, result.nodes and result.statusCounts. Collective.
-void reportKkt(const feti::TotalFeti& feti, const feti::ConstraintMatrix& B, const FrictionSettings& friction,
+void reportKkt(const feti::TotalFeti& feti, const feti::ConstraintMatrix& B,
                const DualContactProblem& problem, const RecoveredLambda& recovered, ContactResult& result);
 
 /// Step (6): "converged" only if every KKT residual is at most `kktTolerance` too (SMALSE-M's

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 #include "tribos/core/ReproducibleSum.hpp"
 
@@ -71,8 +73,7 @@ DualContactProblem::DualContactProblem(const feti::TotalFeti& feti, const feti::
     : feti_(feti),
       B_(B),
       comm_(*feti.comm()),
-      lc_(localContact(B, feti.comm()->getRank())),
-      F_{friction.F1, friction.F2} {
+      lc_(localContact(B, feti.comm()->getRank())) {
   buildRightHandSide();
   buildOmega(friction);
 }
@@ -89,25 +90,33 @@ void DualContactProblem::buildRightHandSide() {
 }
 
 // (2) Omega: mu_nu >= -lambda_Im,nu; ||F^-1 (mu_t + lambda_Im,t)|| <= g (an ellipse with
-// semi-axes F_j g centred at -lambda_Im,t). g lives in multiplier units: a nodal force f
-// corresponds to the multiplier f / rowScale (rows of B are scaled to unit norm).
+// semi-axes F_j g centred at -lambda_Im,t), each node with the law of its interface; a
+// Bonded node's rows stay free (equalities: tied). g lives in multiplier units: a nodal force
+// f corresponds to the multiplier f / rowScale (rows of B are scaled to unit norm).
 void DualContactProblem::buildOmega(const FrictionSettings& friction) {
-  const bool frictional = friction.model != FrictionModel::None;
   const auto lIm = feti_.lambdaIm().getLocalViewHost(Tpetra::Access::ReadOnly);
   slip_.assign(lc_.node.size(), 0.0);
   for (size_t k = 0; k < lc_.node.size(); ++k) {
+    const int interface = B_.contact[lc_.node[k]].interface;
+    if (interface < 0 || static_cast<size_t>(interface) >= friction.laws.size())
+      throw std::invalid_argument("tribos::contact: contact node of interface " + std::to_string(interface) +
+                                  " but " + std::to_string(friction.laws.size()) + " friction laws");
+    const FrictionLaw& law = friction.laws[interface];
+    lc_.model.push_back(law.model);
+    lc_.F.push_back({law.F1, law.F2});
+    if (law.model == FrictionModel::Bonded) continue;
     const LO r = lc_.normalRow[k];
     omega_.addBound(r, -lIm(r, 0));
     const auto& t = lc_.tangentialRow[k];
-    if (!frictional || (t[0] < 0 && t[1] < 0)) continue;
-    if (friction.model == FrictionModel::Tresca) slip_[k] = friction.slipBound / B_.contact[lc_.node[k]].rowScale;
+    if (law.model == FrictionModel::None || (t[0] < 0 && t[1] < 0)) continue;
+    if (law.model == FrictionModel::Tresca) slip_[k] = law.slipBound / B_.contact[lc_.node[k]].rowScale;
     lc_.ellipse[k] = omega_.numEllipses();
     omega_.addEllipse(t, {t[0] >= 0 ? -lIm(t[0], 0) : 0.0, t[1] >= 0 ? -lIm(t[1], 0) : 0.0}, semiAxes(k, slip_[k]));
   }
 }
 
 std::array<double, 2> DualContactProblem::semiAxes(size_t k, double g) const {
-  return {F_[0] * lc_.axisScale[k][0] * g, F_[1] * lc_.axisScale[k][1] * g};
+  return {lc_.F[k][0] * lc_.axisScale[k][0] * g, lc_.F[k][1] * lc_.axisScale[k][1] * g};
 }
 
 void DualContactProblem::setSlipBounds(const std::vector<double>& g) {
@@ -119,14 +128,17 @@ void DualContactProblem::setSlipBounds(const std::vector<double>& g) {
 std::vector<double> DualContactProblem::impliedSlip(const qp::Vector& mu) const {
   const auto m = mu.getLocalViewHost(Tpetra::Access::ReadOnly);
   const auto lIm = feti_.lambdaIm().getLocalViewHost(Tpetra::Access::ReadOnly);
-  std::vector<double> g(lc_.node.size());
-  for (size_t k = 0; k < g.size(); ++k) g[k] = std::max(m(lc_.normalRow[k], 0) + lIm(lc_.normalRow[k], 0), 0.0);
+  std::vector<double> g(slip_);
+  for (size_t k = 0; k < g.size(); ++k)
+    if (lc_.model[k] == FrictionModel::Coulomb)
+      g[k] = std::max(m(lc_.normalRow[k], 0) + lIm(lc_.normalRow[k], 0), 0.0);
   return g;
 }
 
 double DualContactProblem::relativeChange(const std::vector<double>& gNew, const std::vector<double>& gOld) const {
-  std::vector<double> dTerms(gNew.size()), nTerms(gNew.size());
+  std::vector<double> dTerms(gNew.size(), 0.0), nTerms(gNew.size(), 0.0);
   for (size_t k = 0; k < gNew.size(); ++k) {
+    if (lc_.model[k] != FrictionModel::Coulomb) continue;
     dTerms[k] = (gNew[k] - gOld[k]) * (gNew[k] - gOld[k]);
     nTerms[k] = gOld[k] * gOld[k];
   }
@@ -141,12 +153,12 @@ double DualContactProblem::coulombExcess(const qp::Vector& current) const {
   for (size_t k = 0; k < lc_.node.size(); ++k) {
     const double lambdaNu = m(lc_.normalRow[k], 0) + lIm(lc_.normalRow[k], 0);
     normalMax = std::max(normalMax, std::abs(lambdaNu));
-    if (lc_.ellipse[k] < 0) continue;
+    if (lc_.ellipse[k] < 0 || lc_.model[k] != FrictionModel::Coulomb) continue;
     std::array<double, 2> lambdaT{0.0, 0.0};
     for (int j = 0; j < 2; ++j)
       if (const LO t = lc_.tangentialRow[k][j]; t >= 0) lambdaT[j] = m(t, 0) + lIm(t, 0);
     const auto state =
-        frictionState(lambdaT, lc_.tangentialRow[k], lc_.axisScale[k], F_, std::max(lambdaNu, 0.0), 0.0);
+        frictionState(lambdaT, lc_.tangentialRow[k], lc_.axisScale[k], lc_.F[k], std::max(lambdaNu, 0.0), 0.0);
     excess = std::max(excess, state.excess);
   }
   normalMax = globalMax(comm_, normalMax);

@@ -23,6 +23,8 @@ struct LocalContact {
   /// were dropped from some rows).
   std::vector<std::array<double, 2>> axisScale;
   std::vector<int> ellipse;                 ///< index of the node's friction block, -1 if none
+  std::vector<FrictionModel> model;         ///< the friction law of the node's interface
+  std::vector<std::array<double, 2>> F;     ///< its coefficients (F1, F2)
 };
 
 /// Where lambda_t of one node stands against its friction bound g (N-multiplier units):
@@ -52,16 +54,17 @@ class DualContactProblem {
   const feti::DualVector& rightHandSide() const { return *c_; }
   qp::SeparableSet& omega() { return omega_; }
   const LocalContact& contact() const { return lc_; }
-  const std::array<double, 2>& coefficients() const { return F_; }
   /// g per local contact node, N-multiplier units.
   const std::vector<double>& slipBounds() const { return slip_; }
   /// g := `g`, and Omega's ellipses with it.
   void setSlipBounds(const std::vector<double>& g);
-  /// The slip bound the current mu implies: g = max(mu_nu + lambda_Im,nu, 0) (paper (20)).
+  /// The slip bound the current mu implies: g = max(mu_nu + lambda_Im,nu, 0) (paper (20)) on
+  /// Coulomb's nodes; the others keep theirs.
   std::vector<double> impliedSlip(const qp::Vector& mu) const;
-  /// ||g_new - g_old|| / ||g_old|| (global; infinite from g_old = 0 to g_new != 0).
+  /// ||g_new - g_old|| / ||g_old|| over Coulomb's nodes (global; infinite from g_old = 0 to
+  /// g_new != 0).
   double relativeChange(const std::vector<double>& gNew, const std::vector<double>& gOld) const;
-  /// max over contact nodes of (||F^-1 lambda_t|| - lambda_nu)_+ / max lambda_nu for
+  /// max over Coulomb's contact nodes of (||F^-1 lambda_t|| - lambda_nu)_+ / max lambda_nu for
   /// lambda = current + lambda_Im: how far the multipliers are from Coulomb's law (global).
   double coulombExcess(const qp::Vector& current) const;
 
@@ -74,7 +77,6 @@ class DualContactProblem {
   const feti::ConstraintMatrix& B_;
   const Teuchos::Comm<int>& comm_;
   LocalContact lc_;
-  std::array<double, 2> F_;
   Teuchos::RCP<feti::DualVector> c_;
   qp::SeparableSet omega_;
   std::vector<double> slip_;

@@ -130,7 +130,7 @@ class ExactCoulomb final : public SlipBoundStrategy {
 
 std::unique_ptr<SlipBoundStrategy> makeSlipBoundStrategy(const FrictionSettings& friction, double eps,
                                                          double kktTolerance) {
-  if (friction.model != FrictionModel::Coulomb) return std::make_unique<GivenSlipBound>();
+  if (!friction.uses(FrictionModel::Coulomb)) return std::make_unique<GivenSlipBound>();
   if (friction.fixedPoint == FixedPoint::Inexact) return std::make_unique<InexactCoulomb>(friction, eps, kktTolerance);
   return std::make_unique<ExactCoulomb>(friction, eps);
 }

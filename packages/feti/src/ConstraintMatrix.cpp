@@ -22,6 +22,12 @@ namespace tribos::feti {
 
 GO ConstraintMatrix::count(RowKind k) const { return std::count(kind.begin(), kind.end(), k); }
 
+GO ConstraintMatrix::unpairedSlaveNodes() const {
+  GO n = 0;
+  for (const auto& i : interfaces) n += i.unpairedSlaveNodes;
+  return n;
+}
+
 namespace {
 using Vec3 = std::array<double, 3>;
 
@@ -188,8 +194,8 @@ struct RowContext {
 
 /// The contact node of a slave node paired with `masterSide`: its master nodes and weights,
 /// gap and frame (nu, t1, t2), right-handed.
-ContactNode contactFrame(const mesh::ContactPair& pair, const mesh::MortarRow& masterSide, const ConstraintSpec& spec,
-                         const Prescribed& prescribed) {
+ContactNode contactFrame(const mesh::ContactPair& pair, const mesh::MortarRow& masterSide,
+                         const ContactInterfaceSpec& spec, const Prescribed& prescribed) {
   ContactNode node;
   node.slaveNode = pair.slaveNode;
   node.masterNode = pair.nearestMasterNode();
@@ -285,37 +291,106 @@ bool contactRow(int d, ContactNode& node, const std::vector<std::pair<LO, double
   return true;
 }
 
-/// (2) Contact rows: slave node minus the master displacement weighted by the dual mortar
-/// or node-to-surface weights (paper Section 3, the transfer mapping chi; DESIGN.md).
-void addContactRows(const mesh::Mesh& mesh, const ConstraintSpec& spec, const RowContext& ctx, RowList& list,
-                    ConstraintMatrix& B) {
-  const auto search = mesh::searchContactPairs(mesh, spec.slaveSideSet, spec.masterSideSet, spec.searchDistance);
+/// The element blocks (bodies) that hold the faces of a side set, ascending.
+std::vector<int> bodiesOf(const mesh::Mesh& mesh, const std::string& sideSet) {
+  std::vector<int> bodies;
+  for (LO e : mesh.sideSet(sideSet).elements) bodies.push_back(mesh.blockOf(e));
+  std::sort(bodies.begin(), bodies.end());
+  bodies.erase(std::unique(bodies.begin(), bodies.end()), bodies.end());
+  return bodies;
+}
+
+/// Self-contact (a surface against another of the same body) is not modelled: its rows would
+/// tie a body to itself, which the search's normals and the rigid-body analysis do not expect.
+void refuseSelfContact(const mesh::Mesh& mesh, const ContactInterfaceSpec& spec) {
+  const auto slave = bodiesOf(mesh, spec.slaveSideSet), master = bodiesOf(mesh, spec.masterSideSet);
+  for (int b : slave)
+    if (std::binary_search(master.begin(), master.end(), b))
+      throw core::InputError(spec.label() + ": both surfaces have faces on element block \"" + mesh.blocks[b].name +
+                             "\": self-contact (a body against itself) is not supported; the slave and master "
+                             "surfaces of an interface must lie on different bodies");
+}
+
+/// The master side of every pair of an interface (dual mortar or node-to-surface weights).
+std::vector<mesh::MortarRow> masterSidesOf(const mesh::Mesh& mesh, const ContactInterfaceSpec& spec,
+                                           const mesh::ContactSearchResult& search) {
   std::vector<mesh::MortarRow> masterSides;
   if (spec.discretization == ContactDiscretization::Mortar) {
     const mesh::MasterSurface master(mesh, spec.masterSideSet);
-    masterSides = mesh::dualMortarRows(mesh, spec.slaveSideSet, master, search, spec.searchDistance);
-  } else {
-    for (const auto& pair : search.pairs) masterSides.push_back(mesh::nodeToSurfaceRow(pair));
+    return mesh::dualMortarRows(mesh, spec.slaveSideSet, master, search, spec.searchDistance);
   }
-  B.unpairedSlaveNodes = static_cast<GO>(search.unpaired.size());
+  for (const auto& pair : search.pairs) masterSides.push_back(mesh::nodeToSurfaceRow(pair));
+  return masterSides;
+}
+
+/// The diameter of the bounding box of some nodes.
+double diameter(const mesh::Mesh& mesh, const std::vector<LO>& nodes) {
+  Vec3 low{0.0, 0.0, 0.0}, high{0.0, 0.0, 0.0};
+  for (size_t k = 0; k < nodes.size(); ++k)
+    for (int c = 0; c < 3; ++c) {
+      const double x = mesh.coords[nodes[k]][c];
+      low[c] = k == 0 ? x : std::min(low[c], x);
+      high[c] = k == 0 ? x : std::max(high[c], x);
+    }
+  return norm(minus(high, low));
+}
+
+/// What the search and the mortar integration found on an interface, every pair on every rank.
+/// An overlap is counted where it exceeds round-off (1e-12 of the slave surface's size): the
+/// weighted gaps of coincident flat surfaces are +-1e-17, not overlaps a user should hear of.
+ContactInterfaceRows interfaceRows(const mesh::Mesh& mesh, const ContactInterfaceSpec& spec,
+                                   const mesh::ContactSearchResult& search,
+                                   const std::vector<mesh::MortarRow>& masterSides) {
+  const double roundOff = 1e-12 * diameter(mesh, mesh::sideSetNodes(mesh, mesh.sideSet(spec.slaveSideSet)));
+  ContactInterfaceRows found;
+  found.label = spec.label();
+  found.list = spec.list();
+  found.pairedSlaveNodes = static_cast<GO>(search.pairs.size());
+  found.unpairedSlaveNodes = static_cast<GO>(search.unpaired.size());
   constexpr size_t kSample = 5;
-  B.unpairedSample.assign(search.unpaired.begin(), search.unpaired.begin() + std::min(kSample, search.unpaired.size()));
-  B.searchDistance = spec.searchDistance;
-  // The initial overlaps of the rows (weighted where mortar), every pair on every rank.
+  found.unpairedSample.assign(search.unpaired.begin(),
+                              search.unpaired.begin() + std::min(kSample, search.unpaired.size()));
+  found.searchDistance = spec.searchDistance;
+  // The initial overlaps of the rows (weighted where mortar).
   for (const auto& side : masterSides) {
-    if (side.gap < 0.0) {
-      ++B.overlappingPairs;
-      B.largestOverlap = std::max(B.largestOverlap, -side.gap);
+    if (side.gap < -roundOff) {
+      ++found.overlappingPairs;
+      found.largestOverlap = std::max(found.largestOverlap, -side.gap);
     }
     if (side.gapLimited > 0.0) {
-      ++B.limitedMortarGaps;
-      B.largestGapLimit = std::max(B.largestGapLimit, side.gapLimited);
+      ++found.limitedMortarGaps;
+      found.largestGapLimit = std::max(found.largestGapLimit, side.gapLimited);
     }
   }
+  return found;
+}
+
+/// (2) Contact rows of interface `index`: slave node minus the master displacement weighted by
+/// the dual mortar or node-to-surface weights (paper Section 3, the transfer mapping chi;
+/// DESIGN.md). `slaveOf` (per mesh node: the interface whose slave it is, -1 if none) refuses
+/// a node claimed as slave by two interfaces.
+void addContactRows(const mesh::Mesh& mesh, const ConstraintSpec& all, int index, const RowContext& ctx,
+                    RowList& list, std::vector<int>& slaveOf, ConstraintMatrix& B) {
+  const ContactInterfaceSpec& spec = all.interfaces[index];
+  core::requireInput(!spec.slaveSideSet.empty() && !spec.masterSideSet.empty(),
+                     spec.label() + ": give both the slave and the master side set");
+  refuseSelfContact(mesh, spec);
+  const auto search = mesh::searchContactPairs(mesh, spec.slaveSideSet, spec.masterSideSet, spec.searchDistance);
+  for (LO n : mesh::sideSetNodes(mesh, mesh.sideSet(spec.slaveSideSet))) {
+    if (slaveOf[n] >= 0)
+      throw core::InputError("node " + std::to_string(n + 1) + " at " + str(mesh.coords[n]) +
+                             " is a slave node of " + all.interfaces[slaveOf[n]].label() + " and of " + spec.label() +
+                             ": a node may be the slave of one interface only (take it out of one of the slave "
+                             "side sets, e.g. split the faces at the shared edge)");
+    slaveOf[n] = index;
+  }
+  const auto masterSides = masterSidesOf(mesh, spec, search);
+  B.interfaces.push_back(interfaceRows(mesh, spec, search, masterSides));
   const int numDirections = spec.tangentialRows ? 3 : 1;
   list.rows.reserve(numDirections * search.pairs.size());
   for (size_t p = 0; p < search.pairs.size(); ++p) {
     ContactNode node = contactFrame(search.pairs[p], masterSides[p], spec, ctx.prescribed);
+    node.interface = index;
     std::vector<std::pair<LO, double>> sides{{node.slaveNode, 1.0}};
     for (size_t v = 0; v < node.masterNodes.size(); ++v) sides.push_back({node.masterNodes[v], -node.masterWeights[v]});
     // The node's rows are added together, their entries consecutive in the list.
@@ -461,10 +536,9 @@ ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decom
   const RowContext ctx{copies, prescribed, decomposition.numSubdomains(), numRanks};
   RowList list;
   ConstraintMatrix B;
-  core::requireInput(spec.slaveSideSet.empty() == spec.masterSideSet.empty(),
-                     "contact: give both the slave and the master side set, or neither (slave \"" +
-                         spec.slaveSideSet + "\", master \"" + spec.masterSideSet + "\")");
-  if (!spec.slaveSideSet.empty()) addContactRows(mesh, spec, ctx, list, B);  // (2)
+  std::vector<int> slaveOf(mesh.numNodes(), -1);
+  for (size_t i = 0; i < spec.interfaces.size(); ++i)
+    addContactRows(mesh, spec, static_cast<int>(i), ctx, list, slaveOf, B);  // (2)
   addGluingAndDirichletRows(mesh.numNodes(), ctx, list);                    // (3)
   numberRows(list, decomposition.numSubdomains(), numRanks, keepForRank, B);  // (4)
   return B;

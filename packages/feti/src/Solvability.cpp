@@ -319,14 +319,19 @@ std::vector<FreeMotion> freeRigidMotions(const mesh::Mesh& mesh, const mesh::Dec
 /// deeper) than Contact/Search Distance get no contact rows. Empty when every slave node paired.
 namespace {
 std::string unpairedContactNote(const ConstraintMatrix& B) {
-  if (B.unpairedSlaveNodes == 0) return "";
-  std::string nodes;
-  for (LO n : B.unpairedSample) nodes += (nodes.empty() ? "" : ", ") + std::to_string(n + 1);
-  if (static_cast<GO>(B.unpairedSample.size()) < B.unpairedSlaveNodes) nodes += ", ...";
-  return "\n" + std::to_string(B.unpairedSlaveNodes) + " slave node" + (B.unpairedSlaveNodes == 1 ? "" : "s") +
-         " found no master face within Contact/Search Distance = " + core::formatNumber(B.searchDistance) +
-         " (nodes " + nodes + ", numbered from 1 as in the mesh file), so they have no contact rows: if the bodies "
-         "are apart (or overlap) by more than that, move them or raise Contact/Search Distance.";
+  std::string note;
+  for (const auto& found : B.interfaces) {
+    if (found.unpairedSlaveNodes == 0) continue;
+    std::string nodes;
+    for (LO n : found.unpairedSample) nodes += (nodes.empty() ? "" : ", ") + std::to_string(n + 1);
+    if (static_cast<GO>(found.unpairedSample.size()) < found.unpairedSlaveNodes) nodes += ", ...";
+    note += "\n" + found.label + ": " + std::to_string(found.unpairedSlaveNodes) + " slave node" +
+            (found.unpairedSlaveNodes == 1 ? "" : "s") + " found no master face within " + found.list + "/Search Distance = " +
+            core::formatNumber(found.searchDistance) + " (nodes " + nodes +
+            ", numbered from 1 as in the mesh file), so they have no contact rows: if the bodies are apart (or "
+            "overlap) by more than that, move them or raise that distance.";
+  }
+  return note;
 }
 }  // namespace
 

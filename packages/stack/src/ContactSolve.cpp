@@ -5,6 +5,7 @@
 #include <Teuchos_ParameterList.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <functional>
 #include <memory>
@@ -39,16 +40,21 @@ std::string describeContactChain(const Teuchos::ParameterList& tribos) {
         << " test) -> MPGP (alpha_bar "
         << smalse.mpgp.stepScale << "/||A||, Gamma " << smalse.mpgp.gamma << ", preconditioned in face: "
         << fetiList.get<std::string>("Preconditioner") << (smalse.mpgp.choppedProportioning ? ", chopped proportioning" : "")
-        << ") -> " << core::nameOf(contact::kFrictionModelNames, friction.model);
-  if (friction.model == contact::FrictionModel::Coulomb)
-    chain << " (" << core::nameOf(contact::kFixedPointNames, friction.fixedPoint) << " successive approximations, F1 "
-          << friction.F1 << ", F2 " << friction.F2
-          << (friction.fixedPoint == contact::FixedPoint::Inexact
-                  ? std::string(", slip-bound test ") + core::nameOf(contact::kSlipBoundTestNames, friction.slipBoundTest)
-                  : std::string())
-          << ")";
-  if (friction.model == contact::FrictionModel::Tresca) chain << " (g = " << friction.slipBound << ", F1 " << friction.F1 << ", F2 "
-                                        << friction.F2 << ")";
+        << ") -> ";
+  for (size_t i = 0; i < friction.laws.size(); ++i) {
+    const auto& law = friction.laws[i];
+    chain << (i > 0 ? "; " : "") << core::nameOf(contact::kFrictionModelNames, law.model);
+    if (law.model == contact::FrictionModel::Coulomb)
+      chain << " (" << core::nameOf(contact::kFixedPointNames, friction.fixedPoint) << " successive approximations, F1 "
+            << law.F1 << ", F2 " << law.F2
+            << (friction.fixedPoint == contact::FixedPoint::Inexact
+                    ? std::string(", slip-bound test ") +
+                          core::nameOf(contact::kSlipBoundTestNames, friction.slipBoundTest)
+                    : std::string())
+            << ")";
+    if (law.model == contact::FrictionModel::Tresca)
+      chain << " (g = " << law.slipBound << ", F1 " << law.F1 << ", F2 " << law.F2 << ")";
+  }
   return chain.str();
 }
 
@@ -132,8 +138,7 @@ std::string relativeResiduals(const qp::SmalseCounters& c, double eps) {
 void nameTheLimit(const WallClockBudget& budget, const RunRecord& runs, const qp::SmalseSettings& smalse,
                   const contact::FrictionSettings& friction, contact::ContactResult& result) {
   if (result.converged || result.counters.nonFinite) return;
-  const bool exact =
-      friction.model == contact::FrictionModel::Coulomb && friction.fixedPoint == contact::FixedPoint::Exact;
+  const bool exact = friction.uses(contact::FrictionModel::Coulomb) && friction.fixedPoint == contact::FixedPoint::Exact;
   std::string message;
   if (budget.ranOut()) {
     message = budget.message();
@@ -157,55 +162,71 @@ void nameTheLimit(const WallClockBudget& budget, const RunRecord& runs, const qp
   result.message = result.note.empty() ? message : message + "; " + result.note;
 }
 
-/// Where SMALSE-M stalled on the bodies' balance: the friction the interface can carry against
-/// the applied load along the contact plane, in the message (every rank the same numbers:
-/// the normal force from rank 0, the mean contact normal summed over the ranks' nodes).
-void addOverloadNote(const Scene& scene, const feti::ConstraintMatrix& B, const contact::FrictionSettings& friction,
-                     MPI_Comm comm, ContactSolveResult& out) {
+/// The note of one interface where SMALSE-M stalled: the friction it can carry, F N, against
+/// the applied load along its contact plane (`normal`: the mean contact normal of its nodes).
+std::string overloadNote(const InterfaceResult& i, const contact::FrictionSettings& friction,
+                         const std::array<double, 3>& normal, const std::array<double, 3>& f) {
+  std::ostringstream note;
+  const std::string interface = i.surfaces;
+  if (i.law.model == contact::FrictionModel::Tresca) {
+    // Tresca's bound is the given slip bound per node, not F lambda_nu: no capacity to quote.
+    note << "no equilibrium within the contact constraints at " << interface
+         << ": the loads may exceed what contact and the given slip bounds (Tresca) can carry";
+    return note.str();
+  }
+  const double length = std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
+  const double along = length > 0.0 ? (f[0] * normal[0] + f[1] * normal[1] + f[2] * normal[2]) / length : 0.0;
+  const double tangential = std::sqrt(std::max(f[0] * f[0] + f[1] * f[1] + f[2] * f[2] - along * along, 0.0));
+  const double F = i.law.model == contact::FrictionModel::None ? 0.0 : std::max(i.law.F1, i.law.F2);
+  const double N = i.normalForce;
+  const bool beyond = F * N < tangential;
+  note << (beyond ? "the loads may exceed what contact and friction can carry at "
+                  : "no equilibrium within the contact constraints at ")
+       << interface << ": its friction capacity F N = " << F << " x " << N << " = " << F * N
+       << (beyond ? " against " : ", more than ") << "an applied load of " << tangential << " along the contact plane";
+  if (beyond)
+    note << " (where contact and friction alone hold the loaded body, reduce that load or raise the friction "
+            "coefficient)";
+  else if (i.law.model == contact::FrictionModel::Coulomb && friction.fixedPoint == contact::FixedPoint::Exact)
+    note << " (Contact/Fixed Point = Exact starts frictionless, where a body held by friction alone has no "
+            "equilibrium: use Inexact)";
+  return note.str();
+}
+
+/// Where SMALSE-M stalled on the bodies' balance: per interface, the friction it can carry
+/// against the applied load along its contact plane, in the message (every rank the same
+/// numbers: the normal forces from rank 0, the mean contact normals summed over the ranks'
+/// nodes). The whole scene's applied load is compared with each interface: with several
+/// interfaces in series, the load passes through each.
+void addOverloadNote(const feti::ConstraintMatrix& B, const contact::FrictionSettings& friction, MPI_Comm comm,
+                     ContactSolveResult& out) {
   if (!out.contact.counters.stalled) return;
-  double normalForce = out.totalNormalForce;
-  MPI_Bcast(&normalForce, 1, MPI_DOUBLE, 0, comm);
-  std::array<double, 3> mine{0.0, 0.0, 0.0}, normal{0.0, 0.0, 0.0};
+  const size_t n = out.interfaces.size();
+  std::vector<double> normalForce(n), mine(3 * n, 0.0), normals(3 * n, 0.0);
+  for (size_t i = 0; i < n; ++i) normalForce[i] = out.interfaces[i].normalForce;
+  MPI_Bcast(normalForce.data(), static_cast<int>(n), MPI_DOUBLE, 0, comm);
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   for (const auto& node : B.contact)
     if (B.firstRowOfRank.empty() || (node.normalRow >= B.firstRowOfRank[rank] && node.normalRow < B.firstRowOfRank[rank + 1]))
-      for (int c = 0; c < 3; ++c) mine[c] += node.normal[c];
-  MPI_Allreduce(mine.data(), normal.data(), 3, MPI_DOUBLE, MPI_SUM, comm);
-  const double length = std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
-  if (!(length > 0.0)) return;
-  const auto& f = out.appliedLoad;
-  const double along = (f[0] * normal[0] + f[1] * normal[1] + f[2] * normal[2]) / length;
-  const double total2 = f[0] * f[0] + f[1] * f[1] + f[2] * f[2];
-  const double tangential = std::sqrt(std::max(total2 - along * along, 0.0));
-  const std::string interface = scene.contact.slaveSideSet + " -> " + scene.contact.masterSideSet;
-  std::ostringstream note;
-  if (friction.model == contact::FrictionModel::Tresca) {
-    // Tresca's bound is the given slip bound per node, not F lambda_nu: no capacity to quote.
-    note << "no equilibrium within the contact constraints at " << interface
-         << ": the loads may exceed what contact and the given slip bounds (Tresca) can carry";
-  } else {
-    const double F = friction.model == contact::FrictionModel::None ? 0.0 : std::max(friction.F1, friction.F2);
-    const bool beyond = F * normalForce < tangential;
-    note << (beyond ? "the loads may exceed what contact and friction can carry at "
-                    : "no equilibrium within the contact constraints at ")
-         << interface << ": its friction capacity F N = " << F << " x " << normalForce << " = " << F * normalForce
-         << (beyond ? " against " : ", more than ") << "an applied load of " << tangential
-         << " along the contact plane";
-    if (beyond)
-      note << " (where contact and friction alone hold the loaded body, reduce that load or raise the friction "
-              "coefficient)";
-    else if (friction.model == contact::FrictionModel::Coulomb && friction.fixedPoint == contact::FixedPoint::Exact)
-      note << " (Contact/Fixed Point = Exact starts frictionless, where a body held by friction alone has no "
-              "equilibrium: use Inexact)";
+      for (int c = 0; c < 3; ++c) mine[3 * node.interface + c] += node.normal[c];
+  MPI_Allreduce(mine.data(), normals.data(), static_cast<int>(3 * n), MPI_DOUBLE, MPI_SUM, comm);
+  std::string notes;
+  for (size_t i = 0; i < n; ++i) {
+    InterfaceResult interface = out.interfaces[i];
+    interface.normalForce = normalForce[i];
+    const std::array<double, 3> normal{normals[3 * i], normals[3 * i + 1], normals[3 * i + 2]};
+    if (!(std::abs(normal[0]) + std::abs(normal[1]) + std::abs(normal[2]) > 0.0)) continue;
+    notes += (notes.empty() ? "" : "; ") + overloadNote(interface, friction, normal, out.appliedLoad);
   }
-  out.contact.note = out.contact.note.empty() ? note.str() : out.contact.note + "; " + note.str();
-  out.contact.message += "; " + note.str();
+  if (notes.empty()) return;
+  out.contact.note = out.contact.note.empty() ? notes : out.contact.note + "; " + notes;
+  out.contact.message += "; " + notes;
 }
 
 /// Contact fields on the global mesh (rank 0): every contact node's rows belong to one rank,
 /// which sends its forces, status and opening; the geometry (gap, normal, master) is in B on
-/// every rank.
+/// every rank. Each interface's resultants and extremes from them (InterfaceResult).
 void gatherContactFields(const Scene& scene, const feti::ConstraintMatrix& B, MPI_Comm comm, ContactSolveResult& out) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
@@ -227,24 +248,36 @@ void gatherContactFields(const Scene& scene, const feti::ConstraintMatrix& B, MP
                       &out.contactGap, &out.contactOpening, &out.contactNx, &out.contactNy, &out.contactNz,
                       &out.contactMaster})
     field->assign(numNodes, 0.0);
-  const auto area = scene.contact.hasContact() ? tributaryArea(scene.mesh, scene.contact.slaveSideSet)
-                                               : std::vector<double>(numNodes, 0.0);
+  std::vector<std::vector<double>> area;  // per interface: the tributary area of its slave nodes
+  for (const auto& one : scene.contacts) area.push_back(tributaryArea(scene.mesh, one.rows.slaveSideSet));
   for (const auto& c : B.contact) {
     const size_t g = static_cast<size_t>(c.slaveNode);
     const double* f = all.data() + kPerNode * g;
+    const double a = area[c.interface][g];
     out.contactNormal[g] = f[0];
     out.contactT1[g] = f[1];
     out.contactT2[g] = f[2];
     out.contactStatus[g] = f[3];
     out.contactOpening[g] = f[4];
-    out.contactPressure[g] = area[g] > 0.0 ? f[0] / area[g] : 0.0;
+    out.contactPressure[g] = a > 0.0 ? f[0] / a : 0.0;
     out.contactGap[g] = c.gap;
     out.contactNx[g] = c.normal[0];
     out.contactNy[g] = c.normal[1];
     out.contactNz[g] = c.normal[2];
     out.contactMaster[g] = static_cast<double>(c.masterNode + 1);
     out.totalNormalForce += f[0];
-    for (int x = 0; x < 3; ++x) out.totalContactForce[x] += f[0] * c.normal[x] + f[1] * c.t1[x] + f[2] * c.t2[x];
+    InterfaceResult& i = out.interfaces[c.interface];
+    i.normalForce += f[0];
+    for (int x = 0; x < 3; ++x) {
+      const double fx = f[0] * c.normal[x] + f[1] * c.t1[x] + f[2] * c.t2[x];
+      out.totalContactForce[x] += fx;
+      i.force[x] += fx;
+    }
+    i.frictionForce += std::hypot(f[1], f[2]);
+    ++i.counts[static_cast<int>(f[3])];
+    i.peakPressure = std::max(i.peakPressure, out.contactPressure[g]);
+    i.largestOpening = std::max(i.largestOpening, f[4]);
+    i.largestOverlap = std::max(i.largestOverlap, -f[4]);
   }
 }
 }  // namespace
@@ -268,7 +301,8 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
   auto runs = std::make_shared<RunRecord>();
   attachRunRecord(runs, smalse.mpgp.maxIterations, friction);
   out.chain = describeContactChain(tribos);
-  out.interfaceName = scene.contact.slaveSideSet + " -> " + scene.contact.masterSideSet;
+  for (const auto& one : scene.contacts)
+    out.interfaces.push_back({one.rows.name, one.rows.slaveSideSet + " -> " + one.rows.masterSideSet, one.law});
 
   out.appliedLoad = totalLoad(owned, comm);
   out.appliedLoadMagnitude = loadMagnitude(owned, comm);
@@ -287,7 +321,7 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
 
   out.reaction = gatherReactions(scene, B, out.contact.lambda, comm);
   gatherContactFields(scene, B, comm, out);
-  addOverloadNote(scene, B, friction, comm, out);
+  addOverloadNote(B, friction, comm, out);
   return out;
 }
 

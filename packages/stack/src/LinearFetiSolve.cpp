@@ -21,14 +21,7 @@ feti::ConstraintSpec constraintSpec(const Scene& scene) {
   feti::ConstraintSpec spec;
   spec.dirichletNodeSets = scene.dirichletNodeSets;
   spec.displacementConditions = scene.displacementConditions;
-  if (scene.contact.hasContact()) {
-    spec.slaveSideSet = scene.contact.slaveSideSet;
-    spec.masterSideSet = scene.contact.masterSideSet;
-  }
-  spec.tangentialRows = scene.contact.frictionModel != contact::FrictionModel::None;
-  spec.t1Direction = scene.contact.t1Direction;
-  spec.searchDistance = scene.contact.searchDistance;
-  spec.discretization = scene.contact.discretization;
+  for (const auto& one : scene.contacts) spec.interfaces.push_back(one.rows);
   return spec;
 }
 

@@ -74,36 +74,35 @@ nlohmann::json historyJson(const std::vector<OuterIterationRecord>& history) {
 }
 
 // The contact solve's part of the summary.
-/// One entry per contact interface (issue 30; one interface today): its name, normal force,
-/// friction force (the sum of the nodal tangential force lengths), node counts, peak pressure
-/// and the largest opening and overlap after deformation, from rank 0's gathered fields.
+/// One entry per contact interface (ContactSolveResult::interfaces): its name, surfaces,
+/// friction model, normal force, resultant contact force, friction force (the sum of the nodal
+/// tangential force lengths), node counts, peak pressure and the largest opening and overlap
+/// after deformation.
 nlohmann::json interfaceSummary(const ContactSolveResult& c) {
-  int counts[3] = {0, 0, 0};
-  double friction = 0.0, peakPressure = 0.0, opening = 0.0, overlap = 0.0;
-  for (size_t n = 0; n < c.contactStatus.size(); ++n) {
-    if (c.contactMaster.empty() || c.contactMaster[n] == 0.0) continue;  // not a contact node
-    ++counts[static_cast<int>(c.contactStatus[n])];
-    friction += std::hypot(c.contactT1[n], c.contactT2[n]);
-    peakPressure = std::max(peakPressure, c.contactPressure[n]);
-    opening = std::max(opening, c.contactOpening[n]);
-    overlap = std::max(overlap, -c.contactOpening[n]);
-  }
-  return nlohmann::json::array({{{"interface", c.interfaceName},
-                                 {"normal_force", c.totalNormalForce},
-                                 {"friction_force", friction},
-                                 {"no_contact", counts[0]},
-                                 {"stick", counts[1]},
-                                 {"slip", counts[2]},
-                                 {"peak_pressure", peakPressure},
-                                 {"largest_opening", opening},
-                                 {"largest_overlap", overlap}}});
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& i : c.interfaces)
+    list.push_back({{"name", i.name},
+                    {"interface", i.surfaces},
+                    {"friction_model", core::nameOf(contact::kFrictionModelNames, i.law.model)},
+                    {"normal_force", i.normalForce},
+                    {"contact_force", i.force},
+                    {"friction_force", i.frictionForce},
+                    {"no_contact", i.counts[0]},
+                    {"stick", i.counts[1]},
+                    {"slip", i.counts[2]},
+                    {"peak_pressure", i.peakPressure},
+                    {"largest_opening", i.largestOpening},
+                    {"largest_overlap", i.largestOverlap}});
+  return list;
 }
 
 /// The console line of each interface (interfaceSummary's numbers).
 std::string interfaceLine(const ContactSolveResult& c) {
   std::ostringstream line;
   for (const auto& i : interfaceSummary(c))
-    line << "  interface " << i["interface"].get<std::string>() << ": normal force " << i["normal_force"].get<double>()
+    line << "  interface " << (i["name"].get<std::string>().empty() ? "" : i["name"].get<std::string>() + " ")
+         << i["interface"].get<std::string>() << ": " << i["no_contact"].get<int>() << " no contact, "
+         << i["stick"].get<int>() << " stick, " << i["slip"].get<int>() << " slip, normal force " << i["normal_force"].get<double>()
          << ", friction force " << i["friction_force"].get<double>() << ", peak pressure "
          << i["peak_pressure"].get<double>() << ", largest opening " << i["largest_opening"].get<double>()
          << ", largest overlap " << i["largest_overlap"].get<double>() << "\n";
@@ -230,12 +229,29 @@ nlohmann::json setupSummary(const Scene& scene, const SetupReport& report, const
   j["n_nodes"] = scene.mesh.numNodes();
   j["n_elements"] = scene.mesh.numElements();
   j["stiffness_nonzeros"] = report.nnz;
+  // Over every interface (sums, maxima); each interface's own in "contact_search".
+  GO overlaps = 0, limited = 0;
+  double largestOverlap = 0.0, largestLimit = 0.0;
+  j["contact_search"] = nlohmann::json::array();
+  for (const auto& i : B.interfaces) {
+    overlaps += i.overlappingPairs;
+    limited += i.limitedMortarGaps;
+    largestOverlap = std::max(largestOverlap, i.largestOverlap);
+    largestLimit = std::max(largestLimit, i.largestGapLimit);
+    j["contact_search"].push_back({{"interface", i.label},
+                                   {"paired", i.pairedSlaveNodes},
+                                   {"unpaired", i.unpairedSlaveNodes},
+                                   {"initial_overlaps", i.overlappingPairs},
+                                   {"largest_initial_overlap", i.largestOverlap},
+                                   {"limited_mortar_gaps", i.limitedMortarGaps},
+                                   {"largest_gap_limit", i.largestGapLimit}});
+  }
   j["contact_nodes_paired"] = B.contact.size();
-  j["contact_nodes_unpaired"] = B.unpairedSlaveNodes;
-  j["contact_initial_overlaps"] = B.overlappingPairs;
-  j["contact_limited_mortar_gaps"] = B.limitedMortarGaps;
-  j["contact_largest_gap_limit"] = B.largestGapLimit;
-  j["contact_largest_initial_overlap"] = B.largestOverlap;
+  j["contact_nodes_unpaired"] = B.unpairedSlaveNodes();
+  j["contact_initial_overlaps"] = overlaps;
+  j["contact_limited_mortar_gaps"] = limited;
+  j["contact_largest_gap_limit"] = largestLimit;
+  j["contact_largest_initial_overlap"] = largestOverlap;
   j["times"] = {{"mesh_s", scene.meshSeconds},
                 {"decomposition_s", scene.decompositionSeconds},
                 {"assembly_s", report.assemblySeconds}};
@@ -247,15 +263,29 @@ namespace {
 /// (ConstraintMatrix::limitedMortarGaps), naming the interface; empty where none were.
 /// Compare the change with the displacements expected: where it is not small against them,
 /// the slave mesh is too coarse for the master's curvature.
-std::string limitedGapsWarning(const Scene& scene, const feti::ConstraintMatrix& B) {
-  if (B.limitedMortarGaps == 0) return "";
+std::string limitedGapsWarning(const feti::ContactInterfaceRows& i) {
+  if (i.limitedMortarGaps == 0) return "";
   std::ostringstream line;
-  line << "  contact " << scene.contact.slaveSideSet << " -> " << scene.contact.masterSideSet << ": "
-       << B.limitedMortarGaps << " mortar gaps kept within the gap between the surfaces (changed by up to "
-       << B.largestGapLimit
+  line << "  " << i.label << ": " << i.limitedMortarGaps
+       << " mortar gaps kept within the gap between the surfaces (changed by up to " << i.largestGapLimit
        << "): the slave elements are coarse for the master's curvature there; if that is not small against "
-          "the displacements, refine the slave side or use Contact/Discretization = Node To Surface\n";
+          "the displacements, refine the slave side or use "
+       << i.list << "/Discretization = Node To Surface\n";
   return line.str();
+}
+
+/// One line per contact interface: its pairs, out-of-reach slave nodes and initial overlaps.
+std::string contactSearchLines(const feti::ConstraintMatrix& B) {
+  if (B.interfaces.empty()) return "  contact: none (linear T-FETI)\n";
+  std::ostringstream out;
+  for (const auto& i : B.interfaces) {
+    out << "  " << i.label << ": " << i.pairedSlaveNodes << " slave nodes paired, " << i.unpairedSlaveNodes
+        << " out of reach (no master face facing them within " << i.list << "/Search Distance: no rows), "
+        << i.overlappingPairs << " with initial overlap";
+    if (i.overlappingPairs > 0) out << " (largest " << i.largestOverlap << ")";
+    out << "\n" << limitedGapsWarning(i);
+  }
+  return out.str();
 }
 }  // namespace
 
@@ -269,14 +299,7 @@ std::string setupReport(const std::string& input, const Scene& scene, const Setu
       << " thread(s)\n"
       << "  n_primal = " << report.nPrimal << ", n_dual = " << B.numRows << " (removed " << B.removedRedundantRows
       << " redundant rows), n_rigid = " << report.nRigid << "\n"
-      << (scene.contact.hasContact()
-              ? "  contact: " + std::to_string(B.contact.size()) + " slave nodes paired, " +
-                    std::to_string(B.unpairedSlaveNodes) +
-                    " out of reach (no master face facing them within Contact/Search Distance: no rows), " +
-                    std::to_string(B.overlappingPairs) + " with initial overlap" +
-                    (B.overlappingPairs > 0 ? " (largest " + std::to_string(B.largestOverlap) + ")" : "") + "\n" +
-                    limitedGapsWarning(scene, B)
-              : std::string("  contact: none (linear T-FETI)\n"))
+      << contactSearchLines(B)
       << "  set-up: " << setupSeconds << " s (assembly " << report.assemblySeconds << " s, B " << constraintSeconds
       << " s)\n";
   return out.str();

@@ -13,6 +13,7 @@
 #include "tribos/mesh/ExodusIO.hpp"
 #include "tribos/mesh/TwoBricks.hpp"
 #include "tribos/stack/SameMeshOnEveryRank.hpp"
+#include "tribos/stack/SceneParameters.hpp"
 
 namespace tribos::stack {
 
@@ -169,7 +170,10 @@ void readLoads(const ParameterList& list, const std::string& source, bool paperD
       if (!sideSet.empty()) {
         scene.mesh.sideSet(sideSet);  // existence check, names the set
         scene.loads.tractions.push_back(
-            fem::Traction{sideSet, vector3(load, "Traction", where), getOr(load, "Pressure", 0.0)});
+            fem::Traction{sideSet,
+                          load.isParameter("Traction") ? vector3(load, "Traction", where)
+                                                       : std::array<double, 3>{0.0, 0.0, 0.0},
+                          getOr(load, "Pressure", 0.0)});
       } else {
         core::requireInput(getOr(load, "Pressure", 0.0) == 0.0,
                            where + ": Pressure acts on faces: give it with \"Side Set\" or \"Node Set\", not "
@@ -240,27 +244,15 @@ Scene buildScene(const ParameterList& tribos, const std::string& source, MPI_Com
   readLoads(tribos.sublist("Loads"), source, twoBricks, scene);
 
   readBoundary(tribos.sublist("Boundary"), source, twoBricks, scene);
-  const ParameterList& contact = tribos.sublist("Contact");
-  scene.contact.frictionModel = core::valueOf(contact::kFrictionModelNames, contact.get<std::string>("Friction Model"));
-  scene.contact.F1 = contact.get<double>("F1");
-  scene.contact.F2 = contact.get<double>("F2");
-  scene.contact.slaveSideSet = contact.get<std::string>("Slave Side Set");
-  scene.contact.masterSideSet = contact.get<std::string>("Master Side Set");
-  scene.contact.t1Direction = vector3(contact, "T1 Direction", source + ": Contact");
-  scene.contact.searchDistance = contact.get<double>("Search Distance");
-  scene.contact.discretization =
-      core::valueOf(feti::kContactDiscretizationNames, contact.get<std::string>("Discretization"));
-  core::requireInput(scene.contact.slaveSideSet.empty() == scene.contact.masterSideSet.empty(),
-                     source + ": Contact: give both \"Slave Side Set\" and \"Master Side Set\", or "
-                              "neither (no contact)");
-  for (const auto* name : {&scene.contact.slaveSideSet, &scene.contact.masterSideSet}) {
-    if (name->empty()) continue;
-    try {
-      mesh::requireSideSet(scene.mesh, *name);  // a node set of that name stands for its boundary faces
-    } catch (const InputError& e) {
-      throw InputError(source + ": Contact: " + e.what());
+  scene.contacts = readContactInterfaces(tribos.sublist("Contact"), source);
+  for (const auto& one : scene.contacts)
+    for (const auto* name : {&one.rows.slaveSideSet, &one.rows.masterSideSet}) {
+      try {
+        mesh::requireSideSet(scene.mesh, *name);  // a node set of that name stands for its boundary faces
+      } catch (const InputError& e) {
+        throw InputError(source + ": " + one.rows.list() + ": " + e.what());
+      }
     }
-  }
   return scene;
 }
 

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "tribos/contact/ContactSolver.hpp"
+#include "tribos/core/Errors.hpp"
 #include "tribos/core/ParameterTable.hpp"
 #include "tribos/core/Validators.hpp"
 #include "tribos/feti/TotalFeti.hpp"
@@ -26,21 +27,31 @@ void setWithoutDefault(ParameterList& pl, const std::string& name, const std::st
   pl.setEntry(name, Teuchos::ParameterEntry(std::numeric_limits<double>::quiet_NaN(), false, false, doc, validator));
 }
 
-// The friction law, bound to contact::FrictionSettings (its member initialisers are the
-// defaults): declared in the Contact list and read back by readFrictionParameters.
-const core::ParameterTable<contact::FrictionSettings>& frictionTable() {
-  using F = contact::FrictionSettings;
+// The friction law of an interface, bound to contact::FrictionLaw (its member initialisers are
+// the defaults): declared in the Contact list and its interface sublists, read back by
+// readContactInterfaces.
+const core::ParameterTable<contact::FrictionLaw>& frictionLawTable() {
+  using L = contact::FrictionLaw;
   static const auto table =
-      core::ParameterTable<F>()
-          .add("Friction Model", &F::model,
+      core::ParameterTable<L>()
+          .add("Friction Model", &L::model,
                "\"None\" (frictionless), \"Tresca\" (given slip bound), \"Coulomb\" (successive "
                "approximations on the slip bound), \"Bonded\" (contact rows as equalities)",
                contact::kFrictionModelNames)
-          .add("F1", &F::F1, "friction coefficient along t1 (isotropic when F1 = F2)",
+          .add("F1", &L::F1, "friction coefficient along t1 (isotropic when F1 = F2)",
                core::closedInterval(0.0, core::kMaxMagnitude))
-          .add("F2", &F::F2, "friction coefficient along t2", core::closedInterval(0.0, core::kMaxMagnitude))
-          .add("Slip Bound", &F::slipBound, "Tresca: the given slip bound g as a nodal force [force]",
-               core::closedInterval(0.0, core::kMaxMagnitude))
+          .add("F2", &L::F2, "friction coefficient along t2", core::closedInterval(0.0, core::kMaxMagnitude))
+          .add("Slip Bound", &L::slipBound, "Tresca: the given slip bound g as a nodal force [force]",
+               core::closedInterval(0.0, core::kMaxMagnitude));
+  return table;
+}
+
+// How Coulomb's slip bound is found, bound to contact::FrictionSettings: one choice for the
+// whole solve (the flat Contact list only).
+const core::ParameterTable<contact::FrictionSettings>& fixedPointTable() {
+  using F = contact::FrictionSettings;
+  static const auto table =
+      core::ParameterTable<F>()
           .add("Fixed Point", &F::fixedPoint,
                "Coulomb: \"Inexact\" updates the slip bound g := lambda_nu after every SMALSE-M outer iteration "
                "(the paper's choice); \"Exact\" solves every Tresca problem to Solver/Tolerance first",
@@ -138,8 +149,8 @@ void boundaryParameters(ParameterList& pl) {
                 core::finiteArray(3, core::kMaxMagnitude));
 }
 
-void contactParameters(ParameterList& pl) {
-  frictionTable().declare(pl);
+// The surfaces and rows of one interface: in the flat Contact list and in each Contact/<name>.
+void interfaceParameters(ParameterList& pl) {
   pl.set("Slave Side Set", std::string(""),
          "contact surface of the slave body (its nodes are projected on the master surface); empty with an "
          "empty Master Side Set: no contact (the paper's pair: contact_aluminium). Without a side set of this name, "
@@ -163,6 +174,21 @@ void contactParameters(ParameterList& pl) {
          "gets no contact rows (it cannot touch). The initial gap d is the signed distance along the master "
          "normal (negative: initial overlap)",
          core::atLeast(0.0));
+}
+
+void contactParameters(ParameterList& pl) {
+  frictionLawTable().declare(pl);
+  fixedPointTable().declare(pl);
+  interfaceParameters(pl);
+  ParameterList& named = pl.sublist(
+      "*", false,
+      "one sublist per contact interface, any name (several bodies and interfaces): its Slave Side Set and Master "
+      "Side Set (required), and any of Friction Model, F1, F2, Slip Bound, T1 Direction, Discretization, Search "
+      "Distance, which default to the flat Contact list's values. A node may be the slave of one interface only; "
+      "a body may be the slave of one interface and the master of another; both surfaces of an interface must be "
+      "on different bodies (no self-contact). With such sublists the flat Slave/Master Side Set stay empty");
+  frictionLawTable().declare(named);
+  interfaceParameters(named);
 }
 
 // Thresholds measured once (doc/measurements/coarse_problem.md, doc/factorization.md) and kept as
@@ -271,9 +297,63 @@ Teuchos::RCP<const Teuchos::ParameterList> sceneValidParameters() {
   return valid;
 }
 
+namespace {
+// The parameters of `list` that it gives override `rows` (the flat list's values otherwise).
+void readInterfaceRows(const ParameterList& list, feti::ContactInterfaceSpec& rows) {
+  if (list.isParameter("Slave Side Set")) rows.slaveSideSet = list.get<std::string>("Slave Side Set");
+  if (list.isParameter("Master Side Set")) rows.masterSideSet = list.get<std::string>("Master Side Set");
+  if (list.isParameter("T1 Direction")) {
+    const auto& t = list.get<Teuchos::Array<double>>("T1 Direction");
+    rows.t1Direction = {t[0], t[1], t[2]};
+  }
+  if (list.isParameter("Search Distance")) rows.searchDistance = list.get<double>("Search Distance");
+  if (list.isParameter("Discretization"))
+    rows.discretization = core::valueOf(feti::kContactDiscretizationNames, list.get<std::string>("Discretization"));
+}
+}  // namespace
+
+std::vector<ContactInterface> readContactInterfaces(const ParameterList& contactList, const std::string& source) {
+  // The flat list: the one-interface shorthand, and every named interface's defaults.
+  ContactInterface flat;
+  frictionLawTable().read(contactList, flat.law);
+  readInterfaceRows(contactList, flat.rows);
+  std::vector<ContactInterface> named;
+  std::string names;
+  for (auto it = contactList.begin(); it != contactList.end(); ++it) {
+    if (!contactList.entry(it).isList()) continue;
+    ContactInterface one = flat;
+    one.rows.name = contactList.name(it);
+    one.rows.slaveSideSet = one.rows.masterSideSet = "";
+    const ParameterList& list = contactList.sublist(one.rows.name);
+    frictionLawTable().read(list, one.law);
+    readInterfaceRows(list, one.rows);
+    core::requireInput(!one.rows.slaveSideSet.empty() && !one.rows.masterSideSet.empty(),
+                       source + ": " + one.rows.list() + ": give both \"Slave Side Set\" and \"Master Side Set\"");
+    names += (names.empty() ? "" : ", ") + one.rows.list();
+    named.push_back(one);
+  }
+  const bool flatSurfaces = !flat.rows.slaveSideSet.empty() || !flat.rows.masterSideSet.empty();
+  if (!named.empty()) {
+    core::requireInput(!flatSurfaces, source + ": Contact: \"Slave Side Set\" and \"Master Side Set\" describe the "
+                                               "one-interface shorthand; with interface sublists (" + names +
+                                               ") give the surfaces in each sublist and leave these empty");
+  } else if (flatSurfaces) {
+    core::requireInput(!flat.rows.slaveSideSet.empty() && !flat.rows.masterSideSet.empty(),
+                       source + ": Contact: give both \"Slave Side Set\" and \"Master Side Set\", or neither (no "
+                                "contact)");
+    named.push_back(flat);
+  }
+  for (auto& one : named) one.rows.tangentialRows = one.law.model != contact::FrictionModel::None;
+  return named;
+}
+
 contact::FrictionSettings readFrictionParameters(const Teuchos::ParameterList& contactList) {
   contact::FrictionSettings friction;
-  frictionTable().read(contactList, friction);
+  fixedPointTable().read(contactList, friction);
+  const auto interfaces = readContactInterfaces(contactList, "Contact");
+  friction.laws.clear();
+  for (const auto& one : interfaces) friction.laws.push_back(one.law);
+  if (friction.laws.empty()) frictionLawTable().read(contactList, friction.laws.emplace_back());
   return friction;
 }
 

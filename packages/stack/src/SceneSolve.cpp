@@ -5,7 +5,9 @@
 namespace tribos::stack {
 
 bool isContactProblem(const Scene& scene) {
-  return scene.contact.hasContact() && scene.contact.frictionModel != contact::FrictionModel::Bonded;
+  for (const auto& one : scene.contacts)
+    if (one.law.model != contact::FrictionModel::Bonded) return true;
+  return false;
 }
 
 std::string describeSolverChain(const Scene& scene, const Teuchos::ParameterList& tribos) {

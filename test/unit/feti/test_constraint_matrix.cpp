@@ -39,9 +39,7 @@ mesh::TwoBricksSpec specFor(int subdomains, int hOverH) {
 feti::ConstraintSpec paperSpec(bool tangential = true) {
   feti::ConstraintSpec spec;
   spec.dirichletNodeSets = {"dirichlet_aluminium", "dirichlet_steel"};
-  spec.slaveSideSet = "contact_aluminium";
-  spec.masterSideSet = "contact_steel";
-  spec.tangentialRows = tangential;
+  spec.interfaces.push_back({"", "contact_aluminium", "contact_steel", tangential});
   return spec;
 }
 
@@ -265,7 +263,7 @@ TEST(ConstraintMatrix, contactFramesAndGaps) {
   for (LO n : steelNodes) lifted.mesh.coords[n][2] += 0.5;
   lifted.d = mesh::buildDecomposition(lifted.mesh, mesh::structuredPartition(lifted.mesh, {{2, 1, 1}, 2}));
   auto spec = paperSpec();
-  spec.searchDistance = 0.6;
+  spec.interfaces[0].searchDistance = 0.6;
   const auto B = feti::buildConstraintMatrix(lifted.mesh, lifted.d, spec, 1);
   ASSERT_EQ(B.contact.size(), 12u);
   for (const auto& c : B.contact) {
@@ -278,27 +276,28 @@ TEST(ConstraintMatrix, contactFramesAndGaps) {
 
   // Nothing within the search distance: the slave nodes cannot touch, so they get no
   // contact rows, and are counted (15 slave nodes, 3 of them on the clamped edge).
-  spec.searchDistance = 0.4;
+  spec.interfaces[0].searchDistance = 0.4;
   {
     const auto far = feti::buildConstraintMatrix(lifted.mesh, lifted.d, spec, 1);
     EXPECT_TRUE(far.contact.empty());
-    EXPECT_EQ(far.unpairedSlaveNodes, 15);
+    EXPECT_EQ(far.unpairedSlaveNodes(), 15);
     EXPECT_EQ(far.count(feti::RowKind::ContactNormal), 0);
   }
 
   // Search distance 0: coincident nodes still pair.
   spec = paperSpec();
-  spec.searchDistance = 0.0;
+  spec.interfaces[0].searchDistance = 0.0;
   EXPECT_EQ(feti::buildConstraintMatrix(b.mesh, b.d, spec, 1).contact.size(), 12u);
 
   // Overlapping bodies (steel lowered 0.5 into the aluminium): a negative gap along the
   // master normal, reported, not an error.
   for (LO n : steelNodes) lifted.mesh.coords[n][2] -= 1.0;
-  spec.searchDistance = 0.6;
+  spec.interfaces[0].searchDistance = 0.6;
   const auto overlap = feti::buildConstraintMatrix(lifted.mesh, lifted.d, spec, 1);
   ASSERT_EQ(overlap.contact.size(), 12u);
-  EXPECT_EQ(overlap.overlappingPairs, 15);
-  EXPECT_NEAR(overlap.largestOverlap, 0.5, 1e-14);
+  ASSERT_EQ(overlap.interfaces.size(), 1u);
+  EXPECT_EQ(overlap.interfaces[0].overlappingPairs, 15);
+  EXPECT_NEAR(overlap.interfaces[0].largestOverlap, 0.5, 1e-14);
   for (const auto& c : overlap.contact) {
     EXPECT_NEAR(c.normal[2], 1.0, 1e-14);
     EXPECT_NEAR(c.gap, -0.5, 1e-14);
@@ -339,10 +338,10 @@ TEST(ConstraintMatrix, badInputNamesTheSet) {
   spec.dirichletNodeSets = {"no_such_set"};
   EXPECT_THROW(feti::buildConstraintMatrix(mesh, d, spec, 1), core::InputError);
   spec = paperSpec();
-  spec.masterSideSet = "";
+  spec.interfaces[0].masterSideSet = "";
   EXPECT_THROW(feti::buildConstraintMatrix(mesh, d, spec, 1), core::InputError);
   spec = paperSpec();
-  spec.slaveSideSet = "no_such_side_set";
+  spec.interfaces[0].slaveSideSet = "no_such_side_set";
   try {
     feti::buildConstraintMatrix(mesh, d, spec, 1);
     ADD_FAILURE() << "no error";
@@ -351,7 +350,7 @@ TEST(ConstraintMatrix, badInputNamesTheSet) {
   }
   // No contact at all: only gluing and Dirichlet rows.
   spec = paperSpec();
-  spec.slaveSideSet = spec.masterSideSet = "";
+  spec.interfaces.clear();
   const auto B = feti::buildConstraintMatrix(mesh, d, spec, 1);
   EXPECT_EQ(B.numRows, 108);
   EXPECT_TRUE(B.contact.empty());

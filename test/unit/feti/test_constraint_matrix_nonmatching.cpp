@@ -75,12 +75,10 @@ feti::DisplacementCondition condition(const std::string& set, const std::string&
 /// y0 faces, u_z = 0 under the lower body), frictionless (normal rows only).
 feti::ConstraintSpec patchSpec(const std::string& discretization = "Node To Surface") {
   feti::ConstraintSpec spec;
-  spec.discretization = core::valueOf(feti::kContactDiscretizationNames, discretization);
   spec.displacementConditions = {condition("lower_x0", "x"), condition("upper_x0", "x"), condition("lower_y0", "y"),
                                  condition("upper_y0", "y"), condition("lower_z0", "z")};
-  spec.slaveSideSet = "lower_z1";
-  spec.masterSideSet = "upper_z0";
-  spec.tangentialRows = false;
+  spec.interfaces.push_back({"", "lower_z1", "upper_z0", false});
+  spec.interfaces[0].discretization = core::valueOf(feti::kContactDiscretizationNames, discretization);
   return spec;
 }
 
@@ -94,16 +92,14 @@ feti::ConstraintSpec patchSpec(const std::string& discretization = "Node To Surf
 /// edge (u_x prescribed on both sides), T2 (along y) on the y = 0 edge.
 feti::ConstraintSpec droppingSpec(const std::string& discretization = "Node To Surface") {
   feti::ConstraintSpec spec;
-  spec.discretization = core::valueOf(feti::kContactDiscretizationNames, discretization);
   spec.displacementConditions = {condition("lower_x0", "x"),
                                  condition("upper_x0", "x"),
                                  condition("lower_y0", "y"),
                                  condition("upper_y0", "y"),
                                  condition("lower_y1", "z", {0.0, 0.0, -0.001}),
                                  condition("upper_x1", "z", {0.0, 0.0, -0.0025})};
-  spec.slaveSideSet = "lower_z1";
-  spec.masterSideSet = "upper_z0";
-  spec.tangentialRows = true;
+  spec.interfaces.push_back({"", "lower_z1", "upper_z0", true});
+  spec.interfaces[0].discretization = core::valueOf(feti::kContactDiscretizationNames, discretization);
   return spec;
 }
 
@@ -263,7 +259,7 @@ TEST(ConstraintMatrixNonmatching, contactRowsMeasureTheInterpolatedGap) {
     // A genuine gap that varies over the surface: the master bottom tilted upwards in y.
     for (LO n : m.nodeSet("upper_z0").nodes) m.coords[n][2] += 0.01 * (1.0 + m.coords[n][1]);
     auto s = spec;
-    s.searchDistance = 0.1;
+    s.interfaces[0].searchDistance = 0.1;
     const auto b = build(m, planePartition(m, kPlaneSplit), s);
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> value(-1.0, 1.0);
@@ -411,8 +407,7 @@ TEST(ConstraintMatrixNonmatching, matchingMeshesGiveNodeToNodeRows) {
   const double split[2] = {1.0, 1.0};
   feti::ConstraintSpec spec;
   spec.displacementConditions = {condition("lower_z0", "xyz")};
-  spec.slaveSideSet = "lower_z1";
-  spec.masterSideSet = "upper_z0";
+  spec.interfaces.push_back({"", "lower_z1", "upper_z0"});
   const auto b = build(m, planePartition(m, split), spec);
   const auto rows = rowsOf(b.B);
   ASSERT_EQ(b.B.contact.size(), 25u);

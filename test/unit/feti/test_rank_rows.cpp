@@ -18,8 +18,7 @@ namespace {
 feti::ConstraintSpec paperSpec() {
   feti::ConstraintSpec spec;
   spec.dirichletNodeSets = {"dirichlet_aluminium", "dirichlet_steel"};
-  spec.slaveSideSet = "contact_aluminium";
-  spec.masterSideSet = "contact_steel";
+  spec.interfaces.push_back({"", "contact_aluminium", "contact_steel"});
   return spec;
 }
 

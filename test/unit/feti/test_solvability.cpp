@@ -59,8 +59,7 @@ const std::vector<std::pair<mesh::TwoBricksSpec, int>> kDecompositions = {
 feti::ConstraintSpec spec(std::vector<std::string> dirichlet, bool contact, bool tangential) {
   feti::ConstraintSpec cs;
   cs.dirichletNodeSets = std::move(dirichlet);
-  if (contact) cs.slaveSideSet = "contact_aluminium", cs.masterSideSet = "contact_steel";
-  cs.tangentialRows = tangential;
+  if (contact) cs.interfaces.push_back({"", "contact_aluminium", "contact_steel", tangential});
   return cs;
 }
 

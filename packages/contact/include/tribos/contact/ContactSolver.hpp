@@ -24,9 +24,11 @@
 namespace tribos::contact {
 
 struct FrictionSettings {
-  FrictionModel model = FrictionModel::Coulomb;
-  double F1 = 0.3, F2 = 0.3;       ///< friction coefficients along t1, t2
-  double slipBound = 0.0;          ///< Tresca: g as a nodal force [force]
+  /// The law of each contact interface, indexed by feti::ContactNode::interface. Bonded
+  /// interfaces keep their rows as equalities (tied) beside the others' inequalities.
+  std::vector<FrictionLaw> laws{FrictionLaw{}};
+  /// True when some interface's law is `model`.
+  bool uses(FrictionModel model) const;
   FixedPoint fixedPoint = FixedPoint::Inexact;
   /// Coulomb, Inexact: Epsilon stops only once an update moved g by at most eps (relative);
   /// Paper on SMALSE-M's criteria alone, as the paper's Section 5 (its Table 1 counts).
@@ -88,8 +90,9 @@ struct ContactResult {
   std::vector<double> lambda;
 };
 
-/// Solves the contact problem. B's contact rows must have tangential rows unless model is
-/// None. `preconditioner` other than None (then feti must have been built with its blocks):
+/// Solves the contact problem. B's contact rows must have tangential rows unless their
+/// interface's model is None; some interface must be None, Tresca or Coulomb (a scene of
+/// Bonded interfaces only is linear). `preconditioner` other than None (then feti must have been built with its blocks):
 /// MPGP's preconditioning in face by P D P. Collective.
 ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMatrix& B,
                            const FrictionSettings& friction, const qp::SmalseSettings& smalse,

@@ -13,6 +13,13 @@ inline constexpr core::EnumNames<FrictionModel, 4> kFrictionModelNames{{{"None",
                                                                         {"Tresca", FrictionModel::Tresca},
                                                                         {"Coulomb", FrictionModel::Coulomb},
                                                                         {"Bonded", FrictionModel::Bonded}}};
+/// The friction law of one contact interface (Contact, or Contact/<name>).
+struct FrictionLaw {
+  FrictionModel model = FrictionModel::Coulomb;
+  double F1 = 0.3, F2 = 0.3;       ///< friction coefficients along t1, t2
+  double slipBound = 0.0;          ///< Tresca: g as a nodal force [force]
+};
+
 /// Contact/Fixed Point: Coulomb's slip bound updated after every outer iteration, or after
 /// every Tresca problem solved to epsilon.
 enum class FixedPoint { Inexact, Exact };

@@ -51,21 +51,35 @@ enum class ContactDiscretization { Mortar, NodeToSurface };
 inline constexpr core::EnumNames<ContactDiscretization, 2> kContactDiscretizationNames{
     {{"Mortar", ContactDiscretization::Mortar}, {"Node To Surface", ContactDiscretization::NodeToSurface}}};
 
-struct ConstraintSpec {
-  std::vector<std::string> dirichletNodeSets;  ///< node sets with u = 0 (all components)
-  std::vector<DisplacementCondition> displacementConditions;
-  std::string slaveSideSet, masterSideSet;     ///< contact surfaces; both empty = no contact
-  bool tangentialRows = true;                  ///< T1, T2 rows (friction or bonded); false: N only
+/// One contact interface (Contact or Contact/<name>): a slave surface paired with a master
+/// surface. A node may be the slave of one interface only (buildConstraintMatrix refuses it
+/// otherwise); it may be the master of others. Both surfaces of one interface must lie in
+/// different bodies (self-contact is not modelled).
+struct ContactInterfaceSpec {
+  std::string name;                        ///< for messages and results ("" for the flat Contact list)
+  std::string slaveSideSet, masterSideSet;
+  bool tangentialRows = true;              ///< T1, T2 rows (friction or bonded); false: N only
   std::array<double, 3> t1Direction{1.0, 0.0, 0.0};  ///< t1 = this projected on the tangent plane
   /// A slave node is projected on the master surface within this distance (the mesh's
   /// units); a slave node farther from every master face gets no contact rows.
   double searchDistance = 1e-6;
   ContactDiscretization discretization = ContactDiscretization::Mortar;
+  /// "Contact/<name>", or "Contact" without a name: the parameter list of the interface.
+  std::string list() const { return name.empty() ? "Contact" : "Contact/" + name; }
+  /// "Contact/<name> (slave -> master)", or "Contact (slave -> master)" without a name.
+  std::string label() const { return list() + " (" + slaveSideSet + " -> " + masterSideSet + ")"; }
+};
+
+struct ConstraintSpec {
+  std::vector<std::string> dirichletNodeSets;  ///< node sets with u = 0 (all components)
+  std::vector<DisplacementCondition> displacementConditions;
+  std::vector<ContactInterfaceSpec> interfaces;  ///< none: no contact
 };
 
 /// One slave contact node r with its projection and frame (DESIGN.md conventions).
 struct ContactNode {
   LO slaveNode = -1;                       ///< global mesh node id
+  int interface = 0;                       ///< index into ConstraintSpec::interfaces
   LO masterNode = -1;                      ///< the master vertex with the largest weight
   std::vector<LO> masterNodes;             ///< the master nodes of the rows (ascending)
   std::vector<double> masterWeights;       ///< their weights (sum 1; barycentric or dual mortar)
@@ -92,6 +106,23 @@ struct SubdomainBlock {
   std::vector<double> value;
 };
 
+/// What the contact search and the mortar integration found on one interface (every pair,
+/// on every rank).
+struct ContactInterfaceRows {
+  std::string label;                 ///< ContactInterfaceSpec::label()
+  std::string list;                  ///< ContactInterfaceSpec::list()
+  GO pairedSlaveNodes = 0;           ///< slave nodes with a master face within the search distance
+  GO unpairedSlaveNodes = 0;         ///< slave nodes with no master face within the search distance
+  std::vector<LO> unpairedSample;    ///< the first few of them (global node ids), for messages
+  double searchDistance = 0.0;       ///< its search distance, for messages
+  GO overlappingPairs = 0;           ///< contact nodes whose row has a negative initial gap (beyond round-off)
+  double largestOverlap = 0.0;       ///< max(-gap) over them
+  /// Mortar rows whose weighted gap was kept within the pointwise gap over the node's support
+  /// (mesh::MortarRow::gapLimited): slave elements coarse for the master's curvature.
+  GO limitedMortarGaps = 0;
+  double largestGapLimit = 0.0;  ///< max |weighted gap - gap kept| over them
+};
+
 struct ConstraintMatrix {
   GO numRows = 0;                    ///< n_d after removing redundant rows
   GO removedRedundantRows = 0;       ///< rows removed as redundant (n_d + this = paper's n_d)
@@ -104,21 +135,15 @@ struct ConstraintMatrix {
   /// is the same on every rank count (issue 9).
   std::vector<GO> rowId;
   std::vector<ContactNode> contact;  ///< contact nodes, in row order
-  GO unpairedSlaveNodes = 0;         ///< slave nodes with no master face within the search distance
-  std::vector<LO> unpairedSample;    ///< the first few of them (global node ids), for messages
-  double searchDistance = 0.0;       ///< Contact/Search Distance, for messages
-  GO overlappingPairs = 0;           ///< contact nodes whose row has a negative initial gap
-  double largestOverlap = 0.0;       ///< max(-gap) over them
-  /// Mortar rows whose weighted gap was kept within the pointwise gap over the node's support
-  /// (mesh::MortarRow::gapLimited): slave elements coarse for the master's curvature.
-  GO limitedMortarGaps = 0;
-  double largestGapLimit = 0.0;  ///< max |weighted gap - gap kept| over them
+  std::vector<ContactInterfaceRows> interfaces;  ///< per ConstraintSpec::interfaces, same order
+  GO unpairedSlaveNodes() const;  ///< over every interface
   std::vector<SubdomainBlock> blocks;  ///< index = global subdomain
   GO count(RowKind k) const;
 };
 
 /// Builds B and c. Throws core::InputError naming the set / node on bad input (unknown
-/// set, a component prescribed twice with different values, folded contact surfaces).
+/// set, a component prescribed twice with different values, folded contact surfaces, a
+/// node that is the slave of two interfaces, an interface within one body).
 /// With `keepForRank` >= 0 the blocks hold only what that rank needs, as after keepRankRows
 /// (its own subdomains whole, of every other subdomain the rows it owns), without the whole
 /// B ever being held (issue 11: at 4 000 subdomains the whole blocks were the largest item of

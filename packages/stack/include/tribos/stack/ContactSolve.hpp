@@ -30,6 +30,18 @@ struct OuterIterationRecord {
   double elapsedSeconds = 0.0;     ///< since the solver stack was set up (factorisation included)
 };
 
+/// One contact interface's resultants and extremes (rank 0; ContactSolveResult::interfaces).
+struct InterfaceResult {
+  std::string name;       ///< the Contact/<name> sublist ("" for the flat Contact list)
+  std::string surfaces;   ///< "slave set -> master set"
+  contact::FrictionLaw law;
+  double normalForce = 0.0;            ///< sum of its normal nodal forces
+  std::array<double, 3> force{};       ///< sum of its nodal contact forces in x, y, z (on the master)
+  double frictionForce = 0.0;          ///< sum of the lengths of its tangential nodal forces
+  std::array<int, 3> counts{0, 0, 0};  ///< its contact nodes: no contact, stick, slip
+  double peakPressure = 0.0, largestOpening = 0.0, largestOverlap = 0.0;
+};
+
 struct ContactSolveResult {
   contact::ContactResult contact;   ///< counters, KKT, status counts (node list: this rank's)
   GlobalDisplacement displacement;  ///< rank 0
@@ -53,7 +65,7 @@ struct ContactSolveResult {
   long long factorNonzeros = 0;       ///< feti::TotalFeti::factorNonzeros
   double bytesPerFApplication = 0.0;  ///< feti::TotalFeti::bytesPerFApplication
   std::string chain;                ///< the solver chain that was built, for verbose output
-  std::string interfaceName;        ///< "slave set -> master set"
+  std::vector<InterfaceResult> interfaces;  ///< per scene interface, in the scene's order (rank 0)
   std::vector<OuterIterationRecord> history;  ///< one per outer iteration (rank 0)
 };
 

@@ -33,14 +33,11 @@ inline constexpr core::EnumNames<MeshDecomposition, 2> kMeshDecompositionNames{
 /// The validated Mesh list's generator.
 MeshGenerator meshGenerator(const Teuchos::ParameterList& meshList);
 
-struct ContactSettings {
-  contact::FrictionModel frictionModel = contact::FrictionModel::None;
-  double F1 = 0.0, F2 = 0.0;  ///< friction coefficients along t1, t2
-  std::string slaveSideSet, masterSideSet;
-  std::array<double, 3> t1Direction{1.0, 0.0, 0.0};
-  double searchDistance = 1e-6;
-  feti::ContactDiscretization discretization = feti::ContactDiscretization::Mortar;
-  bool hasContact() const { return !slaveSideSet.empty(); }
+/// One contact interface: the flat Contact list (one interface), or each Contact/<name>
+/// sublist (several; readContactInterfaces in SceneParameters.hpp).
+struct ContactInterface {
+  feti::ContactInterfaceSpec rows;  ///< surfaces, t1, search, discretisation (tangentialRows from the law)
+  contact::FrictionLaw law;
 };
 
 struct Scene {
@@ -51,7 +48,7 @@ struct Scene {
   fem::Loads loads;
   std::vector<std::string> dirichletNodeSets;  ///< all components zero
   std::vector<feti::DisplacementCondition> displacementConditions;  ///< Boundary/<name> sublists
-  ContactSettings contact;
+  std::vector<ContactInterface> contacts;  ///< none: no contact
   double meshSeconds = 0.0, decompositionSeconds = 0.0;
 };
 

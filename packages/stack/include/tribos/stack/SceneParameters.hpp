@@ -9,6 +9,11 @@
 #include <Teuchos_ParameterList.hpp>
 #include <Teuchos_RCP.hpp>
 
+#include <string>
+#include <vector>
+
+#include "tribos/stack/Scene.hpp"
+
 namespace tribos::contact {
 struct FrictionSettings;
 }
@@ -18,7 +23,17 @@ namespace tribos::stack {
 /// The complete valid list, built once.
 Teuchos::RCP<const Teuchos::ParameterList> sceneValidParameters();
 
-/// The friction law of a validated "Contact" list (the progress callback left empty).
+/// The contact interfaces of a validated "Contact" list: each Contact/<name> sublist, its
+/// parameters not given there taken from the flat list; or, without sublists, the flat
+/// list's one interface (none when its side sets are empty). Throws core::InputError naming
+/// `source` and the list when surfaces are missing or given both ways. The side sets are
+/// checked against the mesh by buildScene.
+std::vector<ContactInterface> readContactInterfaces(const Teuchos::ParameterList& contactList,
+                                                    const std::string& source);
+
+/// The friction settings of a validated "Contact" list: the fixed point's, and the law of each
+/// interface of readContactInterfaces (the flat law when there is none); the progress
+/// callback left empty.
 contact::FrictionSettings readFrictionParameters(const Teuchos::ParameterList& contactList);
 
 }  // namespace tribos::stack
