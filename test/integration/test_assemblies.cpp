@@ -36,12 +36,13 @@ struct Material {
 constexpr Material kSteel{210000.0, 0.25}, kAluminium{70000.0, 0.33};
 
 /// Foundation z in [-2, 0], block [0, 2], punch [2, 3]; footprint [0, 2]^2.
-mesh::Mesh threeBodies(bool matching = false) {
+mesh::Mesh threeBodies(bool matching = false, double punchLift = 0.0) {
   const int foundationCells = matching ? 4 : 3, punchCells = matching ? 4 : 5;
   const auto foundation =
       test::boxMesh({0.0, 0.0, -2.0}, {2.0, 2.0, 2.0}, {foundationCells, foundationCells, 2}, "foundation");
   const auto block = test::boxMesh({0.0, 0.0, 0.0}, {2.0, 2.0, 2.0}, {4, 4, 2}, "block");
-  const auto punch = test::boxMesh({0.0, 0.0, 2.0}, {2.0, 2.0, 1.0}, {punchCells, punchCells, 1}, "punch");
+  const auto punch =
+      test::boxMesh({0.0, 0.0, 2.0 + punchLift}, {2.0, 2.0, 1.0}, {punchCells, punchCells, 1}, "punch");
   return test::mergeMeshes(test::mergeMeshes(foundation, block), punch);
 }
 
@@ -170,17 +171,63 @@ std::string inputError(const std::vector<std::string>& overrides) {
 
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
-TEST(ThreeBodiesInput, badInterfacesAreInputErrorsNamingThem) {
+/// Materials for the three bodies, the foundation clamped: a scene to add interfaces to.
+std::vector<std::string> inputBase() {
   std::vector<std::string> base = {"Mesh/Subdomains=3", "Boundary/Dirichlet Node Sets={foundation_z0}"};
   for (const char* body : {"punch", "block", "foundation"}) {
     base.push_back(std::string("Materials/") + body + "/Young Modulus=70000");
     base.push_back(std::string("Materials/") + body + "/Poisson Ratio=0.3");
   }
-  // A node claimed as slave by two interfaces: named, with both interfaces.
+  return base;
+}
+
+TEST(ThreeBodiesInput, aSlaveNodePairedTwiceKeepsTheRowsOfTheEarlierInterface) {
+  // The rule for corners (a body on a floor and against a wall): here the same surfaces twice,
+  // so the later interface keeps nothing and says so.
+  const test::ExodusScene input(threeBodies(true), with(inputBase(), {"Contact/a/Slave Side Set=block_z0",
+                                                                     "Contact/a/Master Side Set=foundation_z1",
+                                                                     "Contact/b/Slave Side Set=block_z0",
+                                                                     "Contact/b/Master Side Set=foundation_z1"}));
+  const auto scene = input.build();
+  const auto B = feti::buildConstraintMatrix(scene.mesh, scene.decomposition, stack::constraintSpec(scene), 1);
+  ASSERT_EQ(B.interfaces.size(), 2u);
+  EXPECT_EQ(B.interfaces[0].pairedSlaveNodes, 25);
+  EXPECT_EQ(B.interfaces[0].sharedSlaveNodes, 0);
+  EXPECT_EQ(B.interfaces[1].pairedSlaveNodes, 0);
+  EXPECT_EQ(B.interfaces[1].sharedSlaveNodes, 25);
+  EXPECT_EQ(B.contact.size(), 25u);
+  for (const auto& node : B.contact) EXPECT_EQ(node.interface, 0);
+}
+
+TEST(ThreeBodiesBonded, aBondedInterfaceTiesTheSurfacesWhereTheyAre) {
+  // The punch lifted 0.1 above the block and bonded to it: tied in place, the gap is kept, and
+  // (matching meshes, node-to-node rows, the punch only translated) the displacements are
+  // those of the touching scene. Before, the bonded rows closed the gap: the punch moved 0.1.
+  const auto lifted = threeBodies(true, 0.1);
+  for (const std::string bottom : {"Bonded", "Coulomb"}) {
+    SCOPED_TRACE("block on foundation: " + bottom);
+    const Stack s{"Bonded", bottom, kSteel, kAluminium, kAluminium};
+    auto scene = with(sceneOf(s), {"Contact/Search Distance=0.2"});
+    const auto touching = test::solveBoxScene(threeBodies(true), scene);
+    const auto apart = test::solveBoxScene(lifted, scene);
+    if (worldRank() != 0) continue;
+    double error = 0.0, size = 0.0;
+    for (size_t n = 0; n < touching.displacement().size(); ++n)
+      for (int c = 0; c < 3; ++c) {
+        error = std::max(error, std::abs(apart.displacement()[n][c] - touching.displacement()[n][c]));
+        size = std::max(size, std::abs(touching.displacement()[n][c]));
+      }
+    EXPECT_LT(error / size, 1e-9) << error / size;
+  }
+}
+
+TEST(ThreeBodiesInput, badInterfacesAreInputErrorsNamingThem) {
+  const auto base = inputBase();
+  // One contact modelled twice with slave and master swapped (a double pass).
   auto message = inputError(with(base, {"Contact/a/Slave Side Set=block_z0", "Contact/a/Master Side Set=foundation_z1",
-                                        "Contact/b/Slave Side Set=block_z0", "Contact/b/Master Side Set=punch_z0"}));
-  EXPECT_TRUE(contains(message, "is a slave node of Contact/a (block_z0 -> foundation_z1) and of Contact/b "
-                                "(block_z0 -> punch_z0)"))
+                                        "Contact/b/Slave Side Set=foundation_z1", "Contact/b/Master Side Set=block_z0"}));
+  EXPECT_TRUE(contains(message, "Contact/b (foundation_z1 -> block_z0) models the contact of Contact/a (block_z0 -> "
+                                "foundation_z1) again with slave and master swapped"))
       << message;
   // Self-contact.
   message = inputError(with(base, {"Contact/self/Slave Side Set=block_z0", "Contact/self/Master Side Set=block_z1"}));

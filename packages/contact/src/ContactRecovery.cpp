@@ -59,7 +59,11 @@ RecoveredLambda recoverPrimal(const feti::TotalFeti& feti, const feti::Constrain
   out.lambda = feti.createDualVector();
   out.lambda->update(1.0, mu, 1.0, feti.lambdaIm(), 0.0);
   const auto lam = out.lambda->getLocalViewHost(Tpetra::Access::ReadOnly);
-  for (size_t k = 0; k < lc.node.size(); ++k) out.lambdaNuMax = std::max(out.lambdaNuMax, std::abs(lam(lc.normalRow[k], 0)));
+  // The scale of the normal-sign and friction residuals: the contact forces of the inequality
+  // rows (a bonded interface's tension would loosen them).
+  for (size_t k = 0; k < lc.node.size(); ++k)
+    if (lc.model[k] != FrictionModel::Bonded)
+      out.lambdaNuMax = std::max(out.lambdaNuMax, std::abs(lam(lc.normalRow[k], 0)));
   out.lambdaNuMax = globalMax(comm, out.lambdaNuMax);
   // The force scale of the status tests: the largest multiplier of any row (gluing and
   // Dirichlet rows carry the internal and reaction forces) or nodal load. It is right when

@@ -98,7 +98,9 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
   if (preconditioner != feti::DualPreconditioner::None)
     M = std::make_unique<ProjectedDualPreconditioner>(feti, preconditioner == feti::DualPreconditioner::Dirichlet);
   RunTally tally(result.counters);
-  const qp::SmalseM smalse(smalseSettingsFor(smalseSettings, friction, M.get(), tally, result));
+  qp::SmalseSettings settings = smalseSettingsFor(smalseSettings, friction, M.get(), tally, result);
+  settings.rightHandSideScale = problem.stoppingScale();
+  const qp::SmalseM smalse(settings);
   auto mu = feti.createDualVector();
   mu->putScalar(0.0);
   const SmalseRun run = [&](const qp::OuterHook& hook, double knownNormA) {
@@ -106,7 +108,7 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
   };
   {
     core::ScopedPhase phase("Contact: SMALSE-M");
-    makeSlipBoundStrategy(friction, eps, kktTolerance)->solve(run, problem, *mu, result);
+    makeSlipBoundStrategy(friction, problem.hasCoulombNodes(), eps, kktTolerance)->solve(run, problem, *mu, result);
   }
   if (result.counters.nonFinite) {
     result.converged = false;

@@ -74,8 +74,15 @@ DualContactProblem::DualContactProblem(const feti::TotalFeti& feti, const feti::
       B_(B),
       comm_(*feti.comm()),
       lc_(localContact(B, feti.comm()->getRank())) {
+  for (const auto& node : B.contact)  // every node on every rank: all throw or none
+    if (node.interface < 0 || static_cast<size_t>(node.interface) >= friction.laws.size())
+      throw std::invalid_argument("tribos::contact: a contact node of interface " + std::to_string(node.interface) +
+                                  " but " + std::to_string(friction.laws.size()) + " friction laws");
   buildRightHandSide();
   buildOmega(friction);
+  buildStoppingScale();
+  const bool mine = std::find(lc_.model.begin(), lc_.model.end(), FrictionModel::Coulomb) != lc_.model.end();
+  coulombNodes_ = globalMax(comm_, mine ? 1.0 : 0.0) > 0.0;
 }
 
 // (1) The homogenised dual problem (paper (19)): c = P h, h = d~ - F lambda_Im.
@@ -89,6 +96,32 @@ void DualContactProblem::buildRightHandSide() {
   feti_.projectExactly(*c_, *c_);
 }
 
+// The scale of epsilon (issue 30). ||P h|| grows with the open gaps d > 0 of the contact rows
+// (h = d~ - F lambda_Im, d~ = B K^+ f - c), but a gap that stays open drives nothing: with 1 mm
+// gaps next to 0.01 mm displacements, epsilon ||P h|| let the displacements err by 2e-3 at
+// epsilon = 1e-5 (doc/stability.md). h_d = h + (rowScale max(d, 0) on the normal rows) keeps the
+// loads, the prescribed displacements, the overlaps (d < 0 drives) and bonded rows' gaps. Scenes without an open
+// gap keep ||P h|| itself (0 here), bit for bit.
+void DualContactProblem::buildStoppingScale() {
+  auto open = feti_.createDualVector();
+  open->putScalar(0.0);
+  double largest = 0.0;
+  {
+    auto v = open->getLocalViewHost(Tpetra::Access::ReadWrite);
+    for (size_t k = 0; k < lc_.node.size(); ++k) {
+      if (lc_.model[k] == FrictionModel::Bonded) continue;  // tied: its gap is held, it drives
+      const auto& node = B_.contact[lc_.node[k]];
+      const double gap = node.rowScale * std::max(node.gap, 0.0);
+      v(lc_.normalRow[k], 0) = gap;
+      largest = std::max(largest, gap);
+    }
+  }
+  if (!(globalMax(comm_, largest) > 0.0)) return;
+  feti_.projectExactly(*open, *open);
+  open->update(1.0, *c_, 1.0);
+  stoppingScale_ = open->norm2();
+}
+
 // (2) Omega: mu_nu >= -lambda_Im,nu; ||F^-1 (mu_t + lambda_Im,t)|| <= g (an ellipse with
 // semi-axes F_j g centred at -lambda_Im,t), each node with the law of its interface; a
 // Bonded node's rows stay free (equalities: tied). g lives in multiplier units: a nodal force
@@ -97,11 +130,7 @@ void DualContactProblem::buildOmega(const FrictionSettings& friction) {
   const auto lIm = feti_.lambdaIm().getLocalViewHost(Tpetra::Access::ReadOnly);
   slip_.assign(lc_.node.size(), 0.0);
   for (size_t k = 0; k < lc_.node.size(); ++k) {
-    const int interface = B_.contact[lc_.node[k]].interface;
-    if (interface < 0 || static_cast<size_t>(interface) >= friction.laws.size())
-      throw std::invalid_argument("tribos::contact: contact node of interface " + std::to_string(interface) +
-                                  " but " + std::to_string(friction.laws.size()) + " friction laws");
-    const FrictionLaw& law = friction.laws[interface];
+    const FrictionLaw& law = friction.laws[B_.contact[lc_.node[k]].interface];
     lc_.model.push_back(law.model);
     lc_.F.push_back({law.F1, law.F2});
     if (law.model == FrictionModel::Bonded) continue;
@@ -151,9 +180,10 @@ double DualContactProblem::coulombExcess(const qp::Vector& current) const {
   const auto lIm = feti_.lambdaIm().getLocalViewHost(Tpetra::Access::ReadOnly);
   double excess = 0.0, normalMax = 0.0;
   for (size_t k = 0; k < lc_.node.size(); ++k) {
+    if (lc_.model[k] != FrictionModel::Coulomb) continue;
     const double lambdaNu = m(lc_.normalRow[k], 0) + lIm(lc_.normalRow[k], 0);
     normalMax = std::max(normalMax, std::abs(lambdaNu));
-    if (lc_.ellipse[k] < 0 || lc_.model[k] != FrictionModel::Coulomb) continue;
+    if (lc_.ellipse[k] < 0) continue;
     std::array<double, 2> lambdaT{0.0, 0.0};
     for (int j = 0; j < 2; ++j)
       if (const LO t = lc_.tangentialRow[k][j]; t >= 0) lambdaT[j] = m(t, 0) + lIm(t, 0);

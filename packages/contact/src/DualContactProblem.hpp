@@ -52,6 +52,11 @@ class DualContactProblem {
   DualContactProblem(const feti::TotalFeti& feti, const feti::ConstraintMatrix& B, const FrictionSettings& friction);
 
   const feti::DualVector& rightHandSide() const { return *c_; }
+  /// The scale of SMALSE-M's tolerances (qp::SmalseSettings::rightHandSideScale): ||P h_d||,
+  /// h_d = h without the open gaps of the contact rows; 0 (||P h|| then) where no gap is open.
+  double stoppingScale() const { return stoppingScale_; }
+  /// Some rank holds a contact node of a Coulomb interface (the same on every rank).
+  bool hasCoulombNodes() const { return coulombNodes_; }
   qp::SeparableSet& omega() { return omega_; }
   const LocalContact& contact() const { return lc_; }
   /// g per local contact node, N-multiplier units.
@@ -71,6 +76,7 @@ class DualContactProblem {
  private:
   std::array<double, 2> semiAxes(size_t k, double g) const;
   void buildRightHandSide();
+  void buildStoppingScale();
   void buildOmega(const FrictionSettings& friction);
 
   const feti::TotalFeti& feti_;
@@ -80,6 +86,8 @@ class DualContactProblem {
   Teuchos::RCP<feti::DualVector> c_;
   qp::SeparableSet omega_;
   std::vector<double> slip_;
+  double stoppingScale_ = 0.0;
+  bool coulombNodes_ = false;
 };
 
 }  // namespace tribos::contact

@@ -128,9 +128,9 @@ class ExactCoulomb final : public SlipBoundStrategy {
 };
 }  // namespace
 
-std::unique_ptr<SlipBoundStrategy> makeSlipBoundStrategy(const FrictionSettings& friction, double eps,
-                                                         double kktTolerance) {
-  if (!friction.uses(FrictionModel::Coulomb)) return std::make_unique<GivenSlipBound>();
+std::unique_ptr<SlipBoundStrategy> makeSlipBoundStrategy(const FrictionSettings& friction, bool coulombNodes,
+                                                         double eps, double kktTolerance) {
+  if (!coulombNodes) return std::make_unique<GivenSlipBound>();
   if (friction.fixedPoint == FixedPoint::Inexact) return std::make_unique<InexactCoulomb>(friction, eps, kktTolerance);
   return std::make_unique<ExactCoulomb>(friction, eps);
 }

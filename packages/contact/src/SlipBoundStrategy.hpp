@@ -25,10 +25,11 @@ class SlipBoundStrategy {
                      ContactResult& result) const = 0;
 };
 
-/// The strategy of `friction`: a fixed bound (None, Tresca: one run), Coulomb inexact (g
+/// The strategy of `friction`: a fixed bound (no Coulomb node: one run), Coulomb inexact (g
 /// updated between the outer iterations of one run) or exact (a run per Tresca problem).
+/// `coulombNodes`: some contact node follows Coulomb's law (DualContactProblem::hasCoulombNodes).
 /// `eps`: SMALSE-M's tolerance; `kktTolerance`: the acceptance test's (solveContact (6)).
-std::unique_ptr<SlipBoundStrategy> makeSlipBoundStrategy(const FrictionSettings& friction, double eps,
-                                                         double kktTolerance);
+std::unique_ptr<SlipBoundStrategy> makeSlipBoundStrategy(const FrictionSettings& friction, bool coulombNodes,
+                                                         double eps, double kktTolerance);
 
 }  // namespace tribos::contact

@@ -7,6 +7,7 @@
 #include "tribos/feti/ConstraintMatrix.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -222,8 +223,8 @@ double freeAlong(const Prescribed& prescribed, LO node, const Vec3& dir) {
 /// `sides` (+1 on the slave, -w_i on master vertex i), its scale recorded in `node`; or
 /// false when it is dropped (the entries it appended are removed): a row (almost) entirely
 /// on prescribed components, or a tangential row on a symmetry plane (both sides held along it).
-bool contactRow(int d, ContactNode& node, const std::vector<std::pair<LO, double>>& sides, const RowContext& ctx,
-                RowList& list, Row& row) {
+bool contactRow(int d, bool tied, ContactNode& node, const std::vector<std::pair<LO, double>>& sides,
+                const RowContext& ctx, RowList& list, Row& row) {
   const Vec3* directions[3] = {&node.normal, &node.t1, &node.t2};
   const Vec3& dir = *directions[d];
   const Prescribed& prescribed = ctx.prescribed;
@@ -277,8 +278,9 @@ bool contactRow(int d, ContactNode& node, const std::vector<std::pair<LO, double
   Entry* entries = list.entriesOf(row);
   const size_t count = list.openCount(row);
   for (size_t e = 0; e < count; ++e) entries[e].value *= scale;
-  // N u <= d: scale ((u_s - chi u_m) . nu) <= scale (d - known part).
-  row.c = scale * ((d == 0 ? node.gap : 0.0) - known);
+  // N u <= d: scale ((u_s - chi u_m) . nu) <= scale (d - known part); tied: = -known part (the
+  // initial gap is kept, not closed).
+  row.c = scale * ((d == 0 && !tied ? node.gap : 0.0) - known);
   row.key = {0, node.slaveNode, d, 0};
   row.owner = ctx.ownerOf(entries, count);
   row.numEntries = static_cast<LO>(count);
@@ -309,6 +311,32 @@ void refuseSelfContact(const mesh::Mesh& mesh, const ContactInterfaceSpec& spec)
       throw core::InputError(spec.label() + ": both surfaces have faces on element block \"" + mesh.blocks[b].name +
                              "\": self-contact (a body against itself) is not supported; the slave and master "
                              "surfaces of an interface must lie on different bodies");
+}
+
+/// Every interface names two surfaces on different bodies, and no contact is modelled twice:
+/// an interface whose slave surface shares nodes with an earlier one's master surface and
+/// whose master surface shares nodes with that one's slave surface (the same contact with the
+/// roles swapped, a "double pass") would split its forces between the two at random.
+void refuseContactsModelledTwice(const mesh::Mesh& mesh, const std::vector<ContactInterfaceSpec>& interfaces) {
+  std::vector<std::vector<LO>> slave, master;
+  for (const auto& spec : interfaces) {
+    core::requireInput(!spec.slaveSideSet.empty() && !spec.masterSideSet.empty(),
+                       spec.label() + ": give both the slave and the master side set");
+    refuseSelfContact(mesh, spec);
+    slave.push_back(mesh::sideSetNodes(mesh, mesh.sideSet(spec.slaveSideSet)));
+    master.push_back(mesh::sideSetNodes(mesh, mesh.sideSet(spec.masterSideSet)));
+  }
+  auto meet = [](const std::vector<LO>& a, const std::vector<LO>& b) {
+    std::vector<LO> both;
+    std::set_intersection(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(both));
+    return !both.empty();
+  };
+  for (size_t j = 0; j < interfaces.size(); ++j)
+    for (size_t i = 0; i < j; ++i)
+      if (meet(slave[j], master[i]) && meet(master[j], slave[i]))
+        throw core::InputError(interfaces[j].label() + " models the contact of " + interfaces[i].label() +
+                               " again with slave and master swapped: give each contact once (a double pass "
+                               "would split its forces between the two at random)");
 }
 
 /// The master side of every pair of an interface (dual mortar or node-to-surface weights).
@@ -367,25 +395,35 @@ ContactInterfaceRows interfaceRows(const mesh::Mesh& mesh, const ContactInterfac
 
 /// (2) Contact rows of interface `index`: slave node minus the master displacement weighted by
 /// the dual mortar or node-to-surface weights (paper Section 3, the transfer mapping chi;
-/// DESIGN.md). `slaveOf` (per mesh node: the interface whose slave it is, -1 if none) refuses
-/// a node claimed as slave by two interfaces.
+/// DESIGN.md). `slaveOf` (per mesh node: the interface that paired it as a slave, -1 if none):
+/// a node an earlier interface paired keeps its rows there (the header's rule).
 void addContactRows(const mesh::Mesh& mesh, const ConstraintSpec& all, int index, const RowContext& ctx,
                     RowList& list, std::vector<int>& slaveOf, ConstraintMatrix& B) {
   const ContactInterfaceSpec& spec = all.interfaces[index];
-  core::requireInput(!spec.slaveSideSet.empty() && !spec.masterSideSet.empty(),
-                     spec.label() + ": give both the slave and the master side set");
-  refuseSelfContact(mesh, spec);
-  const auto search = mesh::searchContactPairs(mesh, spec.slaveSideSet, spec.masterSideSet, spec.searchDistance);
-  for (LO n : mesh::sideSetNodes(mesh, mesh.sideSet(spec.slaveSideSet))) {
-    if (slaveOf[n] >= 0)
-      throw core::InputError("node " + std::to_string(n + 1) + " at " + str(mesh.coords[n]) +
-                             " is a slave node of " + all.interfaces[slaveOf[n]].label() + " and of " + spec.label() +
-                             ": a node may be the slave of one interface only (take it out of one of the slave "
-                             "side sets, e.g. split the faces at the shared edge)");
-    slaveOf[n] = index;
+  mesh::ContactSearchResult search;
+  std::vector<mesh::MortarRow> masterSides;
+  try {
+    search = mesh::searchContactPairs(mesh, spec.slaveSideSet, spec.masterSideSet, spec.searchDistance);
+    masterSides = masterSidesOf(mesh, spec, search);
+  } catch (const core::InputError& e) {
+    throw core::InputError(spec.label() + ": " + e.what());
   }
-  const auto masterSides = masterSidesOf(mesh, spec, search);
+  GO shared = 0;
+  size_t keep = 0;
+  for (size_t p = 0; p < search.pairs.size(); ++p) {
+    int& owner = slaveOf[search.pairs[p].slaveNode];
+    if (owner >= 0) {
+      ++shared;
+      continue;
+    }
+    owner = index;
+    search.pairs[keep] = search.pairs[p];
+    masterSides[keep++] = masterSides[p];
+  }
+  search.pairs.resize(keep);
+  masterSides.resize(keep);
   B.interfaces.push_back(interfaceRows(mesh, spec, search, masterSides));
+  B.interfaces.back().sharedSlaveNodes = shared;
   const int numDirections = spec.tangentialRows ? 3 : 1;
   list.rows.reserve(numDirections * search.pairs.size());
   for (size_t p = 0; p < search.pairs.size(); ++p) {
@@ -397,7 +435,7 @@ void addContactRows(const mesh::Mesh& mesh, const ConstraintSpec& all, int index
     std::vector<Row> nodeRows;
     for (int d = 0; d < numDirections; ++d) {
       Row row;
-      if (!contactRow(d, node, sides, ctx, list, row)) {
+      if (!contactRow(d, spec.tied, node, sides, ctx, list, row)) {
         if (d == 0) break;  // no normal row: the node cannot press, its tangential rows go too
         continue;
       }
@@ -536,6 +574,7 @@ ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decom
   const RowContext ctx{copies, prescribed, decomposition.numSubdomains(), numRanks};
   RowList list;
   ConstraintMatrix B;
+  refuseContactsModelledTwice(mesh, spec.interfaces);
   std::vector<int> slaveOf(mesh.numNodes(), -1);
   for (size_t i = 0; i < spec.interfaces.size(); ++i)
     addContactRows(mesh, spec, static_cast<int>(i), ctx, list, slaveOf, B);  // (2)

@@ -307,7 +307,7 @@ ContactSearchResult searchContactPairs(const Mesh& mesh, const std::string& slav
   // Every reachable node facing away: the sets are swapped or name the wrong surfaces.
   core::requireInput(!result.pairs.empty() || result.facingAway == 0,
                      "contact: the master surface \"" + masterSideSet + "\" faces away from the slave surface \"" +
-                         slaveSideSet + "\" wherever it is within Contact/Search Distance (e.g. " + firstFacingAway +
+                         slaveSideSet + "\" wherever it is within the Search Distance (e.g. " + firstFacingAway +
                          "); check the side sets (outer faces of the two bodies, facing each other)");
   return result;
 }

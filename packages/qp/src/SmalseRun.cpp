@@ -49,7 +49,8 @@ SmalseCounters SmalseRun::finish() {
 }
 
 bool SmalseRun::scale(double knownNormA) {
-  // Scale-free parameters: rho and M relative to ||A||, eta relative to ||c|| (= ||P h||).
+  // Scale-free parameters: rho and M relative to ||A||, eta relative to ||c|| (= ||P h||) or
+  // the caller's rightHandSideScale.
   counters_.normA = knownNormA > 0.0 ? knownNormA
                                      : lanczosNorm(TimedOperator(A_, products_), *map_, s_.normEstimateSteps,
                                                    normEstimateToleranceFor(s_), &counters_.operatorApplications);
@@ -76,6 +77,8 @@ bool SmalseRun::scale(double knownNormA) {
       return false;
     }
   }
+  // The caller's scale where c holds more than drives the solution (open gaps).
+  if (s_.rightHandSideScale > 0.0) normC_ = s_.rightHandSideScale;
   normA_ = counters_.normA;
   rho_ = s_.rho * normA_;
   // ||A_rho|| = max(||PFP||, rho): PFP and rho Q act on the orthogonal spaces Ker G and Im G^T.

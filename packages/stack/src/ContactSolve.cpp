@@ -41,9 +41,11 @@ std::string describeContactChain(const Teuchos::ParameterList& tribos) {
         << smalse.mpgp.stepScale << "/||A||, Gamma " << smalse.mpgp.gamma << ", preconditioned in face: "
         << fetiList.get<std::string>("Preconditioner") << (smalse.mpgp.choppedProportioning ? ", chopped proportioning" : "")
         << ") -> ";
+  const auto interfaces = readContactInterfaces(tribos.sublist("Contact"), "Contact");
   for (size_t i = 0; i < friction.laws.size(); ++i) {
     const auto& law = friction.laws[i];
-    chain << (i > 0 ? "; " : "") << core::nameOf(contact::kFrictionModelNames, law.model);
+    chain << (i > 0 ? "; " : "") << (interfaces.size() > 1 ? interfaces[i].rows.list() + ": " : std::string())
+          << core::nameOf(contact::kFrictionModelNames, law.model);
     if (law.model == contact::FrictionModel::Coulomb)
       chain << " (" << core::nameOf(contact::kFixedPointNames, friction.fixedPoint) << " successive approximations, F1 "
             << law.F1 << ", F2 " << law.F2
@@ -214,12 +216,14 @@ void addOverloadNote(const feti::ConstraintMatrix& B, const contact::FrictionSet
   std::string notes;
   for (size_t i = 0; i < n; ++i) {
     InterfaceResult interface = out.interfaces[i];
+    if (interface.law.model == contact::FrictionModel::Bonded) continue;  // tied: no capacity to exceed
     interface.normalForce = normalForce[i];
     const std::array<double, 3> normal{normals[3 * i], normals[3 * i + 1], normals[3 * i + 2]};
     if (!(std::abs(normal[0]) + std::abs(normal[1]) + std::abs(normal[2]) > 0.0)) continue;
     notes += (notes.empty() ? "" : "; ") + overloadNote(interface, friction, normal, out.appliedLoad);
   }
   if (notes.empty()) return;
+  if (n > 1) notes += " (each interface compared with the whole applied load, as if the load passed through each)";
   out.contact.note = out.contact.note.empty() ? notes : out.contact.note + "; " + notes;
   out.contact.message += "; " + notes;
 }

@@ -36,7 +36,8 @@ const core::ParameterTable<contact::FrictionLaw>& frictionLawTable() {
       core::ParameterTable<L>()
           .add("Friction Model", &L::model,
                "\"None\" (frictionless), \"Tresca\" (given slip bound), \"Coulomb\" (successive "
-               "approximations on the slip bound), \"Bonded\" (contact rows as equalities)",
+               "approximations on the slip bound), \"Bonded\" (contact rows as equalities: the surfaces are tied "
+               "where they are, an initial gap kept)",
                contact::kFrictionModelNames)
           .add("F1", &L::F1, "friction coefficient along t1 (isotropic when F1 = F2)",
                core::closedInterval(0.0, core::kMaxMagnitude))
@@ -343,7 +344,10 @@ std::vector<ContactInterface> readContactInterfaces(const ParameterList& contact
                                 "contact)");
     named.push_back(flat);
   }
-  for (auto& one : named) one.rows.tangentialRows = one.law.model != contact::FrictionModel::None;
+  for (auto& one : named) {
+    one.rows.tangentialRows = one.law.model != contact::FrictionModel::None;
+    one.rows.tied = one.law.model == contact::FrictionModel::Bonded;
+  }
   return named;
 }
 

@@ -52,13 +52,18 @@ inline constexpr core::EnumNames<ContactDiscretization, 2> kContactDiscretizatio
     {{"Mortar", ContactDiscretization::Mortar}, {"Node To Surface", ContactDiscretization::NodeToSurface}}};
 
 /// One contact interface (Contact or Contact/<name>): a slave surface paired with a master
-/// surface. A node may be the slave of one interface only (buildConstraintMatrix refuses it
-/// otherwise); it may be the master of others. Both surfaces of one interface must lie in
-/// different bodies (self-contact is not modelled).
+/// surface. A slave node that two interfaces pair (a corner of a body resting on a floor and
+/// against a wall) keeps its rows in the earlier interface only, counted in
+/// ContactInterfaceRows::sharedSlaveNodes of the later one. A node may be the master of other
+/// interfaces. Both surfaces of one interface must lie in different bodies (self-contact is not
+/// modelled), and one contact may not be modelled twice (slave and master swapped: a double pass).
 struct ContactInterfaceSpec {
   std::string name;                        ///< for messages and results ("" for the flat Contact list)
   std::string slaveSideSet, masterSideSet;
   bool tangentialRows = true;              ///< T1, T2 rows (friction or bonded); false: N only
+  /// Bonded: the rows tie the surfaces where they are (u_slave = chi u_master, an initial gap
+  /// kept); otherwise the normal row reads N u <= d and a gap may close.
+  bool tied = false;
   std::array<double, 3> t1Direction{1.0, 0.0, 0.0};  ///< t1 = this projected on the tangent plane
   /// A slave node is projected on the master surface within this distance (the mesh's
   /// units); a slave node farther from every master face gets no contact rows.
@@ -114,6 +119,7 @@ struct ContactInterfaceRows {
   GO pairedSlaveNodes = 0;           ///< slave nodes with a master face within the search distance
   GO unpairedSlaveNodes = 0;         ///< slave nodes with no master face within the search distance
   std::vector<LO> unpairedSample;    ///< the first few of them (global node ids), for messages
+  GO sharedSlaveNodes = 0;           ///< paired here too but kept by an earlier interface (no rows here)
   double searchDistance = 0.0;       ///< its search distance, for messages
   GO overlappingPairs = 0;           ///< contact nodes whose row has a negative initial gap (beyond round-off)
   double largestOverlap = 0.0;       ///< max(-gap) over them
@@ -142,8 +148,8 @@ struct ConstraintMatrix {
 };
 
 /// Builds B and c. Throws core::InputError naming the set / node on bad input (unknown
-/// set, a component prescribed twice with different values, folded contact surfaces, a
-/// node that is the slave of two interfaces, an interface within one body).
+/// set, a component prescribed twice with different values, folded contact surfaces, an
+/// interface within one body, a contact modelled twice).
 /// With `keepForRank` >= 0 the blocks hold only what that rank needs, as after keepRankRows
 /// (its own subdomains whole, of every other subdomain the rows it owns), without the whole
 /// B ever being held (issue 11: at 4 000 subdomains the whole blocks were the largest item of

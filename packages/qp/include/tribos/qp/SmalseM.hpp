@@ -78,6 +78,10 @@ struct SmalseSettings {
   /// from the measured contraction of ||G mu|| (src/MultiplierRelaxation.hpp).
   MultiplierStep multiplierStep = MultiplierStep::Relaxed;
   double innerFloor = 0.1;     ///< inner solves stop at ||g^P|| <= innerFloor eps ||c|| at the latest
+  /// > 0: the scale of epsilon and eta (and of the reported relative residuals) in place of
+  /// ||c||, for a c inflated by what drives no solution (open contact gaps: the caller's
+  /// DualContactProblem::stoppingScale); 0: ||c||. Not a parameter: set by the caller per problem.
+  double rightHandSideScale = 0.0;
   /// Called on every rank after each outer iteration (after the hook, so that it sees what
   /// the hook changed; not when the hook throws); may be empty.
   std::function<void(const SmalseProgress&)> monitor;
@@ -131,6 +135,7 @@ class SmalseM {
   /// onto Im G^T. Omega may be changed by the hook between outer iterations; the next inner
   /// solve starts from mu projected onto the new Omega. Scale-free parameters: rho and M_0
   /// are relative to ||A|| (power method, its products counted), eta and epsilon to ||c||
+  /// (or SmalseSettings::rightHandSideScale)
   /// (when c = 0, ||A|| ||P_Omega(0)|| is the scale, and mu = 0 is returned at once if 0 is in
   /// Omega). A = 0 returns converged = false unless c = 0. `knownNormA` > 0: ||A|| as an
   /// earlier solve with the same A estimated it (its counters.normA), used instead of a new
