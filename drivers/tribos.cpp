@@ -126,6 +126,17 @@ std::vector<mesh::GlobalValue> globalValues(const nlohmann::json& summary) {
   if (summary.contains("kkt"))
     for (const auto& [name, value] : summary["kkt"].items())
       if (value.is_number()) out.push_back({"kkt_" + name, value.get<double>()});
+  // Per contact interface: "<name>_normal_force", ... ("contact_..." for the flat Contact list).
+  if (summary.contains("interfaces"))
+    for (const auto& i : summary["interfaces"]) {
+      const std::string name = i.value("name", std::string());
+      const std::string prefix = (name.empty() ? std::string("contact") : name) + "_";
+      for (const char* key : {"normal_force", "friction_force", "no_contact", "stick", "slip", "peak_pressure",
+                              "largest_opening", "largest_overlap"})
+        if (i.contains(key) && i[key].is_number()) out.push_back({prefix + key, i[key].get<double>()});
+      if (i.contains("contact_force"))
+        for (int c = 0; c < 3; ++c) out.push_back({prefix + "force_" + "xyz"[c], i["contact_force"][c].get<double>()});
+    }
   return out;
 }
 

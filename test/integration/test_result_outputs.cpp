@@ -80,6 +80,15 @@ TEST(resultOutputs, blockOnPlateReactionsEqualTheLoadAndTheResultSaysHowItWasMad
     EXPECT_TRUE(has(step.global, name)) << name;
   for (const auto& g : step.global)
     if (g.name == "converged") EXPECT_EQ(g.value, 1.0);
+  // Per interface ("contact_" for the flat Contact list): the summary's numbers.
+  const auto& interface = j["interfaces"][0];
+  for (const auto& [global, key] : {std::pair<const char*, const char*>{"contact_normal_force", "normal_force"},
+                                    {"contact_slip", "slip"}, {"contact_peak_pressure", "peak_pressure"}}) {
+    const auto g = std::find_if(step.global.begin(), step.global.end(), [&](const auto& v) { return v.name == global; });
+    ASSERT_NE(g, step.global.end()) << global;
+    EXPECT_EQ(g->value, interface[key].get<double>()) << global;
+  }
+  EXPECT_TRUE(has(step.global, "contact_force_z"));
   // The info records hold the command line and the effective parameter list.
   const auto& info = data.info;
   EXPECT_TRUE(std::any_of(info.begin(), info.end(),
