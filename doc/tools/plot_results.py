@@ -3,21 +3,44 @@
 
 Usage:
   python3 doc/tools/plot_results.py RESULT.exo SUMMARY.json OUTDIR [--slave SIDE_SET] [--scale S]
+                                    [--profile X0,Y0,Z0:X1,Y1,Z1 [--profile-samples N]] [--dpi N]
 
   RESULT.exo    written by `tribos --output RESULT.exo`
-  SUMMARY.json  written by `tribos --summary SUMMARY.json` (its "history")
+  SUMMARY.json  written by `tribos --summary SUMMARY.json` (its "history" and "interfaces")
   OUTDIR        created if missing; receives
     contact_stress.png  normal and tangential contact stress on the slave surface, over its two
                         in-plane coordinates, with the contact zone and the stick zone outlined
-                        (the paper's Figs. 2-3)
+                        (the paper's Figs. 2-3), when the scene has one contact interface
+    contact_stress_<NAME>.png
+                        the same map for each interface when the summary lists several; NAME is
+                        the interface's Contact/<NAME> sublist (its slave side set when unnamed).
+                        Each map's title gives the interface, its normal force and the summary's
+                        counts of no-contact, stick and slip nodes
     convergence.png     ||g^P||, ||G mu|| and the slip-bound change per SMALSE-M outer
                         iteration, and the PFP applications and inner iterations
     deformed.png        the boundary of the bodies warped by the displacements (magnified)
+    profile.csv, profile.png
+                        with --profile: the contact stresses along a straight segment (below)
 
-  --slave NAME  the slave side set (default: the smallest side set holding every node with a
-                contact force, e.g. contact_aluminium in input/two_bricks.xml)
+  --slave NAME  draw contact_stress.png of this side set only, whatever the summary's
+                interfaces. Without it the slave side sets are the summary's "interfaces"
+                (the part of "SLAVE -> MASTER" before the arrow); a summary without
+                "interfaces" falls back to the smallest side set holding every node with a
+                contact force, e.g. contact_aluminium in input/two_bricks.xml
   --scale S     displacement magnification of deformed.png (default: the largest displacement
                 drawn as 8 % of the model's size)
+  --profile X0,Y0,Z0:X1,Y1,Z1
+                sample the segment from (X0,Y0,Z0) to (X1,Y1,Z1) at --profile-samples evenly
+                spaced points (default 200, both ends included). Each point takes the nearest
+                triangle of the slave surfaces drawn (the closest point on the triangle, so a
+                point above a flat surface takes the triangle below it along the normal) and
+                interpolates the nodal normal and tangential stress linearly (barycentric) at
+                that closest point. profile.csv has the header
+                s,x,y,z,interface,pressure,tangential_stress with s the distance from the first
+                point and x,y,z the sample point on the segment; a point farther from every
+                slave triangle than 5 % of the segment's length keeps its row with the last
+                three columns empty (a gap in profile.png), so that rows stay evenly spaced
+                in s. profile.png draws both stresses against s.
   --dpi N       resolution of the PNGs (default 100)
 
 Normal stress: the nodal variable contact_pressure (normal force per tributary area);
@@ -27,8 +50,8 @@ the lines are where the indicator of "in contact" and of "stick", interpolated l
 surface, crosses 1/2, i.e. half-way between nodes of different status.
 
 Needs python3-matplotlib (numpy comes with it) and ncdump (netcdf-bin) on Debian.
-Exit status: 0 written, 2 bad input (missing file, variable or side set), 77 matplotlib or
-ncdump missing (the CTest reports a skip).
+Exit status: 0 written, 2 bad input (missing file, variable or side set, bad --profile),
+77 matplotlib or ncdump missing (the CTest reports a skip).
 """
 import argparse
 import io
@@ -105,6 +128,34 @@ def slave_side_set(mesh, fields, requested):
     return min(candidates)[1]
 
 
+def interface_surfaces(summary, mesh, fields, requested):
+    """The slave surfaces to draw, as dicts {label, slave, entry, png}: one per entry of the
+    summary's "interfaces" (a multi-interface scene has one slave side set per interface, and a
+    single map of one of them would hide the others), or the --slave side set, or the default
+    guess when the summary predates "interfaces". entry is the summary's interface object or
+    None."""
+    interfaces = summary.get("interfaces") or []
+    if requested:
+        slave = slave_side_set(mesh, fields, requested)
+        entry = next((e for e in interfaces if slave_of(e) == slave), None)
+        return [dict(label=slave, slave=slave, entry=entry, png="contact_stress.png")]
+    if not interfaces:
+        slave = slave_side_set(mesh, fields, "")
+        return [dict(label=slave, slave=slave, entry=None, png="contact_stress.png")]
+    surfaces = []
+    for entry in interfaces:
+        slave = slave_side_set(mesh, fields, slave_of(entry))
+        label = entry.get("name") or slave
+        png = "contact_stress.png" if len(interfaces) == 1 else "contact_stress_%s.png" % label
+        surfaces.append(dict(label=label, slave=slave, entry=entry, png=png))
+    return surfaces
+
+
+def slave_of(entry):
+    """The slave side set of a summary interface, whose "interface" reads "SLAVE -> MASTER"."""
+    return entry["interface"].split(" -> ")[0].strip()
+
+
 def in_plane_axes(points):
     """The two coordinate axes of largest extent (the surface's or the model's plane)."""
     extent = points.max(axis=0) - points.min(axis=0)
@@ -118,6 +169,13 @@ def tributary_area(coords, triangles):
         share = 0.5 * np.linalg.norm(np.cross(b - a, c - a)) / 3.0
         area[list(tri)] += share
     return area
+
+def tangential_stress(coords, fields, triangles):
+    """|(contact_t1, contact_t2)| per tributary area at every node (zero off the triangles):
+    the solver writes tangential forces, the maps and profiles compare them with pressures."""
+    area = tributary_area(coords, triangles)
+    force = np.hypot(fields["contact_t1"], fields["contact_t2"])
+    return np.where(area > 0, force / np.where(area > 0, area, 1.0), 0.0)
 
 # ---------------------------------------------------------------- contact stress maps
 
@@ -149,17 +207,28 @@ def zoom_to_contact(ax, u, v, status):
     ax.set_ylim(max(lo[1] - margin, v.min()), min(hi[1] + margin, v.max()))
 
 
-def plot_contact(mesh, coords, fields, slave, out, dpi):
-    triangles = exodus_read.side_set_triangles(mesh, slave)
+def map_title(surface, counts):
+    """The interface, its normal force and its node counts: from the summary when it lists the
+    interface (the counts of the nodes the solver paired), else counted from contact_status
+    over the whole side set."""
+    entry = surface["entry"]
+    if entry is None:
+        return "slave surface %s: %d no contact, %d stick, %d slip nodes" % (surface["slave"], *counts)
+    name = surface["label"] + " (%s)" % entry["interface"] if entry.get("name") else entry["interface"]
+    return "interface %s: normal force %.4g; %d no contact, %d stick, %d slip nodes" % (
+        name, entry["normal_force"], entry["no_contact"], entry["stick"], entry["slip"])
+
+
+def plot_contact(mesh, coords, fields, surface, out, dpi):
+    triangles = exodus_read.side_set_triangles(mesh, surface["slave"])
     nodes = sorted({n for tri in triangles for n in tri})
     local = {n: i for i, n in enumerate(nodes)}
     i, j = in_plane_axes(coords[nodes])
     triangulation = mtri.Triangulation(coords[nodes, i], coords[nodes, j],
                                        [[local[n] for n in tri] for tri in triangles])
-    area = tributary_area(coords, triangles)[nodes]
     status = fields["contact_status"][nodes]
     normal = fields["contact_pressure"][nodes]
-    tangential = np.hypot(fields["contact_t1"][nodes], fields["contact_t2"][nodes]) / np.where(area > 0, area, 1.0)
+    tangential = tangential_stress(coords, fields, triangles)[nodes]
     counts = [int(np.sum(np.rint(status) == s)) for s in range(3)]
 
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.2), constrained_layout=True)
@@ -177,7 +246,103 @@ def plot_contact(mesh, coords, fields, slave, out, dpi):
         ax.set_title("%s (max %.4g)" % (title, values.max()))
     if handles:
         axes[1].legend(handles=handles, loc="upper right", fontsize=8, framealpha=0.8)
-    fig.suptitle("slave surface %s: %d no contact, %d stick, %d slip nodes" % (slave, *counts))
+    fig.suptitle(map_title(surface, counts))
+    save(fig, out, dpi)
+
+# ---------------------------------------------------------------- pressure profile
+
+
+def parse_segment(text):
+    """"X0,Y0,Z0:X1,Y1,Z1" as two points; ValueError (exit 2) for anything else."""
+    ends = text.split(":")
+    points = [np.array([float(v) for v in end.split(",")]) for end in ends]
+    if len(points) != 2 or any(len(p) != 3 for p in points):
+        raise ValueError("--profile %s: expected X0,Y0,Z0:X1,Y1,Z1" % text)
+    if np.linalg.norm(points[1] - points[0]) == 0:
+        raise ValueError("--profile %s: the two points coincide" % text)
+    return points
+
+
+def closest_on_triangles(p, a, b, c):
+    """Distance from p to each triangle (a[k], b[k], c[k]) and the barycentric coordinates of
+    the closest point: inside the face it is p's projection along the normal, else the closest
+    point of an edge; taking the smaller of the two covers every case, degenerate faces too."""
+    normal = np.cross(b - a, c - a)
+    nn = np.einsum("ij,ij->i", normal, normal)
+    safe = np.where(nn > 0, nn, 1.0)
+    q = p - (np.einsum("ij,ij->i", p - a, normal) / safe)[:, None] * normal
+    # barycentric coordinates of the projection q (w_b, w_c from the normal equations)
+    w_b = np.einsum("ij,ij->i", np.cross(q - a, c - a), normal) / safe
+    w_c = np.einsum("ij,ij->i", np.cross(b - a, q - a), normal) / safe
+    w_a = 1.0 - w_b - w_c
+    inside = (nn > 0) & (w_a >= 0) & (w_b >= 0) & (w_c >= 0)
+    best = np.where(inside, np.linalg.norm(p - q, axis=1), np.inf)
+    bary = np.column_stack([w_a, w_b, w_c])
+    for first, second, start, end in ((0, 1, a, b), (1, 2, b, c), (2, 0, c, a)):
+        edge = end - start
+        length2 = np.einsum("ij,ij->i", edge, edge)
+        t = np.clip(np.einsum("ij,ij->i", p - start, edge) / np.where(length2 > 0, length2, 1.0), 0.0, 1.0)
+        distance = np.linalg.norm(p - (start + t[:, None] * edge), axis=1)
+        closer = distance < best
+        best = np.where(closer, distance, best)
+        on_edge = np.zeros_like(bary)
+        on_edge[:, first] = 1.0 - t
+        on_edge[:, second] = t
+        bary = np.where(closer[:, None], on_edge, bary)
+    return best, bary
+
+
+def sample_profile(coords, fields, mesh, surfaces, segment, samples):
+    """Rows (s, point, interface label or None, pressure, tangential stress) along the segment,
+    interpolated on the nearest slave triangle of all the surfaces drawn; None values where no
+    triangle lies within 5 % of the segment's length (the line left the slave surfaces)."""
+    start, end = segment
+    length = np.linalg.norm(end - start)
+    tris, owner, tangential = [], [], np.zeros(len(coords))
+    for k, surface in enumerate(surfaces):
+        triangles = exodus_read.side_set_triangles(mesh, surface["slave"])
+        tris += triangles
+        owner += [k] * len(triangles)
+        # each slave node belongs to one interface: its own surface's tributary area
+        tangential = np.where(tangential > 0, tangential, tangential_stress(coords, fields, triangles))
+    tris = np.array(tris)
+    a, b, c = coords[tris[:, 0]], coords[tris[:, 1]], coords[tris[:, 2]]
+    rows = []
+    for s in np.linspace(0.0, length, samples):
+        point = start + (s / length) * (end - start)
+        distance, bary = closest_on_triangles(point, a, b, c)
+        k = int(np.argmin(distance))
+        if distance[k] > 0.05 * length:
+            rows.append((s, point, None, None, None))
+            continue
+        nodes = tris[k]
+        rows.append((s, point, surfaces[owner[k]]["label"], float(bary[k] @ fields["contact_pressure"][nodes]),
+                     float(bary[k] @ tangential[nodes])))
+    return rows
+
+
+def write_profile_csv(rows, out):
+    """profile.csv: empty interface and stress cells where the segment is off the surfaces."""
+    with open(out, "w") as f:
+        f.write("s,x,y,z,interface,pressure,tangential_stress\n")
+        for s, point, label, pressure, tangential in rows:
+            values = ("", "", "") if label is None else (label, "%.9g" % pressure, "%.9g" % tangential)
+            f.write("%.9g,%.9g,%.9g,%.9g,%s,%s,%s\n" % (s, *point, *values))
+
+
+def plot_profile(rows, segment, out, dpi):
+    s = np.array([r[0] for r in rows])
+    pressure = np.array([np.nan if r[3] is None else r[3] for r in rows])
+    tangential = np.array([np.nan if r[4] is None else r[4] for r in rows])
+    fig, ax = plt.subplots(figsize=(8, 4.2), constrained_layout=True)
+    ax.plot(s, pressure, "-", label="normal contact stress (pressure)")
+    ax.plot(s, tangential, "--", label="tangential contact stress |t|")
+    ax.axhline(0.0, color="gray", linewidth=0.6)
+    ax.set_xlabel("s, distance from (%s)" % ", ".join("%g" % v for v in segment[0]))
+    ax.set_ylabel("force / area")
+    ax.set_title("contact stresses from (%s) to (%s)" % tuple(", ".join("%g" % v for v in p) for p in segment))
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
     save(fig, out, dpi)
 
 # ---------------------------------------------------------------- convergence history
@@ -294,6 +459,17 @@ def plot_deformed(mesh, coords, fields, requested_scale, out, dpi):
     save(fig, out, dpi)
 
 
+def attach_profile_value(argv):
+    """argv with "--profile -5,0,10:..." written "--profile=-5,0,10:...": argparse takes a value
+    that starts with "-" (a negative first coordinate) for an option and would refuse it."""
+    out = list(argv)
+    for k in range(len(out) - 1):
+        if out[k] == "--profile" and out[k + 1].startswith("-"):
+            out[k:k + 2] = ["--profile=" + out[k + 1]]
+            break
+    return out
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[1])
     parser.add_argument("result")
@@ -301,30 +477,42 @@ def main():
     parser.add_argument("outdir")
     parser.add_argument("--slave", default="")
     parser.add_argument("--scale", type=float, default=0.0)
+    parser.add_argument("--profile", default="")
+    parser.add_argument("--profile-samples", type=int, default=200)
     parser.add_argument("--dpi", type=int, default=100)
-    args = parser.parse_args()
+    args = parser.parse_args(attach_profile_value(sys.argv[1:]))
     if shutil.which("ncdump") is None:
         print("plot_results.py: needs ncdump to read Exodus (apt-get install netcdf-bin)", file=sys.stderr)
         return 77
     try:
+        segment = parse_segment(args.profile) if args.profile else None
+        if segment is not None and args.profile_samples < 2:
+            raise ValueError("--profile-samples %d: at least 2 (the two ends)" % args.profile_samples)
         if not os.path.isfile(args.result):
             raise OSError("%s: no such file (write it with tribos --output)" % args.result)
         with open(args.summary) as f:
             summary = json.load(f)
         mesh, coords, fields = read_result(args.result)
         contact = "contact_status" in fields
-        slave = slave_side_set(mesh, fields, args.slave) if contact else None
+        surfaces = interface_surfaces(summary, mesh, fields, args.slave) if contact else []
     except (OSError, KeyError, ValueError, IndexError, subprocess.CalledProcessError) as e:
         print("plot_results.py: %s" % e, file=sys.stderr)
         return 2
     os.makedirs(args.outdir, exist_ok=True)
     path = lambda name: os.path.join(args.outdir, name)  # noqa: E731
     if contact:
-        plot_contact(mesh, coords, fields, slave, path("contact_stress.png"), args.dpi)
-        print("wrote", path("contact_stress.png"))
+        for surface in surfaces:
+            plot_contact(mesh, coords, fields, surface, path(surface["png"]), args.dpi)
+            print("wrote", path(surface["png"]))
     else:
-        print("plot_results.py: no contact fields (a scene without contact): contact_stress.png not written",
-              file=sys.stderr)
+        print("plot_results.py: no contact fields (a scene without contact): contact_stress.png%s not written"
+              % (" and the profile" if segment is not None else ""), file=sys.stderr)
+    if contact and segment is not None:
+        rows = sample_profile(coords, fields, mesh, surfaces, segment, args.profile_samples)
+        write_profile_csv(rows, path("profile.csv"))
+        plot_profile(rows, segment, path("profile.png"), args.dpi)
+        print("wrote", path("profile.csv"), "and", path("profile.png"),
+              "(%d of %d points on a slave surface)" % (sum(r[2] is not None for r in rows), len(rows)))
     if plot_convergence(summary, path("convergence.png"), args.dpi):
         print("wrote", path("convergence.png"))
     else:
