@@ -127,8 +127,8 @@ TEST_P(ThreeBodies, twoInterfacesGiveTheUniaxialFieldAndCarryTheLoadEach) {
     EXPECT_EQ(interfaces[0].name, "punch_on_block");
     EXPECT_EQ(interfaces[1].name, "block_on_foundation");
     for (const auto& i : interfaces) {
-      EXPECT_NEAR(i.normalForce, 4.0 * kPressure, 1e-7 * 4.0 * kPressure) << i.name;
-      EXPECT_NEAR(i.force[2], -4.0 * kPressure, 1e-7 * 4.0 * kPressure) << i.name;  // on the master, downwards
+      EXPECT_NEAR(i.normalForce, 4.0 * kPressure, 1e-8 * 4.0 * kPressure) << i.name;
+      EXPECT_NEAR(i.force[2], -4.0 * kPressure, 1e-8 * 4.0 * kPressure) << i.name;  // on the master, downwards
       EXPECT_EQ(i.counts[0], 0) << i.name << ": every slave node presses";
     }
     // Frictionless contact slides ("slip"); where one material meets itself, friction and ties hold.
