@@ -76,6 +76,18 @@ TEST(tribosDriver, threeBodiesOnTwoInterfacesCarryTheLoadThroughEach) {
     EXPECT_NEAR(i.at("contact_force")[1].get<double>(), 0.0, 5000.0 * 1e-4);
   }
   EXPECT_EQ(j.at("interfaces")[0].at("name"), "punch_on_block");
+  // At F = 0.15 every node under the block slides: the block's rigid motions are held by its
+  // sliding rows alone (the slip has no component across the friction force). It was exit 3,
+  // "no equilibrium found" (G_I G_I^T singular without them).
+  const auto sliding = runCommand(kDriver + " --input " + quote(input("three_bodies.xml")) +
+                                  " --set Solver/Verbose=false --set Contact/block_on_foundation/F1=0.15"
+                                  " --set Contact/block_on_foundation/F2=0.15 --summary " + quote(summary.string()));
+  ASSERT_EQ(sliding.status, 0) << sliding.output;
+  std::ifstream(summary) >> j;
+  std::filesystem::remove(summary);
+  EXPECT_EQ(j.at("interfaces")[1].at("stick").get<int>(), 0);
+  EXPECT_GT(j.at("interfaces")[1].at("slip").get<int>(), 250);
+  EXPECT_NEAR(j.at("interfaces")[1].at("friction_force").get<double>(), 0.15 * 5000.0, 1.0);
   EXPECT_TRUE(contains(run.output, "interface block_on_foundation block_bottom -> foundation_top: ")) << run.output;
 }
 

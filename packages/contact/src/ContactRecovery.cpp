@@ -48,6 +48,28 @@ std::vector<char> inactiveRows(const feti::ConstraintMatrix& B, int rank, const 
   }
   return inactive;
 }
+
+/// The sliding nodes' tangential rows as equalities (TotalFeti::RowCombination): at a node
+/// that touches and lies on its friction ellipse, the slip is along the ellipse's outer normal
+/// at lambda_t (maximal dissipation: v ~ (lambda_1 / a_1^2, lambda_2 / a_2^2) in row units), so
+/// its component along the ellipse's tangent vanishes. Nodes with one tangential row, a
+/// degenerate ellipse or a vanishing lambda_t give none.
+std::vector<feti::TotalFeti::RowCombination> slidingCombinations(const DualContactProblem& problem,
+                                                                 const HostView& lam, double tau, double tinyForce) {
+  std::vector<feti::TotalFeti::RowCombination> out;
+  const auto& lc = problem.contact();
+  for (size_t k = 0; k < lc.node.size(); ++k) {
+    const auto& t = lc.tangentialRow[k];
+    if (lc.ellipse[k] < 0 || t[0] < 0 || t[1] < 0 || !(lam(lc.normalRow[k], 0) > tinyForce)) continue;
+    const auto lt = tangential(lc, lam, k);
+    const auto state = frictionState(lt, t, lc.axisScale[k], lc.F[k], problem.slipBounds()[k], tinyForce);
+    if (state.degenerate || state.normalised < 1.0 - tau || !(std::hypot(lt[0], lt[1]) > tinyForce)) continue;
+    const double n0 = lt[0] / (state.axes[0] * state.axes[0]), n1 = lt[1] / (state.axes[1] * state.axes[1]);
+    const double length = std::hypot(n0, n1);
+    out.push_back({t[0], t[1], -n1 / length, n0 / length});  // the tangent: the normal turned by 90 degrees
+  }
+  return out;
+}
 }  // namespace
 
 RecoveredLambda recoverPrimal(const feti::TotalFeti& feti, const feti::ConstraintMatrix& B,
@@ -89,6 +111,15 @@ RecoveredLambda recoverPrimal(const feti::TotalFeti& feti, const feti::Constrain
   try {
     alpha = feti.rigidBodyCoefficients(*out.lambda, inactive);
   } catch (const feti::RigidMotionsUndetermined&) {
+    // A body that slides everywhere: its sliding rows hold it too (their slip has no component
+    // across the friction force's direction). Only then, so that every other solve keeps its bits.
+    try {
+      alpha = feti.rigidBodyCoefficients(*out.lambda, inactive,
+                                         slidingCombinations(problem, lam, out.tau, out.tinyForce));
+    } catch (const feti::RigidMotionsUndetermined&) {
+    }
+  }
+  if (alpha.empty()) {
     alpha = feti.rigidBodyCoefficients(*out.lambda);
     result.converged = false;
     result.note = "no equilibrium found: the constraints active at the end hold no body against some rigid "

@@ -4,6 +4,9 @@
 
 #include "TotalFetiParts.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 namespace tribos::feti {
 
 CoarseProblem::CoarseProblem(const TotalFeti::CoarseRows& G, int numSubdomains, GO numRowsOfB, double gMax,
@@ -74,8 +77,9 @@ std::vector<LO> CoarseProblem::touchedBlocks(const std::vector<char>* ownedRowMa
   return touched;
 }
 
-std::vector<double> CoarseProblem::sumOwnedRows(const std::vector<char>* ownedRowMask, const std::vector<LO>& slotOf,
-                                                size_t numTouched) const {
+std::vector<double> CoarseProblem::sumOwnedRows(const std::vector<char>* ownedRowMask,
+                                                const std::vector<TotalFeti::RowCombination>* combinations,
+                                                const std::vector<LO>& slotOf, size_t numTouched) const {
   // Reproducible sums (core::SumBins): the rows of a block are owned by different ranks on
   // different layouts. |g_s[a] g_t[c]| <= gMax^2; at most one term per row of B. The slots
   // hold exact sums, so rank 0 may add the ranks' slots in any order. Each row's g_{s,r} are
@@ -85,23 +89,52 @@ std::vector<double> CoarseProblem::sumOwnedRows(const std::vector<char>* ownedRo
   constexpr size_t kBlock = kSlots * 36;
   std::vector<double> local(kBlock * numTouched, 0.0);
   std::vector<double> g;  // the row's g_{s,r}, 6 per entry
+  auto decode = [&G](LO r, std::vector<double>& out) {
+    const LO first = G.rowStart[r], entries = G.rowStart[r + 1] - first;
+    out.resize(6 * static_cast<size_t>(entries));
+    for (LO e = 0; e < entries; ++e) G.rowG(first + e, &out[6 * static_cast<size_t>(e)]);
+  };
   for (LO r = 0; r < G.numRows; ++r) {
     if (ownedRowMask && !(*ownedRowMask)[r]) continue;
-    const LO first = G.rowStart[r], entries = G.rowStart[r + 1] - first;
-    g.resize(6 * static_cast<size_t>(entries));
-    for (LO e = 0; e < entries; ++e) G.rowG(first + e, &g[6 * static_cast<size_t>(e)]);
-    for (LO e = 0; e < entries; ++e)
-      for (LO f = 0; f < entries; ++f) {
-        const int s = G.rowSubdomain[first + e], t = G.rowSubdomain[first + f];
-        if (s > t) continue;
-        double* block = &local[kBlock * static_cast<size_t>(slotOf[blockOf(s, t)])];
-        const double* gs = &g[6 * static_cast<size_t>(e)];
-        const double* gt = &g[6 * static_cast<size_t>(f)];
-        for (int a = 0; a < 6; ++a)
-          for (int c = 0; c < 6; ++c) bins.deposit(gs[a] * gt[c], block + kSlots * (a * 6 + c));
-      }
+    decode(r, g);
+    depositOuterProduct(g, &G.rowSubdomain[G.rowStart[r]], G.rowStart[r + 1] - G.rowStart[r], bins, slotOf, local);
+  }
+  if (!combinations) return local;
+  // g = w_a g_a + w_b g_b over the same subdomains; |g| <= sqrt(2) gMax, so (g / sqrt 2)(g /
+  // sqrt 2)^T, whose terms stay within the bins' bound, is deposited twice.
+  std::vector<double> gb;
+  for (const auto& c : *combinations) {
+    if (!sameSubdomains(c.a, c.b)) continue;
+    decode(c.a, g);
+    decode(c.b, gb);
+    for (size_t i = 0; i < g.size(); ++i) g[i] = (c.wa * g[i] + c.wb * gb[i]) / std::sqrt(2.0);
+    for (int twice = 0; twice < 2; ++twice)
+      depositOuterProduct(g, &G.rowSubdomain[G.rowStart[c.a]], G.rowStart[c.a + 1] - G.rowStart[c.a], bins, slotOf,
+                          local);
   }
   return local;
+}
+
+void CoarseProblem::depositOuterProduct(const std::vector<double>& g, const int* subdomains, LO entries,
+                                        const core::SumBins& bins, const std::vector<LO>& slotOf,
+                                        std::vector<double>& local) const {
+  constexpr size_t kBlock = kSlots * 36;
+  for (LO e = 0; e < entries; ++e)
+    for (LO f = 0; f < entries; ++f) {
+      const int s = subdomains[e], t = subdomains[f];
+      if (s > t) continue;
+      double* block = &local[kBlock * static_cast<size_t>(slotOf[blockOf(s, t)])];
+      const double* gs = &g[6 * static_cast<size_t>(e)];
+      const double* gt = &g[6 * static_cast<size_t>(f)];
+      for (int a = 0; a < 6; ++a)
+        for (int c = 0; c < 6; ++c) bins.deposit(gs[a] * gt[c], block + kSlots * (a * 6 + c));
+    }
+}
+
+bool CoarseProblem::sameSubdomains(LO a, LO b) const {
+  const TotalFeti::CoarseRows& G = G_;
+  return std::equal(G.rowSubdomain.begin() + G.rowStart[a], G.rowSubdomain.begin() + G.rowStart[a + 1],
+                    G.rowSubdomain.begin() + G.rowStart[b], G.rowSubdomain.begin() + G.rowStart[b + 1]);
 }
 
 fem::CsrMatrix CoarseProblem::matrixFromSlots(const std::vector<double>& slots) const {
@@ -128,7 +161,8 @@ fem::CsrMatrix CoarseProblem::matrixFromSlots(const std::vector<double>& slots) 
   return GGt;
 }
 
-fem::CsrMatrix CoarseProblem::assemble(const std::vector<char>* ownedRowMask) const {
+fem::CsrMatrix CoarseProblem::assemble(const std::vector<char>* ownedRowMask,
+                                       const std::vector<TotalFeti::RowCombination>* combinations) const {
   // (G G^T)_{st} = sum over rows r touching both s and t of g_{s,r} g_{t,r}^T: 6x6 blocks
   // for subdomains that share a row of B (buildPattern; with a mask the same pattern, the
   // blocks of the rows left out stay zero). Each rank adds the products of its owned rows
@@ -140,8 +174,15 @@ fem::CsrMatrix CoarseProblem::assemble(const std::vector<char>* ownedRowMask) co
   // (g_t[c] g_s[a] = g_s[a] g_t[c] exactly) in the same exact slot sums, so the matrix reads
   // them transposed with the bits of summing them itself.
   std::vector<LO> slotOf;  // block -> its index among `touched`
-  const std::vector<LO> touched = touchedBlocks(ownedRowMask, slotOf);
-  std::vector<double> local = sumOwnedRows(ownedRowMask, slotOf, touched.size());
+  // A combination touches the blocks of its rows.
+  std::vector<char> counted;
+  if (combinations && ownedRowMask) {
+    counted = *ownedRowMask;
+    for (const auto& c : *combinations)
+      if (sameSubdomains(c.a, c.b)) counted[c.a] = 1;
+  }
+  const std::vector<LO> touched = touchedBlocks(counted.empty() ? ownedRowMask : &counted, slotOf);
+  std::vector<double> local = sumOwnedRows(ownedRowMask, combinations, slotOf, touched.size());
   std::vector<LO>().swap(slotOf);
   std::vector<double> slots;  // rank 0: the whole pattern's (upper blocks filled)
   addBlocksOnRoot(touched, local, slots);

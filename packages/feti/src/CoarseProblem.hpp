@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "tribos/core/ReproducibleSum.hpp"
 #include "tribos/feti/TotalFeti.hpp"
 
 namespace tribos::feti {
@@ -46,7 +47,10 @@ class CoarseProblem {
   }
   /// G_I G_I^T over the owned rows with mask != 0, summed over the ranks (no mask: G G^T), on
   /// the pattern of G G^T, on rank 0 (the other ranks get an empty matrix). Collective.
-  fem::CsrMatrix assemble(const std::vector<char>* ownedRowMask) const;
+  fem::CsrMatrix assemble(const std::vector<char>* ownedRowMask,
+                          const std::vector<TotalFeti::RowCombination>* combinations = nullptr) const;
+  /// Whether the two owned rows touch the same subdomains (a combination may then be assembled).
+  bool sameSubdomains(LO a, LO b) const;
 
  private:
   /// The block pattern of G G^T from the owned rows of G and one all-gather of their
@@ -57,9 +61,14 @@ class CoarseProblem {
   /// The upper blocks (s <= t) that the counted owned rows touch, ascending; slotOf: block ->
   /// its index among them (-1: untouched).
   std::vector<LO> touchedBlocks(const std::vector<char>* ownedRowMask, std::vector<LO>& slotOf) const;
-  /// The exact slot sums (core::SumBins) of the counted owned rows' products in those blocks.
-  std::vector<double> sumOwnedRows(const std::vector<char>* ownedRowMask, const std::vector<LO>& slotOf,
-                                   size_t numTouched) const;
+  /// The exact slot sums (core::SumBins) of the counted owned rows' products in those blocks,
+  /// and of the combinations'.
+  std::vector<double> sumOwnedRows(const std::vector<char>* ownedRowMask,
+                                   const std::vector<TotalFeti::RowCombination>* combinations,
+                                   const std::vector<LO>& slotOf, size_t numTouched) const;
+  /// Deposits g g^T of one row's (or combination's) g_{s}, 6 per entry of `subdomains`.
+  void depositOuterProduct(const std::vector<double>& g, const int* subdomains, LO entries, const core::SumBins& bins,
+                           const std::vector<LO>& slotOf, std::vector<double>& local) const;
   /// Rank 0: G G^T (or G_I G_I^T) in CSR from the whole pattern's slots.
   fem::CsrMatrix matrixFromSlots(const std::vector<double>& slots) const;
   /// Rank 0: sum = the whole pattern's slots, every rank's `values` (their `blocks`, kSlots x 36

@@ -6,6 +6,11 @@ namespace tribos::feti {
 
 std::vector<double> TotalFeti::rigidBodyCoefficients(const DualVector& lambda,
                                                      const std::vector<char>& ownedRowMask) const {
+  return rigidBodyCoefficients(lambda, ownedRowMask, {});
+}
+
+std::vector<double> TotalFeti::rigidBodyCoefficients(const DualVector& lambda, const std::vector<char>& ownedRowMask,
+                                                     const std::vector<RowCombination>& combinations) const {
   const core::ScopedSeconds timed(profile_.rigidCoefficientsSeconds);
   TEUCHOS_TEST_FOR_EXCEPTION(ownedRowMask.size() != static_cast<size_t>(G_->numRows), std::invalid_argument,
                              "tribos::feti::TotalFeti::rigidBodyCoefficients: the mask has "
@@ -14,14 +19,24 @@ std::vector<double> TotalFeti::rigidBodyCoefficients(const DualVector& lambda,
   applyF(lambda, residual);
   residual.update(-1.0, *dTilde_, 1.0);
   {
+    // G_I^T alpha = (F lambda - d~)_I; a combination w contributes w (w . (F lambda - d~)_{a,b}).
     auto data = residual.getLocalViewHost(Tpetra::Access::ReadWrite);
+    std::vector<double> combined(combinations.size());
+    for (size_t k = 0; k < combinations.size(); ++k) {
+      const auto& c = combinations[k];
+      combined[k] = coarse_->sameSubdomains(c.a, c.b) ? c.wa * data(c.a, 0) + c.wb * data(c.b, 0) : 0.0;
+    }
     for (size_t i = 0; i < data.extent(0); ++i)
       if (!ownedRowMask[i]) data(i, 0) = 0.0;
+    for (size_t k = 0; k < combinations.size(); ++k) {
+      data(combinations[k].a, 0) += combinations[k].wa * combined[k];
+      data(combinations[k].b, 0) += combinations[k].wb * combined[k];
+    }
   }
   std::vector<double> alpha;
   applyG(residual, alpha);
   // Assembled, factorised and solved on rank 0 (as G G^T: onRootThenBroadcast).
-  fem::CsrMatrix GiGit = coarse_->assemble(&ownedRowMask);
+  fem::CsrMatrix GiGit = coarse_->assemble(&ownedRowMask, combinations.empty() ? nullptr : &combinations);
   onRootThenBroadcast(
       *comm_, alpha,
       [&] {
@@ -40,7 +55,6 @@ std::vector<double> TotalFeti::rigidBodyCoefficients(const DualVector& lambda,
       [](const std::string& message) { throw RigidMotionsUndetermined(message); });
   return alpha;
 }
-
 
 std::vector<double> TotalFeti::rigidBodyCoefficients(const DualVector& lambda) const {
   const core::ScopedSeconds timed(profile_.rigidCoefficientsSeconds);

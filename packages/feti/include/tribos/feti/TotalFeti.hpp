@@ -210,6 +210,18 @@ class TotalFeti {
   /// B.firstRowOfRank[rank] + i; one entry per row of dualMap()): no rank needs the others'.
   /// Throws RigidMotionsUndetermined (on every rank) when G_I G_I^T is singular.
   std::vector<double> rigidBodyCoefficients(const DualVector& lambda, const std::vector<char>& ownedRowMask) const;
+  /// Two owned rows (indices as in the mask) whose combination w_a row_a + w_b row_b (w a unit
+  /// vector) holds as an equality at the solution: a sliding friction node's tangential rows,
+  /// whose slip has no component across the friction force's direction.
+  struct RowCombination {
+    LO a = -1, b = -1;
+    double wa = 0.0, wb = 0.0;
+  };
+  /// The same over the masked rows and these combinations (G_I' holds w_a g_a + w_b g_b for
+  /// each): a body that slides holds its rigid motions through them. A combination whose two
+  /// rows touch different subdomains is left out.
+  std::vector<double> rigidBodyCoefficients(const DualVector& lambda, const std::vector<char>& ownedRowMask,
+                                            const std::vector<RowCombination>& combinations) const;
   /// y = B u for displacements u of the owned subdomains (u[i] of subdomain firstOwned + i).
   void applyB(const std::vector<std::vector<double>>& u, DualVector& y) const;
   /// max over owned subdomains of ||K_s u_s - f_s + B_s^T lambda_s||_inf (equilibrium), all
