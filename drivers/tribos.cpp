@@ -59,7 +59,7 @@ struct OutputData {
   const std::vector<std::array<double, 3>>* displacement = nullptr;
   const std::vector<std::array<double, 3>>* reaction = nullptr;
   const stack::StressResults* stress = nullptr;
-  const stack::ContactSolveResult* contact = nullptr;  ///< contact scenes
+  const stack::ContactFields* contact = nullptr;  ///< scenes with contact interfaces
   std::vector<mesh::GlobalValue> globals;
   std::vector<std::string> info;
 };
@@ -82,7 +82,7 @@ void addStressFields(const stack::StressResults& stress, mesh::TimeStep& step) {
   step.nodal.push_back({"nodal_von_mises", stress.nodalVonMises});
 }
 
-void addContactFields(const stack::ContactSolveResult& c, mesh::TimeStep& step) {
+void addContactFields(const stack::ContactFields& c, mesh::TimeStep& step) {
   const std::pair<const char*, const std::vector<double>*> fields[] = {
       {"contact_normal", &c.contactNormal}, {"contact_t1", &c.contactT1},         {"contact_t2", &c.contactT2},
       {"contact_status", &c.contactStatus}, {"contact_pressure", &c.contactPressure}, {"contact_gap", &c.contactGap},
@@ -341,7 +341,9 @@ int solveAndReport(int argc, char** argv, int rank, const RunStart& start) {
     status = solve.converged() ? core::kExitOk : core::kExitNotConverged;
     output.displacement = &solve.displacement();
     output.reaction = &solve.reaction();
-    if (solve.contactProblem) output.contact = &solve.contactSolve;
+    if (!set.scene.contacts.empty())
+      output.contact = solve.contactProblem ? static_cast<const stack::ContactFields*>(&solve.contactSolve)
+                                            : &solve.linear;
     stack::addSolveSummary(solve, params, summary);
     if (rank == 0) std::cout << stack::solveReport(solve);
   }

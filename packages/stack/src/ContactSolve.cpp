@@ -228,62 +228,6 @@ void addOverloadNote(const feti::ConstraintMatrix& B, const contact::FrictionSet
   out.contact.message += "; " + notes;
 }
 
-/// Contact fields on the global mesh (rank 0): every contact node's rows belong to one rank,
-/// which sends its forces, status and opening; the geometry (gap, normal, master) is in B on
-/// every rank. Each interface's resultants and extremes from them (InterfaceResult).
-void gatherContactFields(const Scene& scene, const feti::ConstraintMatrix& B, MPI_Comm comm, ContactSolveResult& out) {
-  int rank = 0;
-  MPI_Comm_rank(comm, &rank);
-  const size_t numNodes = static_cast<size_t>(scene.mesh.numNodes());
-  constexpr int kPerNode = 5;  // force (nu, t1, t2), status, opening
-  Records mine;  // one per contact node of this rank's rows
-  mine.width = kPerNode;
-  for (const auto& node : out.contact.nodes) {
-    const double f[kPerNode] = {node.force[0], node.force[1], node.force[2], static_cast<double>(node.status),
-                                node.opening};
-    mine.add(node.slaveNode, f);
-  }
-  const Records gathered = gatherToRoot(mine, comm);
-  if (rank != 0) return;
-  std::vector<double> all(kPerNode * numNodes, 0.0);
-  for (size_t k = 0; k < gathered.size(); ++k)
-    std::copy_n(&gathered.values[kPerNode * k], kPerNode, &all[kPerNode * static_cast<size_t>(gathered.index[k])]);
-  for (auto* field : {&out.contactNormal, &out.contactT1, &out.contactT2, &out.contactStatus, &out.contactPressure,
-                      &out.contactGap, &out.contactOpening, &out.contactNx, &out.contactNy, &out.contactNz,
-                      &out.contactMaster})
-    field->assign(numNodes, 0.0);
-  std::vector<std::vector<double>> area;  // per interface: the tributary area of its slave nodes
-  for (const auto& one : scene.contacts) area.push_back(tributaryArea(scene.mesh, one.rows.slaveSideSet));
-  for (const auto& c : B.contact) {
-    const size_t g = static_cast<size_t>(c.slaveNode);
-    const double* f = all.data() + kPerNode * g;
-    const double a = area[c.interface][g];
-    out.contactNormal[g] = f[0];
-    out.contactT1[g] = f[1];
-    out.contactT2[g] = f[2];
-    out.contactStatus[g] = f[3];
-    out.contactOpening[g] = f[4];
-    out.contactPressure[g] = a > 0.0 ? f[0] / a : 0.0;
-    out.contactGap[g] = c.gap;
-    out.contactNx[g] = c.normal[0];
-    out.contactNy[g] = c.normal[1];
-    out.contactNz[g] = c.normal[2];
-    out.contactMaster[g] = static_cast<double>(c.masterNode + 1);
-    out.totalNormalForce += f[0];
-    InterfaceResult& i = out.interfaces[c.interface];
-    i.normalForce += f[0];
-    for (int x = 0; x < 3; ++x) {
-      const double fx = f[0] * c.normal[x] + f[1] * c.t1[x] + f[2] * c.t2[x];
-      out.totalContactForce[x] += fx;
-      i.force[x] += fx;
-    }
-    i.frictionForce += std::hypot(f[1], f[2]);
-    ++i.counts[static_cast<int>(f[3])];
-    i.peakPressure = std::max(i.peakPressure, out.contactPressure[g]);
-    i.largestOpening = std::max(i.largestOpening, f[4]);
-    i.largestOverlap = std::max(i.largestOverlap, -f[4]);
-  }
-}
 }  // namespace
 
 ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
@@ -305,8 +249,6 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
   auto runs = std::make_shared<RunRecord>();
   attachRunRecord(runs, smalse.mpgp.maxIterations, friction);
   out.chain = describeContactChain(tribos);
-  for (const auto& one : scene.contacts)
-    out.interfaces.push_back({one.rows.name, one.rows.slaveSideSet + " -> " + one.rows.masterSideSet, one.law});
 
   out.appliedLoad = totalLoad(owned, comm);
   out.appliedLoadMagnitude = loadMagnitude(owned, comm);
@@ -324,7 +266,7 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
   out.displacement = gatherDisplacement(scene, feti.firstOwnedSubdomain(), out.contact.displacement, comm);
 
   out.reaction = gatherReactions(scene, B, out.contact.lambda, comm);
-  gatherContactFields(scene, B, comm, out);
+  gatherContactFields(scene, B, out.contact.nodes, comm, out);
   addOverloadNote(B, friction, comm, out);
   return out;
 }

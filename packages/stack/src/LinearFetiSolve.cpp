@@ -10,6 +10,7 @@
 
 #include "tribos/core/PhaseTimer.hpp"
 #include "tribos/core/Timer.hpp"
+#include "tribos/contact/ContactSolver.hpp"
 #include "tribos/stack/GlobalFields.hpp"
 #include "tribos/stack/SolveBudget.hpp"
 #include "tribos/feti/ProjectedCg.hpp"
@@ -113,6 +114,13 @@ LinearFetiResult solveLinearFeti(const Scene& scene, std::vector<fem::SubdomainS
     for (size_t i = 0; i < lam.extent(0); ++i) ownedLambda.push_back(lam(i, 0));
   }
   result.reaction = gatherReactions(scene, B, ownedLambda, comm);
+  // Bonded interfaces: their forces are the contact rows' multipliers.
+  if (!scene.contacts.empty()) {
+    std::vector<double> residual;
+    const auto r = Bu->getLocalViewHost(Tpetra::Access::ReadOnly);
+    for (size_t i = 0; i < r.extent(0); ++i) residual.push_back(r(i, 0));
+    gatherContactFields(scene, B, tiedNodeResults(B, rank, ownedLambda, residual), comm, result);
+  }
   return result;
 }
 

@@ -78,7 +78,7 @@ nlohmann::json historyJson(const std::vector<OuterIterationRecord>& history) {
 /// friction model, normal force, resultant contact force, friction force (the sum of the nodal
 /// tangential force lengths), node counts, peak pressure and the largest opening and overlap
 /// after deformation.
-nlohmann::json interfaceSummary(const ContactSolveResult& c) {
+nlohmann::json interfaceSummary(const ContactFields& c) {
   nlohmann::json list = nlohmann::json::array();
   for (const auto& i : c.interfaces)
     list.push_back({{"name", i.name},
@@ -97,7 +97,7 @@ nlohmann::json interfaceSummary(const ContactSolveResult& c) {
 }
 
 /// The console line of each interface (interfaceSummary's numbers).
-std::string interfaceLine(const ContactSolveResult& c) {
+std::string interfaceLine(const ContactFields& c) {
   std::ostringstream line;
   for (const auto& i : interfaceSummary(c))
     line << "  interface " << (i["name"].get<std::string>().empty() ? "" : i["name"].get<std::string>() + " ")
@@ -172,6 +172,11 @@ void addLinearSummary(const LinearFetiResult& linear, const std::string& chain, 
   summary["factor_nonzeros"] = linear.factorNonzeros;
   summary["bytes_per_f_application"] = linear.bytesPerFApplication;
   summary["condition_estimate"] = linear.conditionEstimate;
+  if (!linear.interfaces.empty()) {  // bonded interfaces
+    summary["total_normal_force"] = linear.totalNormalForce;
+    summary["total_contact_force"] = linear.totalContactForce;
+    summary["interfaces"] = interfaceSummary(linear);
+  }
   summary["kkt"] = {{"projected_residual", linear.relativeResidual},
                     {"equilibrium", linear.equilibriumResidual},
                     {"equality_constraints", linear.constraintResidual},
@@ -208,7 +213,7 @@ std::string linearReport(const LinearFetiResult& linear) {
       << linear.iterations << " iterations (" << linear.fApplications << " F applications), "
       << "||Pr||/||Ph|| = " << linear.relativeResidual << ", kappa ~ " << linear.conditionEstimate
       << "\n  KKT: equilibrium " << linear.equilibriumResidual << ", ||Bu - c||/||u|| "
-      << linear.constraintResidual << "\n  times: factorization " << linear.factorizationSeconds
+      << linear.constraintResidual << "\n" << interfaceLine(linear) << "  times: factorization " << linear.factorizationSeconds
       << " s, solve " << linear.solveSeconds << " s\n";
   return out.str();
 }

@@ -10,6 +10,7 @@
 
 #include "tribos/contact/ContactSolver.hpp"
 #include "tribos/core/Timer.hpp"
+#include "tribos/stack/ContactFields.hpp"
 #include "tribos/stack/GlobalFields.hpp"
 
 namespace Teuchos {
@@ -30,42 +31,20 @@ struct OuterIterationRecord {
   double elapsedSeconds = 0.0;     ///< since the solver stack was set up (factorisation included)
 };
 
-/// One contact interface's resultants and extremes (rank 0; ContactSolveResult::interfaces).
-struct InterfaceResult {
-  std::string name;       ///< the Contact/<name> sublist ("" for the flat Contact list)
-  std::string surfaces;   ///< "slave set -> master set"
-  contact::FrictionLaw law;
-  double normalForce = 0.0;            ///< sum of its normal nodal forces
-  std::array<double, 3> force{};       ///< sum of its nodal contact forces in x, y, z (on the master)
-  double frictionForce = 0.0;          ///< sum of the lengths of its tangential nodal forces
-  std::array<int, 3> counts{0, 0, 0};  ///< its contact nodes: no contact, stick, slip
-  double peakPressure = 0.0, largestOpening = 0.0, largestOverlap = 0.0;
-};
-
-struct ContactSolveResult {
+/// The contact solve, its counts and times, and the contact fields (ContactFields).
+struct ContactSolveResult : ContactFields {
   contact::ContactResult contact;   ///< counters, KKT, status counts (node list: this rank's)
   GlobalDisplacement displacement;  ///< rank 0
-  /// Per global node (rank 0), zero off the slave surface: force of the slave body on the
-  /// master body in (nu, t1, t2), status (0 none, 1 stick, 2 slip), pressure (normal force
-  /// per tributary area).
-  std::vector<double> contactNormal, contactT1, contactT2, contactStatus, contactPressure;
-  /// Per global node (rank 0), zero off the slave surface: the initial signed gap d along nu
-  /// (negative: overlap), the gap after deformation (ContactNodeResult::opening), the
-  /// normal nu, and the master node with the largest weight (1-based id; 0 off the surface).
-  std::vector<double> contactGap, contactOpening, contactNx, contactNy, contactNz, contactMaster;
   /// Reaction force per global node (gatherReactions), rank 0.
   std::vector<std::array<double, 3>> reaction;
   std::array<double, 3> appliedLoad{};  ///< sum of the nodal loads (every rank)
   double appliedLoadMagnitude = 0.0;    ///< sum of their lengths (loadMagnitude)
-  double totalNormalForce = 0.0;    ///< sum of the normal nodal forces (rank 0)
-  std::array<double, 3> totalContactForce{};  ///< sum of nodal contact forces in x, y, z (rank 0)
   double factorizationSeconds = 0.0, solveSeconds = 0.0;
   long long fApplications = 0;
   feti::OperatorProfile profile;  ///< rank 0's operator times and counts (doc/measurements/coarse_problem.md)
   long long factorNonzeros = 0;       ///< feti::TotalFeti::factorNonzeros
   double bytesPerFApplication = 0.0;  ///< feti::TotalFeti::bytesPerFApplication
   std::string chain;                ///< the solver chain that was built, for verbose output
-  std::vector<InterfaceResult> interfaces;  ///< per scene interface, in the scene's order (rank 0)
   std::vector<OuterIterationRecord> history;  ///< one per outer iteration (rank 0)
 };
 

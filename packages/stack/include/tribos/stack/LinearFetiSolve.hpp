@@ -10,6 +10,7 @@
 
 #include "tribos/core/Timer.hpp"
 #include "tribos/feti/ConstraintMatrix.hpp"
+#include "tribos/stack/ContactFields.hpp"
 #include "tribos/stack/Scene.hpp"
 
 namespace Teuchos {
@@ -22,7 +23,9 @@ namespace tribos::stack {
 /// unless the friction model is "None").
 feti::ConstraintSpec constraintSpec(const Scene& scene);
 
-struct LinearFetiResult {
+/// The linear solve; its contact fields (ContactFields) where the scene's interfaces are all
+/// bonded (tied), empty without contact.
+struct LinearFetiResult : ContactFields {
   bool converged = false;
   std::string message;              ///< "converged", or which limit ended the iterations
   int iterations = 0;

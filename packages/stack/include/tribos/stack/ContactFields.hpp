@@ -1,0 +1,61 @@
+#pragma once
+/// \file ContactFields.hpp
+/// The contact results on the user's mesh: nodal fields on the slave surfaces and each
+/// interface's resultants, from the contact nodes' forces, statuses and openings, whichever
+/// solver found them (the contact solve, or linear T-FETI for scenes whose interfaces are all
+/// bonded).
+#include <mpi.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "tribos/contact/FrictionModel.hpp"
+#include "tribos/stack/Scene.hpp"
+
+namespace tribos::contact {
+struct ContactNodeResult;  // contact/ContactSolver.hpp (heavy: TotalFeti); callers include it
+}
+
+namespace tribos::stack {
+
+/// One contact interface's resultants and extremes (rank 0; ContactFields::interfaces).
+struct InterfaceResult {
+  std::string name;       ///< the Contact/<name> sublist ("" for the flat Contact list)
+  std::string surfaces;   ///< "slave set -> master set"
+  contact::FrictionLaw law;
+  double normalForce = 0.0;            ///< sum of its normal nodal forces
+  std::array<double, 3> force{};       ///< sum of its nodal contact forces in x, y, z (on the master)
+  double frictionForce = 0.0;          ///< sum of the lengths of its tangential nodal forces
+  std::array<int, 3> counts{0, 0, 0};  ///< its contact nodes: no contact, stick, slip
+  double peakPressure = 0.0, largestOpening = 0.0, largestOverlap = 0.0;
+};
+
+struct ContactFields {
+  /// Per global node (rank 0), zero off the slave surface: force of the slave body on the
+  /// master body in (nu, t1, t2), status (0 none, 1 stick, 2 slip), pressure (normal force
+  /// per tributary area).
+  std::vector<double> contactNormal, contactT1, contactT2, contactStatus, contactPressure;
+  /// Per global node (rank 0), zero off the slave surface: the initial signed gap d along nu
+  /// (negative: overlap), the gap after deformation (ContactNodeResult::opening), the
+  /// normal nu, and the master node with the largest weight (1-based id; 0 off the surface).
+  std::vector<double> contactGap, contactOpening, contactNx, contactNy, contactNz, contactMaster;
+  double totalNormalForce = 0.0;    ///< sum of the normal nodal forces (rank 0)
+  std::array<double, 3> totalContactForce{};  ///< sum of nodal contact forces in x, y, z (rank 0)
+  std::vector<InterfaceResult> interfaces;  ///< per scene interface, in the scene's order (rank 0)
+};
+
+/// Fills `out` on rank 0 from the contact nodes whose rows this rank owns (`nodes`); the
+/// geometry (gap, normal, master) comes from B on every rank. Every rank gets the interfaces'
+/// names and laws, rank 0 their sums. Collective over `comm`.
+void gatherContactFields(const Scene& scene, const feti::ConstraintMatrix& B,
+                         const std::vector<contact::ContactNodeResult>& nodes, MPI_Comm comm, ContactFields& out);
+
+/// The contact nodes of this rank's rows of a bonded (tied) solve: forces rowScale lambda,
+/// status stick, opening -(B u - c)_N / rowScale. `ownedLambda` and `ownedResidual` (B u - c)
+/// hold this rank's rows [B.firstRowOfRank[rank], B.firstRowOfRank[rank + 1]).
+std::vector<contact::ContactNodeResult> tiedNodeResults(const feti::ConstraintMatrix& B, int rank,
+                                                        const std::vector<double>& ownedLambda,
+                                                        const std::vector<double>& ownedResidual);
+
+}  // namespace tribos::stack
