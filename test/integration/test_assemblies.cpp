@@ -183,9 +183,9 @@ std::vector<std::string> inputBase() {
   return base;
 }
 
-TEST(ThreeBodiesInput, aSlaveNodePairedTwiceKeepsTheRowsOfTheEarlierInterface) {
-  // The rule for corners (a body on a floor and against a wall): here the same surfaces twice,
-  // so the later interface keeps nothing and says so.
+TEST(ThreeBodiesInput, aSlaveNodePairedTwiceKeepsTheRowsOfOneInterface) {
+  // The rule for corners (a body on a floor and against a wall): the smallest gap, the earlier
+  // interface on a tie. Here the same surfaces twice, so the later interface keeps nothing.
   const test::ExodusScene input(threeBodies(true), with(inputBase(), {"Contact/a/Slave Side Set=block_z0",
                                                                      "Contact/a/Master Side Set=foundation_z1",
                                                                      "Contact/b/Slave Side Set=block_z0",

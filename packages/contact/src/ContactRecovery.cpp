@@ -113,11 +113,11 @@ RecoveredLambda recoverPrimal(const feti::TotalFeti& feti, const feti::Constrain
   } catch (const feti::RigidMotionsUndetermined&) {
     // A body that slides everywhere: its sliding rows hold it too (their slip has no component
     // across the friction force's direction). Only then, so that every other solve keeps its bits.
-    try {
-      alpha = feti.rigidBodyCoefficients(*out.lambda, inactive,
-                                         slidingCombinations(problem, lam, out.tau, out.tinyForce));
-    } catch (const feti::RigidMotionsUndetermined&) {
-    }
+    const auto combinations = slidingCombinations(problem, lam, out.tau, out.tinyForce);
+    if (globalMax(comm, static_cast<double>(combinations.size())) > 0.0) try {
+        alpha = feti.rigidBodyCoefficients(*out.lambda, inactive, combinations);
+      } catch (const feti::RigidMotionsUndetermined&) {
+      }
   }
   if (alpha.empty()) {
     alpha = feti.rigidBodyCoefficients(*out.lambda);

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "tribos/core/ReproducibleSum.hpp"
+#include "tribos/qp/Reductions.hpp"
 
 namespace tribos::contact {
 
@@ -119,7 +120,7 @@ void DualContactProblem::buildStoppingScale() {
   if (!(globalMax(comm_, largest) > 0.0)) return;
   feti_.projectExactly(*open, *open);
   open->update(1.0, *c_, 1.0);
-  stoppingScale_ = open->norm2();
+  stoppingScale_ = qp::norm2(*open);  // reproducible: the same bits on any number of ranks
 }
 
 // (2) Omega: mu_nu >= -lambda_Im,nu; ||F^-1 (mu_t + lambda_Im,t)|| <= g (an ellipse with

@@ -313,10 +313,23 @@ void refuseSelfContact(const mesh::Mesh& mesh, const ContactInterfaceSpec& spec)
                              "surfaces of an interface must lie on different bodies");
 }
 
+/// Whether a face of side set `faces` has all its nodes in `nodes` (ascending).
+bool aFaceWithin(const mesh::Mesh& mesh, const std::string& faces, const std::vector<LO>& nodes) {
+  const auto& set = mesh.sideSet(faces);
+  for (size_t f = 0; f < set.elements.size(); ++f) {
+    bool within = true;
+    for (int v : mesh::kTetFaceVertices[set.sides[f]])
+      within = within && std::binary_search(nodes.begin(), nodes.end(), mesh.tets[set.elements[f]][v]);
+    if (within) return true;
+  }
+  return false;
+}
+
 /// Every interface names two surfaces on different bodies, and no contact is modelled twice:
-/// an interface whose slave surface shares nodes with an earlier one's master surface and
-/// whose master surface shares nodes with that one's slave surface (the same contact with the
-/// roles swapped, a "double pass") would split its forces between the two at random.
+/// an interface whose slave surface has a face on an earlier one's master surface and whose
+/// master surface has a face on that one's slave surface (the same contact with the roles
+/// swapped, a "double pass") would split its forces between the two at random. Surfaces that
+/// only share an edge (an L-shaped seat) are not that.
 void refuseContactsModelledTwice(const mesh::Mesh& mesh, const std::vector<ContactInterfaceSpec>& interfaces) {
   std::vector<std::vector<LO>> slave, master;
   for (const auto& spec : interfaces) {
@@ -326,14 +339,10 @@ void refuseContactsModelledTwice(const mesh::Mesh& mesh, const std::vector<Conta
     slave.push_back(mesh::sideSetNodes(mesh, mesh.sideSet(spec.slaveSideSet)));
     master.push_back(mesh::sideSetNodes(mesh, mesh.sideSet(spec.masterSideSet)));
   }
-  auto meet = [](const std::vector<LO>& a, const std::vector<LO>& b) {
-    std::vector<LO> both;
-    std::set_intersection(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(both));
-    return !both.empty();
-  };
   for (size_t j = 0; j < interfaces.size(); ++j)
     for (size_t i = 0; i < j; ++i)
-      if (meet(slave[j], master[i]) && meet(master[j], slave[i]))
+      if (aFaceWithin(mesh, interfaces[j].slaveSideSet, master[i]) &&
+          aFaceWithin(mesh, interfaces[j].masterSideSet, slave[i]))
         throw core::InputError(interfaces[j].label() + " models the contact of " + interfaces[i].label() +
                                " again with slave and master swapped: give each contact once (a double pass "
                                "would split its forces between the two at random)");
@@ -393,30 +402,55 @@ ContactInterfaceRows interfaceRows(const mesh::Mesh& mesh, const ContactInterfac
   return found;
 }
 
-/// (2) Contact rows of interface `index`: slave node minus the master displacement weighted by
-/// the dual mortar or node-to-surface weights (paper Section 3, the transfer mapping chi;
-/// DESIGN.md). `slaveOf` (per mesh node: the interface that paired it as a slave, -1 if none):
-/// a node an earlier interface paired keeps its rows there (the header's rule).
-void addContactRows(const mesh::Mesh& mesh, const ConstraintSpec& all, int index, const RowContext& ctx,
-                    RowList& list, std::vector<int>& slaveOf, ConstraintMatrix& B) {
-  const ContactInterfaceSpec& spec = all.interfaces[index];
+/// The pairs of one interface: its search and the master side of each pair.
+struct InterfacePairs {
   mesh::ContactSearchResult search;
   std::vector<mesh::MortarRow> masterSides;
+};
+
+InterfacePairs pairsOf(const mesh::Mesh& mesh, const ContactInterfaceSpec& spec) {
+  InterfacePairs found;
   try {
-    search = mesh::searchContactPairs(mesh, spec.slaveSideSet, spec.masterSideSet, spec.searchDistance);
-    masterSides = masterSidesOf(mesh, spec, search);
+    found.search = mesh::searchContactPairs(mesh, spec.slaveSideSet, spec.masterSideSet, spec.searchDistance);
+    found.masterSides = masterSidesOf(mesh, spec, found.search);
   } catch (const core::InputError& e) {
     throw core::InputError(spec.label() + ": " + e.what());
   }
+  return found;
+}
+
+/// Per mesh node, the interface whose rows a slave node gets (-1: none pairs it): where several
+/// pair it (a corner of a body on a floor and against a wall), the one with the smallest gap,
+/// the surface it touches or is nearest to (ties: the earlier interface).
+std::vector<int> slaveOwners(LO numNodes, const std::vector<InterfacePairs>& found) {
+  std::vector<int> owner(numNodes, -1);
+  std::vector<double> gap(numNodes, std::numeric_limits<double>::infinity());
+  for (size_t i = 0; i < found.size(); ++i)
+    for (size_t p = 0; p < found[i].search.pairs.size(); ++p) {
+      const LO n = found[i].search.pairs[p].slaveNode;
+      if (found[i].masterSides[p].gap < gap[n]) {
+        gap[n] = found[i].masterSides[p].gap;
+        owner[n] = static_cast<int>(i);
+      }
+    }
+  return owner;
+}
+
+/// (2) Contact rows of interface `index`: slave node minus the master displacement weighted by
+/// the dual mortar or node-to-surface weights (paper Section 3, the transfer mapping chi;
+/// DESIGN.md), for the pairs whose slave node `owner` gives to this interface (slaveOwners).
+void addContactRows(const mesh::Mesh& mesh, const ConstraintSpec& all, int index, InterfacePairs found,
+                    const std::vector<int>& owner, const RowContext& ctx, RowList& list, ConstraintMatrix& B) {
+  const ContactInterfaceSpec& spec = all.interfaces[index];
+  auto& search = found.search;
+  auto& masterSides = found.masterSides;
   GO shared = 0;
   size_t keep = 0;
   for (size_t p = 0; p < search.pairs.size(); ++p) {
-    int& owner = slaveOf[search.pairs[p].slaveNode];
-    if (owner >= 0) {
+    if (owner[search.pairs[p].slaveNode] != index) {
       ++shared;
       continue;
     }
-    owner = index;
     search.pairs[keep] = search.pairs[p];
     masterSides[keep++] = masterSides[p];
   }
@@ -575,9 +609,11 @@ ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decom
   RowList list;
   ConstraintMatrix B;
   refuseContactsModelledTwice(mesh, spec.interfaces);
-  std::vector<int> slaveOf(mesh.numNodes(), -1);
+  std::vector<InterfacePairs> found;
+  for (const auto& one : spec.interfaces) found.push_back(pairsOf(mesh, one));
+  const std::vector<int> owner = slaveOwners(mesh.numNodes(), found);
   for (size_t i = 0; i < spec.interfaces.size(); ++i)
-    addContactRows(mesh, spec, static_cast<int>(i), ctx, list, slaveOf, B);  // (2)
+    addContactRows(mesh, spec, static_cast<int>(i), std::move(found[i]), owner, ctx, list, B);  // (2)
   addGluingAndDirichletRows(mesh.numNodes(), ctx, list);                    // (3)
   numberRows(list, decomposition.numSubdomains(), numRanks, keepForRank, B);  // (4)
   return B;

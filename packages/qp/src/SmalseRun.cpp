@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "tribos/qp/Reductions.hpp"
 
@@ -77,8 +78,12 @@ bool SmalseRun::scale(double knownNormA) {
       return false;
     }
   }
-  // The caller's scale where c holds more than drives the solution (open gaps).
-  if (s_.rightHandSideScale > 0.0) normC_ = s_.rightHandSideScale;
+  // The caller's scale where c holds more than drives the solution (open gaps), but not so far
+  // below ||c|| that epsilon times it falls under the round-off of a gradient of c's size
+  // (tiny loads under a large gap never converged: 1e3 units of round-off is the floor).
+  if (s_.rightHandSideScale > 0.0)
+    normC_ = std::max(s_.rightHandSideScale,
+                      1e3 * std::numeric_limits<double>::epsilon() * normC_ / s_.tolerance);
   normA_ = counters_.normA;
   rho_ = s_.rho * normA_;
   // ||A_rho|| = max(||PFP||, rho): PFP and rho Q act on the orthogonal spaces Ker G and Im G^T.

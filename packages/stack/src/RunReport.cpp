@@ -246,7 +246,7 @@ nlohmann::json setupSummary(const Scene& scene, const SetupReport& report, const
     j["contact_search"].push_back({{"interface", i.label},
                                    {"paired", i.pairedSlaveNodes},
                                    {"unpaired", i.unpairedSlaveNodes},
-                                   {"kept_by_earlier_interface", i.sharedSlaveNodes},
+                                   {"given_to_another_interface", i.sharedSlaveNodes},
                                    {"initial_overlaps", i.overlappingPairs},
                                    {"largest_initial_overlap", i.largestOverlap},
                                    {"limited_mortar_gaps", i.limitedMortarGaps},
@@ -290,8 +290,8 @@ std::string contactSearchLines(const feti::ConstraintMatrix& B) {
         << i.overlappingPairs << " with initial overlap";
     if (i.overlappingPairs > 0) out << " (largest " << i.largestOverlap << ")";
     if (i.sharedSlaveNodes > 0)
-      out << "; " << i.sharedSlaveNodes << " more paired here keep the rows of an earlier interface (a slave node "
-          << "has the rows of one interface)";
+      out << "; " << i.sharedSlaveNodes << " more paired here have the rows of another interface, where their gap "
+          << "is smaller (a slave node has the rows of one interface)";
     out << "\n" << limitedGapsWarning(i);
   }
   return out.str();

@@ -52,9 +52,9 @@ inline constexpr core::EnumNames<ContactDiscretization, 2> kContactDiscretizatio
     {{"Mortar", ContactDiscretization::Mortar}, {"Node To Surface", ContactDiscretization::NodeToSurface}}};
 
 /// One contact interface (Contact or Contact/<name>): a slave surface paired with a master
-/// surface. A slave node that two interfaces pair (a corner of a body resting on a floor and
-/// against a wall) keeps its rows in the earlier interface only, counted in
-/// ContactInterfaceRows::sharedSlaveNodes of the later one. A node may be the master of other
+/// surface. A slave node that several interfaces pair (a corner of a body resting on a floor and
+/// against a wall) gets the rows of the one where its gap is smallest (ties: the earlier), and
+/// is counted in ContactInterfaceRows::sharedSlaveNodes of the others. A node may be the master of other
 /// interfaces. Both surfaces of one interface must lie in different bodies (self-contact is not
 /// modelled), and one contact may not be modelled twice (slave and master swapped: a double pass).
 struct ContactInterfaceSpec {
@@ -119,7 +119,7 @@ struct ContactInterfaceRows {
   GO pairedSlaveNodes = 0;           ///< slave nodes with a master face within the search distance
   GO unpairedSlaveNodes = 0;         ///< slave nodes with no master face within the search distance
   std::vector<LO> unpairedSample;    ///< the first few of them (global node ids), for messages
-  GO sharedSlaveNodes = 0;           ///< paired here too but kept by an earlier interface (no rows here)
+  GO sharedSlaveNodes = 0;           ///< paired here too but given to another interface (no rows here)
   double searchDistance = 0.0;       ///< its search distance, for messages
   GO overlappingPairs = 0;           ///< contact nodes whose row has a negative initial gap (beyond round-off)
   double largestOverlap = 0.0;       ///< max(-gap) over them

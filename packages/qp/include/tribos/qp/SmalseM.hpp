@@ -80,7 +80,8 @@ struct SmalseSettings {
   double innerFloor = 0.1;     ///< inner solves stop at ||g^P|| <= innerFloor eps ||c|| at the latest
   /// > 0: the scale of epsilon and eta (and of the reported relative residuals) in place of
   /// ||c||, for a c inflated by what drives no solution (open contact gaps: the caller's
-  /// DualContactProblem::stoppingScale); 0: ||c||. Not a parameter: set by the caller per problem.
+  /// DualContactProblem::stoppingScale), at least 1e3 DBL_EPSILON ||c|| / tolerance (round-off); 0:
+  /// ||c||. Not a parameter: set by the caller per problem.
   double rightHandSideScale = 0.0;
   /// Called on every rank after each outer iteration (after the hook, so that it sees what
   /// the hook changed; not when the hook throws); may be empty.
