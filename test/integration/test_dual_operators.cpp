@@ -157,6 +157,52 @@ TEST(TotalFeti, aReleasedCoarseFactorIsRebuiltWithTheSameBits) {
   for (size_t i = 0; i < a.extent(0); ++i) EXPECT_EQ(a(i, 0), b(i, 0));
 }
 
+TEST(TotalFeti, aNewRightHandSideOnTheSameOperators) {
+  // A load step (ALGORITHMS.md 11): setRightHandSide(2 f, 2 c) doubles e, d~ and lambda_Im to
+  // the bit (a power of two commutes with every rounding), and projected CG's lambda with them;
+  // setting (f, c) back gives the first bits again. Nothing is factorised again.
+  auto p = makeProblem("4x2x2", 2, false);
+  std::vector<fem::SubdomainSystem> systems;  // the same loads, assembled again
+  stack::assembleOwnedSubdomains(p->scene, MPI_COMM_WORLD, systems);
+  std::vector<std::vector<double>> f, twiceF;
+  for (const auto& s : systems) {
+    f.push_back(s.f);
+    twiceF.push_back(s.f);
+    for (double& v : twiceF.back()) v *= 2.0;
+  }
+  const std::vector<double> c = p->feti->ownedC();
+  std::vector<double> twiceC = c;
+  for (double& v : twiceC) v *= 2.0;
+  auto copy = [](const feti::DualVector& v) {
+    const auto a = v.getLocalViewHost(Tpetra::Access::ReadOnly);
+    std::vector<double> out(a.extent(0));
+    for (size_t i = 0; i < out.size(); ++i) out[i] = a(i, 0);
+    return out;
+  };
+  auto solve = [&] {
+    auto lambda = p->feti->createDualVector();
+    feti::ProjectedCgSettings cg;
+    cg.tolerance = 1e-10;
+    EXPECT_TRUE(feti::solveProjectedCg(*p->feti, *lambda, cg).converged);
+    return copy(*lambda);
+  };
+  const auto e = p->feti->e();
+  const auto d = copy(p->feti->dTilde()), im = copy(p->feti->lambdaIm()), lambda = solve();
+  p->feti->setRightHandSide(twiceF, twiceC);
+  EXPECT_EQ(p->feti->ownedC(), twiceC);
+  for (size_t i = 0; i < e.size(); ++i) EXPECT_EQ(p->feti->e()[i], 2.0 * e[i]);
+  const auto d2 = copy(p->feti->dTilde()), im2 = copy(p->feti->lambdaIm()), lambda2 = solve();
+  for (size_t i = 0; i < d.size(); ++i) {
+    EXPECT_EQ(d2[i], 2.0 * d[i]);
+    EXPECT_EQ(im2[i], 2.0 * im[i]);
+    EXPECT_EQ(lambda2[i], 2.0 * lambda[i]);
+  }
+  p->feti->setRightHandSide(f, c);
+  EXPECT_EQ(copy(p->feti->dTilde()), d);
+  EXPECT_EQ(solve(), lambda);
+  EXPECT_THROW(p->feti->setRightHandSide(f, std::vector<double>(c.size() + 1)), std::invalid_argument);
+}
+
 TEST(TotalFeti, aSingularRigidMotionSystemThrowsOnEveryRankAndKeepsThemInStep) {
   // G_I G_I^T (and G G^T) are factorised and solved on rank 0 alone and the result broadcast:
   // a failure there must reach every rank as the same exception, and the ranks must meet in

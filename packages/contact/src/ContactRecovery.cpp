@@ -142,6 +142,7 @@ struct ContactResiduals {
 /// What the KKT report of one contact node reads.
 struct NodeContext {
   const LocalContact& lc;
+  const std::vector<double>& c;  ///< c on this rank's rows (TotalFeti::ownedC)
   const std::vector<double>& slip;
   const HostView& lam;
   const HostView& bu;
@@ -152,15 +153,15 @@ struct NodeContext {
 /// tangential slip T u - c (row-scaled: lambda_t^T v is the power), prescribed components
 /// included: a row keeps a slave held along its tangent where the master is free (a roller on
 /// one body), and the prescribed part lives in c = -scale known (0 without one).
-std::array<double, 2> tangentialSlip(const NodeContext& x, const feti::ContactNode& node, GO first, size_t k,
-                                     const feti::ConstraintMatrix& B, const std::array<double, 2>& lt,
+std::array<double, 2> tangentialSlip(const NodeContext& x, const feti::ContactNode& node, size_t k,
+                                     const std::array<double, 2>& lt,
                                      ContactNodeResult& out) {
   std::array<double, 2> v{0.0, 0.0};
   for (int j = 0; j < 2; ++j) {
     const LO t = x.lc.tangentialRow[k][j];
     if (t < 0) continue;
     out.force[j + 1] = node.tangentialScale[j] * lt[j];
-    v[j] = x.bu(t, 0) - B.c[first + t];
+    v[j] = x.bu(t, 0) - x.c[t];
     out.relativeDisplacement[j + 1] = v[j] / node.tangentialScale[j];
   }
   return v;
@@ -168,10 +169,10 @@ std::array<double, 2> tangentialSlip(const NodeContext& x, const feti::ContactNo
 
 /// A bonded node (tied: every row an equality): its residuals are those of B u = c, its
 /// status "stick".
-ContactNodeResult bondedNodeResult(const NodeContext& x, const feti::ContactNode& node, GO first, size_t k,
-                                   const feti::ConstraintMatrix& B, ContactResiduals& res) {
+ContactNodeResult bondedNodeResult(const NodeContext& x, const feti::ContactNode& node, size_t k,
+                                   ContactResiduals& res) {
   const LO r = x.lc.normalRow[k];
-  const double gap = x.bu(r, 0) - B.c[first + r];
+  const double gap = x.bu(r, 0) - x.c[r];
   res.penetration = std::max(res.penetration, std::abs(gap));
   ContactNodeResult out;
   out.slaveNode = node.slaveNode;
@@ -179,19 +180,19 @@ ContactNodeResult bondedNodeResult(const NodeContext& x, const feti::ContactNode
   out.relativeDisplacement[0] = x.bu(r, 0) / node.rowScale;
   out.opening = -gap / node.rowScale;
   out.status = ContactStatus::Stick;
-  const auto v = tangentialSlip(x, node, first, k, B, tangential(x.lc, x.lam, k), out);
+  const auto v = tangentialSlip(x, node, k, tangential(x.lc, x.lam, k), out);
   res.stickRule = std::max(res.stickRule, std::hypot(v[0], v[1]) / x.uScale);
   return out;
 }
 
 /// Contact node k: its forces, relative displacements, opening and status, and its terms of
 /// the contact residuals.
-ContactNodeResult contactNodeResult(const NodeContext& x, const feti::ContactNode& node, GO first, size_t k,
-                                    const feti::ConstraintMatrix& B, ContactResiduals& res) {
+ContactNodeResult contactNodeResult(const NodeContext& x, const feti::ContactNode& node, size_t k,
+                                    ContactResiduals& res) {
   const auto& lc = x.lc;
-  if (lc.model[k] == FrictionModel::Bonded) return bondedNodeResult(x, node, first, k, B, res);
+  if (lc.model[k] == FrictionModel::Bonded) return bondedNodeResult(x, node, k, res);
   const LO r = lc.normalRow[k];
-  const double gap = x.bu(r, 0) - B.c[first + r];  // N u - c <= 0
+  const double gap = x.bu(r, 0) - x.c[r];  // N u - c <= 0
   res.penetration = std::max(res.penetration, gap);
   // Multipliers below the status tests' resolution count as zero (the node is out of
   // contact): a round-off lambda_nu ~ 1e-14 over an open gap is no violation, and
@@ -214,7 +215,7 @@ ContactNodeResult contactNodeResult(const NodeContext& x, const feti::ContactNod
   const double g = lc.model[k] == FrictionModel::Coulomb ? std::max(x.lam(r, 0), 0.0) : x.slip[k];
   out.slipBound = node.rowScale * g;
   const auto lt = tangential(lc, x.lam, k);
-  const auto v = tangentialSlip(x, node, first, k, B, lt, out);
+  const auto v = tangentialSlip(x, node, k, lt, out);
   const auto state = frictionState(lt, lc.tangentialRow[k], lc.axisScale[k], lc.F[k], g, x.tinyForce);
   // The law itself, without the status tests' round-off floor (which would count the
   // whole |lambda_t| of a node whose bound is below it).
@@ -253,7 +254,7 @@ double equalityResiduals(const feti::TotalFeti& feti, const feti::ConstraintMatr
     for (double v : us) uNorm2.push_back(v * v);
   for (GO r = first; r < B.firstRowOfRank[rank + 1]; ++r)
     if (B.kind[r] == feti::RowKind::Gluing || B.kind[r] == feti::RowKind::Dirichlet) {
-      const double residual = bu(r - first, 0) - B.c[r];  // B_E u = c_E (prescribed values)
+      const double residual = bu(r - first, 0) - feti.ownedC()[r - first];  // B_E u = c_E (prescribed values)
       equality.push_back(residual * residual);
     }
   // Relative to the largest force, applied or constraint (non-zero when only prescribed
@@ -271,17 +272,17 @@ void reportKkt(const feti::TotalFeti& feti, const feti::ConstraintMatrix& B,
                const DualContactProblem& problem, const RecoveredLambda& recovered, ContactResult& result) {
   const auto& comm = *feti.comm();
   const auto& lc = problem.contact();
-  const GO first = B.firstRowOfRank[comm.getRank()];
   auto Bu = feti.createDualVector();
   feti.applyB(result.displacement, *Bu);
   const auto bu = Bu->getLocalViewHost(Tpetra::Access::ReadOnly);
   const auto lam = recovered.lambda->getLocalViewHost(Tpetra::Access::ReadOnly);
   const double uScale = equalityResiduals(feti, B, *recovered.lambda, bu, result);
   const double lScale = std::max(recovered.lambdaNuMax, recovered.tinyForce);
-  const NodeContext context{lc, problem.slipBounds(), lam, bu, recovered.tau, recovered.tinyForce, uScale, lScale};
+  const NodeContext context{lc,    feti.ownedC(),       problem.slipBounds(), lam, bu, recovered.tau,
+                            recovered.tinyForce, uScale, lScale};
   ContactResiduals res;
   for (size_t k = 0; k < lc.node.size(); ++k) {
-    const auto out = contactNodeResult(context, B.contact[lc.node[k]], first, k, B, res);
+    const auto out = contactNodeResult(context, B.contact[lc.node[k]], k, res);
     result.statusCounts[static_cast<int>(out.status)]++;
     result.nodes.push_back(out);
   }

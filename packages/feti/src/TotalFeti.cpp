@@ -38,7 +38,27 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
   if (settings_.deadline) settings_.deadline->check("the coarse problem", rawComm(*comm));
   settings_.deadline = nullptr;  // the caller's: not kept beyond the set-up
   core::ScopedPhase phase("T-FETI: d~ and lambda_Im");
+  {
+    const int rank = comm_->getRank();
+    c_.assign(B_.c.begin() + B_.firstRowOfRank[rank], B_.c.begin() + B_.firstRowOfRank[rank + 1]);
+  }
   buildDualData();  // (5)
+}
+
+void TotalFeti::setRightHandSide(const std::vector<std::vector<double>>& fOwned, const std::vector<double>& cOwned) {
+  TEUCHOS_TEST_FOR_EXCEPTION(fOwned.size() != local_.size() || cOwned.size() != c_.size(), std::invalid_argument,
+                             "tribos::feti::TotalFeti::setRightHandSide: " << fOwned.size() << " load vectors and "
+                                 << cOwned.size() << " values of c for " << local_.size() << " owned subdomains and "
+                                 << c_.size() << " owned rows");
+  for (size_t i = 0; i < local_.size(); ++i) {
+    TEUCHOS_TEST_FOR_EXCEPTION(fOwned[i].size() != local_[i]->system.f.size(), std::invalid_argument,
+                               "tribos::feti::TotalFeti::setRightHandSide: subdomain " << local_[i]->subdomain
+                                   << " has " << local_[i]->system.f.size() << " dofs, its load "
+                                   << fOwned[i].size());
+    local_[i]->system.f = fOwned[i];
+  }
+  c_ = cOwned;
+  buildDualData();
 }
 
 void TotalFeti::buildMaps(int numOwned) {
@@ -171,7 +191,7 @@ void TotalFeti::buildDualData() {
     const int rank = comm_->getRank();
     const GO myFirst = B_.firstRowOfRank[rank], myEnd = B_.firstRowOfRank[rank + 1];
     double* d = readWrite(*dTilde_);
-    for (GO r = myFirst; r < myEnd; ++r) d[r - myFirst] -= B_.c[r];
+    for (GO r = myFirst; r < myEnd; ++r) d[r - myFirst] -= c_[r - myFirst];
   }
   lambdaIm_ = createDualVector();
   std::vector<double> a = e_;

@@ -91,8 +91,8 @@ LinearFetiResult solveLinearFeti(const Scene& scene, std::vector<fem::SubdomainS
   feti.applyB(u, *Bu);
   {
     auto data = Bu->getLocalViewHost(Tpetra::Access::ReadWrite);
-    const GO first = B.firstRowOfRank[rank];
-    for (size_t i = 0; i < data.extent(0); ++i) data(i, 0) -= B.c[first + static_cast<GO>(i)];
+    const auto& c = feti.ownedC();
+    for (size_t i = 0; i < data.extent(0); ++i) data(i, 0) -= c[i];
   }
   double uNormLocal = 0.0;
   for (const auto& us : u)

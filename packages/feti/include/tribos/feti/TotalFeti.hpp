@@ -198,6 +198,13 @@ class TotalFeti {
   void applyDirichlet(const DualVector& x, DualVector& y) const;
 
   const DualVector& dTilde() const { return *dTilde_; }    ///< d~ = B K^dagger f - c
+  /// c on this rank's rows [B.firstRowOfRank[rank], B.firstRowOfRank[rank + 1]): B.c's, or the
+  /// last setRightHandSide's.
+  const std::vector<double>& ownedC() const { return c_; }
+  /// A new right-hand side on the same operators (a load step, ALGORITHMS.md 11): the loads f_s
+  /// of the owned subdomains (each the size of its system's f) and c on the owned rows; e, d~
+  /// and lambda_Im follow. The factors, G, G G^T and the maps stay. Collective.
+  void setRightHandSide(const std::vector<std::vector<double>>& fOwned, const std::vector<double>& cOwned);
   const DualVector& lambdaIm() const { return *lambdaIm_; }  ///< G^T (G G^T)^{-1} e
   const std::vector<double>& e() const { return e_; }       ///< R^T f
 
@@ -329,6 +336,7 @@ class TotalFeti {
   mutable std::vector<double> coarseLocal_, coarseVector_;
   std::vector<double> e_;
   Teuchos::RCP<DualVector> dTilde_, lambdaIm_;
+  std::vector<double> c_;  ///< c on the owned rows (ownedC)
   mutable long long fApplications_ = 0;
   mutable OperatorProfile profile_;
   double factorizationSeconds_ = 0.0;
