@@ -382,6 +382,7 @@ ContactInterfaceRows interfaceRows(const mesh::Mesh& mesh, const ContactInterfac
   ContactInterfaceRows found;
   found.label = spec.label();
   found.list = spec.list();
+  found.tied = spec.tied;
   found.pairedSlaveNodes = static_cast<GO>(search.pairs.size());
   found.unpairedSlaveNodes = static_cast<GO>(search.unpaired.size());
   constexpr size_t kSample = 5;

@@ -11,12 +11,14 @@
 #include <memory>
 #include <sstream>
 
+#include "tribos/core/Format.hpp"
 #include "tribos/core/Timer.hpp"
 #include "tribos/feti/TotalFeti.hpp"
 #include "tribos/qp/SolverParameters.hpp"
 #include "tribos/stack/RootGather.hpp"
 #include "tribos/stack/SceneParameters.hpp"
 #include "tribos/stack/SolveBudget.hpp"
+#include "LoadHistory.hpp"
 
 namespace tribos::stack {
 
@@ -228,6 +230,41 @@ void addOverloadNote(const feti::ConstraintMatrix& B, const contact::FrictionSet
   out.contact.message += "; " + notes;
 }
 
+/// The steps of a load history (LoadHistory): each a contact solve on the same operators with
+/// its right-hand side; the history stops at the first step that does not converge (its result
+/// returned). The counters are summed over the steps.
+contact::ContactResult solveLoadHistory(feti::TotalFeti& feti, const feti::ConstraintMatrix& B,
+                                        const contact::FrictionSettings& friction, const qp::SmalseSettings& smalse,
+                                        feti::DualPreconditioner preconditioner, int steps, LoadHistory& history,
+                                        int rank, std::vector<LoadStepRecord>& records) {
+  contact::ContactResult result;
+  qp::SmalseCounters total;  // the counts over every step
+  for (int k = 1; k <= steps; ++k) {
+    const double factor = static_cast<double>(k) / steps;
+    feti.setRightHandSide(history.loads(factor), history.constraintValues(factor));
+    result = contact::solveContact(feti, B, friction, smalse, preconditioner);
+    total.outerIterations += result.counters.outerIterations;
+    total.innerIterations += result.counters.innerIterations;
+    total.operatorApplications += result.counters.operatorApplications;
+    total.seconds += result.counters.seconds;
+    records.push_back({k, factor, result.converged, result.counters.outerIterations,
+                       result.counters.operatorApplications, result.statusCounts, result.message});
+    if (rank == 0) {
+      std::printf("  load step %d/%d (factor %g): %s, %d outer, %lld PFP; %d no contact, %d stick, %d slip\n", k,
+                  steps, factor, result.converged ? "converged" : "NOT CONVERGED", result.counters.outerIterations,
+                  result.counters.operatorApplications, result.statusCounts[0], result.statusCounts[1],
+                  result.statusCounts[2]);
+      std::fflush(stdout);
+    }
+    if (!result.converged) break;  // the caller names the step
+    history.advance(feti, result.displacement, factor);
+  }
+  result.counters.outerIterations = total.outerIterations;
+  result.counters.innerIterations = total.innerIterations;
+  result.counters.operatorApplications = total.operatorApplications;
+  result.counters.seconds = total.seconds;
+  return result;
+}
 }  // namespace
 
 ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
@@ -252,13 +289,27 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
 
   out.appliedLoad = totalLoad(owned, comm);
   out.appliedLoadMagnitude = loadMagnitude(owned, comm);
-  const feti::TotalFeti feti(scene.mesh, scene.decomposition, std::move(owned), B,
-                             Teuchos::rcp(new Teuchos::MpiComm<int>(comm)), settings);
+  const int steps = tribos.sublist("Load Steps").get<int>("Number Of Steps");
+  std::vector<std::vector<double>> fullLoads;
+  if (steps > 1)
+    for (const auto& system : owned) fullLoads.push_back(system.f);
+  feti::TotalFeti feti(scene.mesh, scene.decomposition, std::move(owned), B,
+                       Teuchos::rcp(new Teuchos::MpiComm<int>(comm)), settings);
   out.factorizationSeconds = feti.factorizationSeconds();
   core::Stopwatch watch;
-  out.contact = contact::solveContact(feti, B, friction, smalse, preconditioner);
+  if (steps == 1) {
+    out.contact = contact::solveContact(feti, B, friction, smalse, preconditioner);
+  } else {
+    LoadHistory history(B, rank, std::move(fullLoads));
+    out.contact = solveLoadHistory(feti, B, friction, smalse, preconditioner, steps, history, rank, out.steps);
+  }
   out.solveSeconds = watch.seconds();
   nameTheLimit(budget, *runs, smalse, friction, out.contact);
+  if (!out.steps.empty() && !out.contact.converged) {
+    const auto& last = out.steps.back();
+    out.contact.message = "load step " + std::to_string(last.step) + " of " + std::to_string(steps) +
+                          " (load factor " + core::formatNumber(last.factor) + "): " + out.contact.message;
+  }
   out.fApplications = feti.fApplications();
   out.profile = feti.profile();
   out.factorNonzeros = feti.factorNonzeros();

@@ -146,6 +146,19 @@ void addContactSummary(const ContactSolveResult& contactSolve, double tolerance,
   summary["total_contact_force"] = contactSolve.totalContactForce;
   summary["contact_force_on_master"] = contactSolve.totalContactForce;
   summary["interfaces"] = interfaceSummary(contactSolve);
+  if (!contactSolve.steps.empty()) {
+    summary["steps"] = nlohmann::json::array();
+    for (const auto& k : contactSolve.steps)
+      summary["steps"].push_back({{"step", k.step},
+                                  {"load_factor", k.factor},
+                                  {"converged", k.converged},
+                                  {"outer_iterations", k.outerIterations},
+                                  {"pfp_applications", k.pfpApplications},
+                                  {"no_contact", k.statusCounts[0]},
+                                  {"stick", k.statusCounts[1]},
+                                  {"slip", k.statusCounts[2]},
+                                  {"message", k.message}});
+  }
   summary["times"]["factorization_s"] = contactSolve.factorizationSeconds;
   summary["times"]["solve_s"] = contactSolve.solveSeconds;
   // Of solve_s: the SMALSE-M runs, and of them the work outside A, M^-1, Q and the

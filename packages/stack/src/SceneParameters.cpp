@@ -293,6 +293,13 @@ Teuchos::RCP<const Teuchos::ParameterList> sceneValidParameters() {
     solverParameters(pl->sublist("Solver", false, "stopping, budgets and progress of the solve; SMALSE-M and MPGP"));
     fetiParameters(pl->sublist("FETI", false, "T-FETI operators and the linear (projected CG) solver"));
     parallelParameters(pl->sublist("Parallel", false, "hybrid MPI + threads"));
+    pl->sublist("Load Steps", false,
+                "a quasi-static load history (contact scenes): every load and prescribed displacement ramped "
+                "linearly over the steps, friction acting on the slip increment of each step (ALGORITHMS.md 11)")
+        .set("Number Of Steps", 1,
+             "steps of the linear ramp (load factor k / N in step k); 1: the static problem, all loads at once. "
+             "The results are the last step's; the summary's steps list each step",
+             core::intRange(1, 100000));
     return Teuchos::rcp_const_cast<const ParameterList>(pl);
   }();
   return valid;

@@ -116,6 +116,7 @@ struct SubdomainBlock {
 struct ContactInterfaceRows {
   std::string label;                 ///< ContactInterfaceSpec::label()
   std::string list;                  ///< ContactInterfaceSpec::list()
+  bool tied = false;                 ///< ContactInterfaceSpec::tied (no gap in the normal rows' c)
   GO pairedSlaveNodes = 0;           ///< slave nodes with a master face within the search distance
   GO unpairedSlaveNodes = 0;         ///< slave nodes with no master face within the search distance
   std::vector<LO> unpairedSample;    ///< the first few of them (global node ids), for messages

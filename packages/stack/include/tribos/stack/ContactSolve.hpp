@@ -32,8 +32,21 @@ struct OuterIterationRecord {
 };
 
 /// The contact solve, its counts and times, and the contact fields (ContactFields).
+/// One step of a load history (Load Steps), as the summary's `steps` lists it.
+struct LoadStepRecord {
+  int step = 0;
+  double factor = 1.0;          ///< the load factor
+  bool converged = false;
+  int outerIterations = 0;
+  long long pfpApplications = 0;
+  std::array<int, 3> statusCounts{0, 0, 0};  ///< no contact, stick, slip
+  std::string message;
+};
+
 struct ContactSolveResult : ContactFields {
-  contact::ContactResult contact;   ///< counters, KKT, status counts (node list: this rank's)
+  contact::ContactResult contact;   ///< counters, KKT, status counts (node list: this rank's); of the
+                                    ///< last step, its counters summed over the steps
+  std::vector<LoadStepRecord> steps;  ///< Load Steps: one per step solved (empty for one step)
   GlobalDisplacement displacement;  ///< rank 0
   /// Reaction force per global node (gatherReactions), rank 0.
   std::vector<std::array<double, 3>> reaction;

@@ -1,0 +1,75 @@
+// Load Steps (issue 31, the ramp): every load and prescribed value ramped linearly over N steps,
+// each step a contact solve on the same operators (TotalFeti::setRightHandSide), friction on
+// the slip increment since the last step (stack/src/LoadHistory.hpp). A proportional history
+// reaches the one-step answer where nothing depends on the path: frictionless contact, and
+// Coulomb contact whose every node slides (or sticks) the same way all along. Measured at
+// eps = 1e-9 (4 steps against 1): frictionless bricks 0 (the same bits), Coulomb bricks
+// 7.7e-10, block on plate (every node sticks) 1.6e-9.
+// Not validated here: the memory itself (a non-proportional history, Cattaneo-Mindlin), which
+// needs load factor tables per load.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "ContactScene.hpp"
+#include "TestPaths.hpp"
+#include <Teuchos_XMLParameterListHelpers.hpp>
+
+namespace {
+using namespace tribos;
+using test::worldRank;
+
+double relativeDifference(const std::vector<std::array<double, 3>>& a, const std::vector<std::array<double, 3>>& b) {
+  double diff = 0.0, size = 0.0;
+  for (size_t n = 0; n < a.size(); ++n)
+    for (int c = 0; c < 3; ++c) {
+      diff = std::max(diff, std::abs(a[n][c] - b[n][c]));
+      size = std::max(size, std::abs(b[n][c]));
+    }
+  return diff / size;
+}
+
+test::SolvedContactScene solveScene(const std::string& file, int steps) {
+  const std::string path = test::sourceDir() + "/input/" + file;
+  return test::solveContactScene(*Teuchos::getParametersFromXmlFile(path), path,
+                                 {"Solver/Verbose=false", "Solver/Tolerance=1e-9",
+                                  "Load Steps/Number Of Steps=" + std::to_string(steps)});
+}
+
+TEST(loadSteps, aProportionalHistoryReachesTheOneStepAnswerWhereNothingDependsOnThePath) {
+  for (const std::string file : {"two_bricks_frictionless.xml", "two_bricks.xml", "block_on_plate.xml"}) {
+    SCOPED_TRACE(file);
+    const auto once = solveScene(file, 1), ramped = solveScene(file, 4);
+    EXPECT_TRUE(once.result.steps.empty());
+    ASSERT_EQ(ramped.result.steps.size(), 4u);
+    for (const auto& step : ramped.result.steps) {
+      EXPECT_TRUE(step.converged) << step.message;
+      EXPECT_DOUBLE_EQ(step.factor, step.step / 4.0);
+      // Proportional: the same nodes touch, stick and slip in every step.
+      EXPECT_EQ(step.statusCounts, once.result.contact.statusCounts);
+    }
+    EXPECT_TRUE(ramped.result.contact.converged) << ramped.result.contact.message;
+    long long sum = 0;
+    for (const auto& step : ramped.result.steps) sum += step.pfpApplications;
+    EXPECT_EQ(ramped.result.contact.counters.operatorApplications, sum);
+    if (worldRank() != 0) continue;
+    const double difference = relativeDifference(ramped.result.displacement.value, once.result.displacement.value);
+    std::printf("%s: 4 steps against 1: %.2e\n", file.c_str(), difference);
+    EXPECT_LT(difference, 1e-7);
+  }
+}
+
+TEST(loadSteps, aStepThatFailsEndsTheHistoryNamingIt) {
+  const std::string path = test::sourceDir() + "/input/two_bricks.xml";
+  const auto r = test::solveContactScene(*Teuchos::getParametersFromXmlFile(path), path,
+                                         {"Solver/Verbose=false", "Load Steps/Number Of Steps=3",
+                                          "Solver/Max Outer Iterations=2"});
+  EXPECT_FALSE(r.result.contact.converged);
+  ASSERT_EQ(r.result.steps.size(), 1u);  // the history stops at the first failure
+  EXPECT_EQ(r.result.contact.message.rfind("load step 1 of 3 (load factor 0.333", 0), 0u)
+      << r.result.contact.message;
+  EXPECT_NE(r.result.contact.message.find("Solver/Max Outer Iterations"), std::string::npos) << r.result.contact.message;
+}
+}  // namespace
