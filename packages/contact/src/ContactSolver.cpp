@@ -10,6 +10,11 @@
 #include "tribos/core/Errors.hpp"
 #include "tribos/core/PhaseTimer.hpp"
 
+#include <Teuchos_TestForException.hpp>
+#include <Tpetra_Vector.hpp>
+
+#include <stdexcept>
+
 namespace tribos::contact {
 
 namespace {
@@ -80,7 +85,8 @@ bool FrictionSettings::uses(FrictionModel model) const {
 
 ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMatrix& B,
                            const FrictionSettings& friction, const qp::SmalseSettings& smalseSettings,
-                           feti::DualPreconditioner preconditioner) {
+                           feti::DualPreconditioner preconditioner, const WarmStart& warm) {
+  const std::vector<double>& initialLambda = warm.lambda;
   requireFrictionModel(friction);
   ContactResult result;
   // (1), (2) The homogenised dual problem (paper (19)) and Omega(g) (DualContactProblem).
@@ -103,7 +109,18 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
   const qp::SmalseM smalse(settings);
   auto mu = feti.createDualVector();
   mu->putScalar(0.0);
+  if (!initialLambda.empty()) {  // its own scope: the views end before impliedSlip reads mu
+    // A warm start (a load step from the last): mu = lambda - lambda_Im, g from its lambda_nu.
+    auto m = mu->getLocalViewHost(Tpetra::Access::ReadWrite);
+    const auto lIm = feti.lambdaIm().getLocalViewHost(Tpetra::Access::ReadOnly);
+    TEUCHOS_TEST_FOR_EXCEPTION(initialLambda.size() != m.extent(0), std::invalid_argument,
+                               "tribos::contact::solveContact: the initial lambda has " << initialLambda.size()
+                                   << " values for " << m.extent(0) << " owned rows");
+    for (size_t i = 0; i < m.extent(0); ++i) m(i, 0) = initialLambda[i] - lIm(i, 0);
+  }
+  if (!initialLambda.empty() && friction.uses(FrictionModel::Coulomb)) problem.setSlipBounds(problem.impliedSlip(*mu));
   const SmalseRun run = [&](const qp::OuterHook& hook, double knownNormA) {
+    if (!(knownNormA > 0.0)) knownNormA = warm.normA;
     tally.add(smalse.solve(A, Q, problem.rightHandSide(), problem.omega(), *mu, hook, knownNormA));
   };
   {

@@ -242,7 +242,11 @@ contact::ContactResult solveLoadHistory(feti::TotalFeti& feti, const feti::Const
   for (int k = 1; k <= steps; ++k) {
     const double factor = static_cast<double>(k) / steps;
     feti.setRightHandSide(history.loads(factor), history.constraintValues(factor));
-    result = contact::solveContact(feti, B, friction, smalse, preconditioner);
+    // Warm: the last step's multipliers scaled to this step's load factor, and the slip bound
+    // they imply (ALGORITHMS.md 11): exact for a proportional history.
+    contact::WarmStart warm{result.lambda, result.counters.normA};
+    for (double& v : warm.lambda) v *= factor / (static_cast<double>(k - 1) / steps);
+    result = contact::solveContact(feti, B, friction, smalse, preconditioner, warm);
     total.outerIterations += result.counters.outerIterations;
     total.innerIterations += result.counters.innerIterations;
     total.operatorApplications += result.counters.operatorApplications;

@@ -94,8 +94,17 @@ struct ContactResult {
 /// interface's model is None; some interface must be None, Tresca or Coulomb (a scene of
 /// Bonded interfaces only is linear). `preconditioner` other than None (then feti must have been built with its blocks):
 /// MPGP's preconditioning in face by P D P. Collective.
+/// A start from an earlier solve on the same operators (a load step from the last).
+struct WarmStart {
+  /// lambda on this rank's rows (empty: mu = 0): the first iterate is mu = lambda - lambda_Im
+  /// (projected on Omega), and Coulomb's slip bound starts from its normal components.
+  std::vector<double> lambda;
+  double normA = 0.0;  ///< > 0: ||PFP|| as estimated before (qp::SmalseCounters::normA), not again
+};
+
 ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMatrix& B,
                            const FrictionSettings& friction, const qp::SmalseSettings& smalse,
-                           feti::DualPreconditioner preconditioner = feti::DualPreconditioner::None);
+                           feti::DualPreconditioner preconditioner = feti::DualPreconditioner::None,
+                           const WarmStart& warm = {});
 
 }  // namespace tribos::contact
