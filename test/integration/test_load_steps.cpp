@@ -6,8 +6,8 @@
 // eps = 1e-9 (4 steps against 1): frictionless bricks 0 (the same bits), Coulomb bricks
 // 7.7e-10, block on plate (every node sticks) 1.6e-9.
 // Warm steps: the last step's multipliers scaled to the load factor, and its ||PFP||.
-// Not validated here: the memory itself (a non-proportional history, Cattaneo-Mindlin), which
-// needs load factor tables per load.
+// Memory: a shear applied and removed on the block on plate (frictionRemembersTheSlipOfAnEarlierStep).
+// Not validated yet: Cattaneo-Mindlin.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,6 +15,8 @@
 #include <string>
 
 #include "ContactScene.hpp"
+#include "tribos/core/Errors.hpp"
+#include "tribos/core/Parameters.hpp"
 #include "TestPaths.hpp"
 #include <Teuchos_XMLParameterListHelpers.hpp>
 
@@ -74,6 +76,66 @@ TEST(loadSteps, warmStepsCostLessThanAColdOneStepSolve) {
   for (size_t k = 1; k < ramped.result.steps.size(); ++k)
     EXPECT_LT(ramped.result.steps[k].pfpApplications, cold.result.contact.counters.operatorApplications)
         << "step " << k + 1;
+}
+
+/// block_on_plate.xml with its load split: 20 MPa down held in both steps, a shear q along x in
+/// step 1 only (Load Steps/<name>/Factors); or the pressure alone in one step.
+test::SolvedContactScene blockLoadedAndUnloaded(double q, bool shear) {
+  const std::string path = test::sourceDir() + "/input/block_on_plate.xml";
+  std::vector<std::string> o = {"Solver/Verbose=false", "Solver/Tolerance=1e-9", "Loads/press/Traction={0, 0, -20}"};
+  if (shear)
+    o.insert(o.end(), {"Loads/shear/Side Set=block_top", "Loads/shear/Traction={" + std::to_string(q) + ", 0, 0}",
+                       "Load Steps/Number Of Steps=2", "Load Steps/press/Factors={1, 1}",
+                       "Load Steps/shear/Factors={1, 0}"});
+  return test::solveContactScene(*Teuchos::getParametersFromXmlFile(path), path, o);
+}
+
+TEST(loadSteps, frictionRemembersTheSlipOfAnEarlierStep) {
+  // Friction with memory: a shear applied and removed leaves the joint where it was only if
+  // nothing slid under it. At q = 0.5 MPa every node sticks, the bodies are elastic and tied
+  // tangentially: the history ends at the pressure-alone state. At q = 5 MPa (the capacity is
+  // F p = 6) the rim slides in step 1 and stays displaced after the shear is gone: the state
+  // differs from the pressure alone, as a total formulation (no memory) would not.
+  const auto pressed = blockLoadedAndUnloaded(0.0, false);
+  for (const double q : {0.5, 5.0}) {
+    const auto history = blockLoadedAndUnloaded(q, true);
+    ASSERT_EQ(history.result.steps.size(), 2u);
+    EXPECT_TRUE(history.result.contact.converged) << history.result.contact.message;
+    const int slidFirst = history.result.steps[0].statusCounts[2];
+    if (worldRank() != 0) continue;
+    const double difference = relativeDifference(history.result.displacement.value, pressed.result.displacement.value);
+    std::printf("shear %g applied and removed: %d nodes slid in step 1; against the pressure alone %.2e\n", q,
+                slidFirst, difference);
+    if (q < 1.0) {
+      EXPECT_EQ(slidFirst, 0);
+      EXPECT_LT(difference, 1e-7);
+    } else {
+      EXPECT_GT(slidFirst, 0);
+      EXPECT_GT(difference, 1e-4);
+    }
+  }
+}
+
+TEST(loadSteps, aTableForNoLoadOrOfTheWrongLengthIsAnInputError) {
+  const std::string path = test::sourceDir() + "/input/block_on_plate.xml";
+  for (const auto& [overrides, expected] :
+       std::vector<std::pair<std::vector<std::string>, std::string>>{
+           {{"Load Steps/Number Of Steps=2", "Load Steps/nothing/Factors={1, 0}"},
+            "Load Steps/nothing: no load of that name"},
+           {{"Load Steps/Number Of Steps=3", "Load Steps/press/Factors={1, 0}"},
+            "Load Steps/press/Factors: 2 values for Load Steps/Number Of Steps = 3"}}) {
+    test::SolvedContactScene s;
+    s.params = *Teuchos::getParametersFromXmlFile(path);
+    const auto valid = stack::sceneValidParameters();
+    for (const auto& o : overrides) core::applyOverride(s.params, *valid, o);
+    core::validateAndSetDefaults(s.params, *valid, path);
+    try {
+      stack::buildScene(s.params, path);
+      ADD_FAILURE() << "no error for " << expected;
+    } catch (const core::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST(loadSteps, aStepThatFailsEndsTheHistoryNamingIt) {

@@ -290,6 +290,16 @@ void addVolumeForces(const mesh::Mesh& mesh, const mesh::Subdomain& subdomain, c
 }
 }  // namespace
 
+std::vector<double> assembleSubdomainLoads(const mesh::Mesh& mesh, const mesh::Subdomain& subdomain,
+                                           const std::vector<Material>& materials, const Loads& loads) {
+  requireConsistentArguments(mesh, subdomain, materials, loads);
+  LocalElements el = localElements(mesh, subdomain, materials);
+  std::vector<double> f(3 * static_cast<size_t>(el.numNodes), 0.0);
+  addTractionLoads(mesh, subdomain, el, loads, f);
+  addVolumeForces(mesh, subdomain, el, loads, f);
+  return f;
+}
+
 SubdomainSystem assembleSubdomain(const mesh::Mesh& mesh, const mesh::Subdomain& subdomain,
                                   const std::vector<Material>& materials, const Loads& loads) {
   requireConsistentArguments(mesh, subdomain, materials, loads);

@@ -230,22 +230,37 @@ void addOverloadNote(const feti::ConstraintMatrix& B, const contact::FrictionSet
   out.contact.message += "; " + notes;
 }
 
+/// Each named load on its own on the owned subdomains (SubdomainSystem::loadParts), as
+/// LoadHistory takes them: [load][owned subdomain].
+std::vector<std::vector<std::vector<double>>> namedLoadVectors(std::vector<fem::SubdomainSystem>& owned,
+                                                               size_t numLoads) {
+  std::vector<std::vector<std::vector<double>>> out(numLoads);
+  for (auto& system : owned) {
+    for (size_t l = 0; l < numLoads; ++l) out[l].push_back(std::move(system.loadParts.at(l)));
+    system.loadParts.clear();
+  }
+  return out;
+}
+
 /// The steps of a load history (LoadHistory): each a contact solve on the same operators with
 /// its right-hand side; the history stops at the first step that does not converge (its result
 /// returned). The counters are summed over the steps.
 contact::ContactResult solveLoadHistory(feti::TotalFeti& feti, const feti::ConstraintMatrix& B,
                                         const contact::FrictionSettings& friction, const qp::SmalseSettings& smalse,
-                                        feti::DualPreconditioner preconditioner, int steps, LoadHistory& history,
-                                        int rank, std::vector<LoadStepRecord>& records) {
+                                        feti::DualPreconditioner preconditioner, LoadHistory& history, int rank,
+                                        std::vector<LoadStepRecord>& records) {
+  const int steps = history.steps();
   contact::ContactResult result;
   qp::SmalseCounters total;  // the counts over every step
   for (int k = 1; k <= steps; ++k) {
-    const double factor = static_cast<double>(k) / steps;
-    feti.setRightHandSide(history.loads(factor), history.constraintValues(factor));
-    // Warm: the last step's multipliers scaled to this step's load factor, and the slip bound
-    // they imply (ALGORITHMS.md 11): exact for a proportional history.
+    const double factor = history.ramp(k);
+    feti.setRightHandSide(history.loads(k), history.constraintValues(k));
+    // Warm: the last step's multipliers (scaled to this step's load factor where every load
+    // follows the ramp: exact for a proportional history), the slip bound they imply and the
+    // last ||PFP|| (ALGORITHMS.md 11).
     contact::WarmStart warm{result.lambda, result.counters.normA};
-    for (double& v : warm.lambda) v *= factor / (static_cast<double>(k - 1) / steps);
+    if (history.proportional())
+      for (double& v : warm.lambda) v *= factor / history.ramp(k - 1);
     result = contact::solveContact(feti, B, friction, smalse, preconditioner, warm);
     total.outerIterations += result.counters.outerIterations;
     total.innerIterations += result.counters.innerIterations;
@@ -261,7 +276,7 @@ contact::ContactResult solveLoadHistory(feti::TotalFeti& feti, const feti::Const
       std::fflush(stdout);
     }
     if (!result.converged) break;  // the caller names the step
-    history.advance(feti, result.displacement, factor);
+    history.advance(feti, result.displacement, k);
   }
   result.counters.outerIterations = total.outerIterations;
   result.counters.innerIterations = total.innerIterations;
@@ -293,10 +308,9 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
 
   out.appliedLoad = totalLoad(owned, comm);
   out.appliedLoadMagnitude = loadMagnitude(owned, comm);
-  const int steps = tribos.sublist("Load Steps").get<int>("Number Of Steps");
-  std::vector<std::vector<double>> fullLoads;
-  if (steps > 1)
-    for (const auto& system : owned) fullLoads.push_back(system.f);
+  const int steps = scene.loadSteps;
+  auto loadParts = steps > 1 ? namedLoadVectors(owned, scene.namedLoads.size())
+                             : std::vector<std::vector<std::vector<double>>>{};
   feti::TotalFeti feti(scene.mesh, scene.decomposition, std::move(owned), B,
                        Teuchos::rcp(new Teuchos::MpiComm<int>(comm)), settings);
   out.factorizationSeconds = feti.factorizationSeconds();
@@ -304,8 +318,8 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
   if (steps == 1) {
     out.contact = contact::solveContact(feti, B, friction, smalse, preconditioner);
   } else {
-    LoadHistory history(B, rank, std::move(fullLoads));
-    out.contact = solveLoadHistory(feti, B, friction, smalse, preconditioner, steps, history, rank, out.steps);
+    LoadHistory history(B, rank, std::move(loadParts), scene.loadFactors, steps);
+    out.contact = solveLoadHistory(feti, B, friction, smalse, preconditioner, history, rank, out.steps);
   }
   out.solveSeconds = watch.seconds();
   nameTheLimit(budget, *runs, smalse, friction, out.contact);

@@ -1,9 +1,10 @@
 #pragma once
 // Internal to stack/: the right-hand side of each load step of a quasi-static history
-// (ALGORITHMS.md 11). Step k scales every load and every prescribed value by its factor; the
-// normal rows keep their gaps on the reference configuration; the tangential rows measure the
-// slip increment since step k - 1: their c is shifted by the relative tangential displacement
-// reached there, so Coulomb's and Tresca's laws act on the increment (friction with memory).
+// (ALGORITHMS.md 11). Step k scales each named load by its factor (Scene::loadFactors) and the
+// prescribed values by the ramp k / N; the normal rows keep their gaps on the reference
+// configuration; the tangential rows measure the slip increment since step k - 1: their c is
+// shifted by the relative tangential displacement reached there, so Coulomb's and Tresca's laws
+// act on the increment (friction with memory).
 #include <vector>
 
 #include "tribos/feti/ConstraintMatrix.hpp"
@@ -16,24 +17,34 @@ namespace tribos::stack {
 
 class LoadHistory {
  public:
-  /// `f0`: the full loads of the owned subdomains; B's c on this rank's rows is the full step.
-  LoadHistory(const feti::ConstraintMatrix& B, int rank, std::vector<std::vector<double>> f0);
+  /// `loadVectors[l][i]`: named load l assembled on owned subdomain i; `factors[l][k - 1]`: its
+  /// factor in step k of `steps`. B's c on this rank's rows holds the full prescribed values.
+  LoadHistory(const feti::ConstraintMatrix& B, int rank, std::vector<std::vector<std::vector<double>>> loadVectors,
+              std::vector<std::vector<double>> factors, int steps);
 
-  /// f_s of the step at load factor `factor`.
-  std::vector<std::vector<double>> loads(double factor) const;
-  /// c on this rank's rows at `factor`: prescribed values scaled, gaps kept, the tangential rows
-  /// shifted by the slip so far.
-  std::vector<double> constraintValues(double factor) const;
-  /// After a step at `factor` with displacements `u` (owned subdomains): the relative
-  /// tangential displacement so far, T u - factor c0_T on the tangential rows. Collective.
-  void advance(const feti::TotalFeti& feti, const std::vector<std::vector<double>>& u, double factor);
+  int steps() const { return steps_; }
+  /// The ramp k / N: the prescribed values' factor in step k.
+  double ramp(int k) const { return static_cast<double>(k) / steps_; }
+  /// Every load follows the ramp (a proportional history).
+  bool proportional() const { return proportional_; }
+  /// f_s of step k (1-based).
+  std::vector<std::vector<double>> loads(int k) const;
+  /// c on this rank's rows in step k: prescribed values at the ramp, gaps kept, the tangential
+  /// rows shifted by the slip so far.
+  std::vector<double> constraintValues(int k) const;
+  /// After step k with displacements `u` (owned subdomains): the relative tangential
+  /// displacement so far, T u - ramp(k) c0_T on the tangential rows. Collective.
+  void advance(const feti::TotalFeti& feti, const std::vector<std::vector<double>>& u, int k);
 
  private:
-  std::vector<std::vector<double>> f0_;
-  std::vector<double> c0_;       ///< B's c on the owned rows
-  std::vector<double> fixed_;    ///< the part of c0 that no factor scales (the normal rows' gaps)
-  std::vector<char> tangential_;  ///< owned row is a contact tangential row
-  std::vector<double> slip_;     ///< relative tangential displacement so far (tangential rows)
+  std::vector<std::vector<std::vector<double>>> loadVectors_;
+  std::vector<std::vector<double>> factors_;
+  int steps_ = 1;
+  bool proportional_ = true;
+  std::vector<double> c0_;        ///< B's c on the owned rows
+  std::vector<double> fixed_;     ///< the part of c0 that no factor scales (the normal rows' gaps)
+  std::vector<char> tangential_;  ///< owned row is a contact tangential row (not tied)
+  std::vector<double> slip_;      ///< relative tangential displacement so far (tangential rows)
 };
 
 }  // namespace tribos::stack

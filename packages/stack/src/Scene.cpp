@@ -3,6 +3,7 @@
 #include <Teuchos_Array.hpp>
 #include <Teuchos_ParameterList.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -153,6 +154,7 @@ void readLoads(const ParameterList& list, const std::string& source, bool paperD
   if (list.numParams() == 0 && paperDefaults) {
     // The paper's tractions (Section 6): p = (1, 0, 20) on x = 20, p = (0, 0, -30) on z = 20.
     scene.loads.tractions = {{"load_end", {1.0, 0.0, 20.0}}, {"load_top", {0.0, 0.0, -30.0}}};
+    for (const auto& t : scene.loads.tractions) scene.namedLoads.push_back({t.sideSet, fem::Loads{{t}, {}}});
     return;
   }
   for (auto it = list.begin(); it != list.end(); ++it) {
@@ -174,6 +176,7 @@ void readLoads(const ParameterList& list, const std::string& source, bool paperD
                           load.isParameter("Traction") ? vector3(load, "Traction", where)
                                                        : std::array<double, 3>{0.0, 0.0, 0.0},
                           getOr(load, "Pressure", 0.0)});
+        scene.namedLoads.push_back({list.name(it), fem::Loads{{scene.loads.tractions.back()}, {}}});
       } else {
         core::requireInput(getOr(load, "Pressure", 0.0) == 0.0,
                            where + ": Pressure acts on faces: give it with \"Side Set\" or \"Node Set\", not "
@@ -182,6 +185,10 @@ void readLoads(const ParameterList& list, const std::string& source, bool paperD
         scene.loads.volumeForce.resize(scene.mesh.blocks.size(), {0.0, 0.0, 0.0});
         const auto force = vector3(load, "Volume Force", where);
         for (int c = 0; c < 3; ++c) scene.loads.volumeForce[b][c] += force[c];
+        fem::Loads own;
+        own.volumeForce.assign(scene.mesh.blocks.size(), {0.0, 0.0, 0.0});
+        own.volumeForce[b] = force;
+        scene.namedLoads.push_back({list.name(it), own});
       }
     } catch (const InputError& e) {
       const std::string what = e.what();
@@ -190,6 +197,31 @@ void readLoads(const ParameterList& list, const std::string& source, bool paperD
     }
   }
 }
+/// Load Steps: the number of steps and each named load's factors (the ramp k / N unless a
+/// Load Steps/<name> table gives them; the table's name must be a load's, its length N).
+void readLoadSteps(const ParameterList& list, const std::string& source, Scene& scene) {
+  const int n = list.get<int>("Number Of Steps");
+  scene.loadSteps = n;
+  std::vector<double> ramp(n);
+  for (int k = 0; k < n; ++k) ramp[k] = static_cast<double>(k + 1) / n;
+  scene.loadFactors.assign(scene.namedLoads.size(), ramp);
+  for (auto it = list.begin(); it != list.end(); ++it) {
+    if (!list.entry(it).isList()) continue;
+    const std::string where = source + ": Load Steps/" + list.name(it);
+    const auto named = std::find_if(scene.namedLoads.begin(), scene.namedLoads.end(),
+                                    [&](const auto& load) { return load.first == list.name(it); });
+    core::requireInput(named != scene.namedLoads.end(), where + ": no load of that name (give a Loads/" +
+                                                            list.name(it) + " sublist, or take this one out)");
+    const ParameterList& sub = list.sublist(list.name(it));
+    core::requireInput(sub.isParameter("Factors"), where + ": \"Factors\" is required");
+    const auto& factors = sub.get<Teuchos::Array<double>>("Factors");
+    core::requireInput(static_cast<int>(factors.size()) == n,
+                       where + "/Factors: " + std::to_string(factors.size()) + " values for Load Steps/Number Of "
+                                                                              "Steps = " + std::to_string(n));
+    scene.loadFactors[named - scene.namedLoads.begin()].assign(factors.begin(), factors.end());
+  }
+}
+
 /// "xyz", "x", "yz", ...: each of x, y, z at most once, at least one.
 std::array<bool, 3> componentsFrom(const std::string& text, const std::string& where) {
   std::array<bool, 3> chosen{false, false, false};
@@ -244,6 +276,7 @@ Scene buildScene(const ParameterList& tribos, const std::string& source, MPI_Com
   readLoads(tribos.sublist("Loads"), source, twoBricks, scene);
 
   readBoundary(tribos.sublist("Boundary"), source, twoBricks, scene);
+  readLoadSteps(tribos.sublist("Load Steps"), source, scene);
   scene.contacts = readContactInterfaces(tribos.sublist("Contact"), source);
   for (const auto& one : scene.contacts)
     for (const auto* name : {&one.rows.slaveSideSet, &one.rows.masterSideSet}) {

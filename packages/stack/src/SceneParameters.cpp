@@ -293,13 +293,20 @@ Teuchos::RCP<const Teuchos::ParameterList> sceneValidParameters() {
     solverParameters(pl->sublist("Solver", false, "stopping, budgets and progress of the solve; SMALSE-M and MPGP"));
     fetiParameters(pl->sublist("FETI", false, "T-FETI operators and the linear (projected CG) solver"));
     parallelParameters(pl->sublist("Parallel", false, "hybrid MPI + threads"));
-    pl->sublist("Load Steps", false,
-                "a quasi-static load history (contact scenes): every load and prescribed displacement ramped "
-                "linearly over the steps, friction acting on the slip increment of each step (ALGORITHMS.md 11)")
-        .set("Number Of Steps", 1,
-             "steps of the linear ramp (load factor k / N in step k); 1: the static problem, all loads at once. "
-             "The results are the last step's; the summary's steps list each step",
-             core::intRange(1, 100000));
+    ParameterList& steps = pl->sublist(
+        "Load Steps", false,
+        "a quasi-static load history (contact scenes): loads and prescribed displacements ramped over the steps, "
+        "friction acting on the slip increment of each step (ALGORITHMS.md 11)");
+    steps.set("Number Of Steps", 1,
+              "steps of the history; a load without a table and every prescribed displacement follow the linear "
+              "ramp k / N in step k; 1: the static problem, all loads at once. The results are the last step's; the "
+              "summary's steps list each step",
+              core::intRange(1, 100000));
+    steps.sublist("*", false, "one sublist per Loads/<name> that does not follow the ramp, named after it")
+        .set("Factors", Teuchos::Array<double>(1, 1.0),
+             "the load's factor in each step (Number Of Steps values): e.g. {1, 1} for a normal load held while a "
+             "shear {1, 0} is applied and removed",
+             core::finiteArray(-1, core::kMaxMagnitude));
     return Teuchos::rcp_const_cast<const ParameterList>(pl);
   }();
   return valid;

@@ -20,8 +20,11 @@ SetupReport assembleOwnedSubdomains(const Scene& scene, MPI_Comm comm,
   systems.assign(last - first, fem::SubdomainSystem{});
   core::Stopwatch watch;
   core::forEachSubdomain(last - first, [&](int i) {
-    systems[i] = fem::assembleSubdomain(scene.mesh, scene.decomposition.subdomains[first + i],
-                                        scene.materials, scene.loads);
+    const auto& subdomain = scene.decomposition.subdomains[first + i];
+    systems[i] = fem::assembleSubdomain(scene.mesh, subdomain, scene.materials, scene.loads);
+    if (scene.loadSteps > 1)  // each load on its own for the history (the elements go after the set-up)
+      for (const auto& named : scene.namedLoads)
+        systems[i].loadParts.push_back(fem::assembleSubdomainLoads(scene.mesh, subdomain, scene.materials, named.second));
   });
   const double seconds = watch.seconds();
 

@@ -92,7 +92,7 @@ Teuchos::RCP<const RealRangeValidator> openClosed(double low, double high);
 Teuchos::RCP<const RealRangeValidator> finite();
 /// low <= n <= high.
 Teuchos::RCP<const IntRangeValidator> intRange(int low, int high);
-/// `size` finite reals, each of magnitude at most `maxAbs`.
+/// `size` finite reals (any number >= 1 when size < 0), each of magnitude at most `maxAbs`.
 Teuchos::RCP<const FiniteArrayValidator> finiteArray(int size, double maxAbs = kInfinity);
 
 /// The range of an entry in words: the range validators' text, "A | B | C" for a string

@@ -45,6 +45,9 @@ struct SubdomainSystem {
   CsrMatrix K;                 ///< 3*nodes x 3*nodes, dof = 3*localNode + component
   std::vector<double> f;       ///< load vector
   std::vector<double> R;       ///< n x 6, column-major, orthonormal columns spanning Ker K
+  /// Load histories: f_s of each named load on its own (stack: Scene::namedLoads), assembled
+  /// with K_s while the subdomain's elements are at hand; empty otherwise.
+  std::vector<std::vector<double>> loadParts;
 };
 
 /// Assembles K_s and f_s of one subdomain with Kokkos kernels (element matrices in
@@ -59,6 +62,11 @@ struct SubdomainSystem {
 /// does not depend on the thread count, bit for bit.
 SubdomainSystem assembleSubdomain(const mesh::Mesh& mesh, const mesh::Subdomain& subdomain,
                                   const std::vector<Material>& materials, const Loads& loads);
+
+/// f_s alone, as assembleSubdomain computes it (the same bits), without K_s: one load of a
+/// load history at a time.
+std::vector<double> assembleSubdomainLoads(const mesh::Mesh& mesh, const mesh::Subdomain& subdomain,
+                                           const std::vector<Material>& materials, const Loads& loads);
 
 /// The undecomposed stiffness and load of the whole mesh (dof = 3*globalNode + component):
 /// a reference for tests (sum of subdomain matrices) and for direct solves.

@@ -46,6 +46,11 @@ struct Scene {
   mesh::Decomposition decomposition;
   std::vector<fem::Material> materials;    ///< per element block
   fem::Loads loads;
+  /// Each Loads/<name> on its own (a load history scales them separately), in the list's order.
+  std::vector<std::pair<std::string, fem::Loads>> namedLoads;
+  int loadSteps = 1;  ///< Load Steps/Number Of Steps
+  /// Per named load, its factor in each step (Load Steps/<name>/Factors, else the ramp k / N).
+  std::vector<std::vector<double>> loadFactors;
   std::vector<std::string> dirichletNodeSets;  ///< all components zero
   std::vector<feti::DisplacementCondition> displacementConditions;  ///< Boundary/<name> sublists
   std::vector<ContactInterface> contacts;  ///< none: no contact
