@@ -123,7 +123,9 @@ TEST(loadSteps, aTableForNoLoadOrOfTheWrongLengthIsAnInputError) {
            {{"Load Steps/Number Of Steps=2", "Load Steps/nothing/Factors={1, 0}"},
             "Load Steps/nothing: no load of that name"},
            {{"Load Steps/Number Of Steps=3", "Load Steps/press/Factors={1, 0}"},
-            "Load Steps/press/Factors: 2 values for Load Steps/Number Of Steps = 3"}}) {
+            "Load Steps/press/Factors: 2 values for Load Steps/Number Of Steps = 3"},
+           {{"Load Steps/Number Of Steps=2", "Contact/Friction Model=Bonded"},
+            "Load Steps: the scene is linear"}}) {
     test::SolvedContactScene s;
     s.params = *Teuchos::getParametersFromXmlFile(path);
     const auto valid = stack::sceneValidParameters();
@@ -138,6 +140,23 @@ TEST(loadSteps, aTableForNoLoadOrOfTheWrongLengthIsAnInputError) {
   }
 }
 
+TEST(loadSteps, aHistoryOfPrescribedDisplacementsAloneRampsThem) {
+  // No load at all: the ramp acts on the prescribed values only (a history of such a scene had
+  // no load vectors and stopped with an internal error). Proportional and all stick: 3 steps
+  // end where 1 step does.
+  const std::string path = test::sourceDir() + "/test/integration/displacement_driven_history.xml";
+  const auto list = *Teuchos::getParametersFromXmlFile(path);
+  const auto once = test::solveContactScene(list, path, {"Solver/Verbose=false", "Solver/Tolerance=1e-9"});
+  const auto ramped = test::solveContactScene(list, path, {"Solver/Verbose=false", "Solver/Tolerance=1e-9",
+                                                           "Load Steps/Number Of Steps=3"});
+  EXPECT_TRUE(ramped.result.contact.converged) << ramped.result.contact.message;
+  ASSERT_EQ(ramped.result.steps.size(), 3u);
+  if (worldRank() != 0) return;
+  const double difference = relativeDifference(ramped.result.displacement.value, once.result.displacement.value);
+  std::printf("prescribed displacements alone, 3 steps against 1: %.2e\n", difference);
+  EXPECT_LT(difference, 1e-7);
+}
+
 TEST(loadSteps, aStepThatFailsEndsTheHistoryNamingIt) {
   const std::string path = test::sourceDir() + "/input/two_bricks.xml";
   const auto r = test::solveContactScene(*Teuchos::getParametersFromXmlFile(path), path,
@@ -145,7 +164,7 @@ TEST(loadSteps, aStepThatFailsEndsTheHistoryNamingIt) {
                                           "Solver/Max Outer Iterations=2"});
   EXPECT_FALSE(r.result.contact.converged);
   ASSERT_EQ(r.result.steps.size(), 1u);  // the history stops at the first failure
-  EXPECT_EQ(r.result.contact.message.rfind("load step 1 of 3 (load factor 0.333", 0), 0u)
+  EXPECT_EQ(r.result.contact.message.rfind("load step 1 of 3 (ramp 0.333", 0), 0u)
       << r.result.contact.message;
   EXPECT_NE(r.result.contact.message.find("Solver/Max Outer Iterations"), std::string::npos) << r.result.contact.message;
 }

@@ -269,14 +269,14 @@ contact::ContactResult solveLoadHistory(feti::TotalFeti& feti, const feti::Const
     records.push_back({k, factor, result.converged, result.counters.outerIterations,
                        result.counters.operatorApplications, result.statusCounts, result.message});
     if (rank == 0) {
-      std::printf("  load step %d/%d (factor %g): %s, %d outer, %lld PFP; %d no contact, %d stick, %d slip\n", k,
+      std::printf("  load step %d/%d (ramp %g): %s, %d outer, %lld PFP; %d no contact, %d stick, %d slip\n", k,
                   steps, factor, result.converged ? "converged" : "NOT CONVERGED", result.counters.outerIterations,
                   result.counters.operatorApplications, result.statusCounts[0], result.statusCounts[1],
                   result.statusCounts[2]);
       std::fflush(stdout);
     }
     if (!result.converged) break;  // the caller names the step
-    history.advance(feti, result.displacement, k);
+    if (k < steps) history.advance(feti, result.displacement, k);
   }
   result.counters.outerIterations = total.outerIterations;
   result.counters.innerIterations = total.innerIterations;
@@ -309,24 +309,33 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
   out.appliedLoad = totalLoad(owned, comm);
   out.appliedLoadMagnitude = loadMagnitude(owned, comm);
   const int steps = scene.loadSteps;
-  auto loadParts = steps > 1 ? namedLoadVectors(owned, scene.namedLoads.size())
-                             : std::vector<std::vector<std::vector<double>>>{};
+  const bool history = scene.loadHistory;  // several steps, or a table on one step too
+  auto loadParts = history ? namedLoadVectors(owned, scene.namedLoads.size())
+                           : std::vector<std::vector<std::vector<double>>>{};
+  std::vector<size_t> dofs;
+  for (const auto& system : owned) dofs.push_back(system.f.size());
   feti::TotalFeti feti(scene.mesh, scene.decomposition, std::move(owned), B,
                        Teuchos::rcp(new Teuchos::MpiComm<int>(comm)), settings);
   out.factorizationSeconds = feti.factorizationSeconds();
   core::Stopwatch watch;
-  if (steps == 1) {
+  if (!history) {
     out.contact = contact::solveContact(feti, B, friction, smalse, preconditioner);
   } else {
-    LoadHistory history(B, rank, std::move(loadParts), scene.loadFactors, steps);
-    out.contact = solveLoadHistory(feti, B, friction, smalse, preconditioner, history, rank, out.steps);
+    LoadHistory loads(B, rank, std::move(loadParts), scene.loadFactors, steps, dofs);
+    out.contact = solveLoadHistory(feti, B, friction, smalse, preconditioner, loads, rank, out.steps);
+    // The applied load of the last step solved (B2): the balance and the notes compare with it.
+    std::vector<fem::SubdomainSystem> last(dofs.size());
+    auto f = loads.loads(out.steps.back().step);
+    for (size_t i = 0; i < last.size(); ++i) last[i].f = std::move(f[i]);
+    out.appliedLoad = totalLoad(last, comm);
+    out.appliedLoadMagnitude = loadMagnitude(last, comm);
   }
   out.solveSeconds = watch.seconds();
   nameTheLimit(budget, *runs, smalse, friction, out.contact);
   if (!out.steps.empty() && !out.contact.converged) {
     const auto& last = out.steps.back();
     out.contact.message = "load step " + std::to_string(last.step) + " of " + std::to_string(steps) +
-                          " (load factor " + core::formatNumber(last.factor) + "): " + out.contact.message;
+                          " (ramp " + core::formatNumber(last.factor) + "): " + out.contact.message;
   }
   out.fApplications = feti.fApplications();
   out.profile = feti.profile();

@@ -8,8 +8,8 @@ namespace tribos::stack {
 
 LoadHistory::LoadHistory(const feti::ConstraintMatrix& B, int rank,
                          std::vector<std::vector<std::vector<double>>> loadVectors,
-                         std::vector<std::vector<double>> factors, int steps)
-    : loadVectors_(std::move(loadVectors)), factors_(std::move(factors)), steps_(steps) {
+                         std::vector<std::vector<double>> factors, int steps, std::vector<size_t> dofs)
+    : loadVectors_(std::move(loadVectors)), factors_(std::move(factors)), dofs_(std::move(dofs)), steps_(steps) {
   for (const auto& f : factors_)
     for (int k = 1; k <= steps_; ++k) proportional_ = proportional_ && f[k - 1] == ramp(k);
   const GO first = B.firstRowOfRank[rank], end = B.firstRowOfRank[rank + 1];
@@ -30,11 +30,10 @@ LoadHistory::LoadHistory(const feti::ConstraintMatrix& B, int rank,
 
 std::vector<std::vector<double>> LoadHistory::loads(int k) const {
   std::vector<std::vector<double>> f;
+  for (size_t n : dofs_) f.emplace_back(n, 0.0);
   for (size_t l = 0; l < loadVectors_.size(); ++l)
-    for (size_t i = 0; i < loadVectors_[l].size(); ++i) {
-      if (f.size() <= i) f.emplace_back(loadVectors_[l][i].size(), 0.0);
+    for (size_t i = 0; i < f.size(); ++i)
       for (size_t d = 0; d < f[i].size(); ++d) f[i][d] += factors_[l][k - 1] * loadVectors_[l][i][d];
-    }
   return f;
 }
 

@@ -19,11 +19,13 @@ class LoadHistory {
  public:
   /// `loadVectors[l][i]`: named load l assembled on owned subdomain i; `factors[l][k - 1]`: its
   /// factor in step k of `steps`. B's c on this rank's rows holds the full prescribed values.
+  /// `dofs[i]`: the size of owned subdomain i's f_s (a history may have no load at all:
+  /// prescribed displacements alone).
   LoadHistory(const feti::ConstraintMatrix& B, int rank, std::vector<std::vector<std::vector<double>>> loadVectors,
-              std::vector<std::vector<double>> factors, int steps);
+              std::vector<std::vector<double>> factors, int steps, std::vector<size_t> dofs);
 
   int steps() const { return steps_; }
-  /// The ramp k / N: the prescribed values' factor in step k.
+  /// The ramp k / N: the prescribed values' factor in step k (and a load's without a table).
   double ramp(int k) const { return static_cast<double>(k) / steps_; }
   /// Every load follows the ramp (a proportional history).
   bool proportional() const { return proportional_; }
@@ -39,6 +41,7 @@ class LoadHistory {
  private:
   std::vector<std::vector<std::vector<double>>> loadVectors_;
   std::vector<std::vector<double>> factors_;
+  std::vector<size_t> dofs_;
   int steps_ = 1;
   bool proportional_ = true;
   std::vector<double> c0_;        ///< B's c on the owned rows

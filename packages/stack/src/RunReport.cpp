@@ -150,7 +150,7 @@ void addContactSummary(const ContactSolveResult& contactSolve, double tolerance,
     summary["steps"] = nlohmann::json::array();
     for (const auto& k : contactSolve.steps)
       summary["steps"].push_back({{"step", k.step},
-                                  {"load_factor", k.factor},
+                                  {"ramp", k.factor},
                                   {"converged", k.converged},
                                   {"outer_iterations", k.outerIterations},
                                   {"pfp_applications", k.pfpApplications},

@@ -219,7 +219,9 @@ void readLoadSteps(const ParameterList& list, const std::string& source, Scene& 
                        where + "/Factors: " + std::to_string(factors.size()) + " values for Load Steps/Number Of "
                                                                               "Steps = " + std::to_string(n));
     scene.loadFactors[named - scene.namedLoads.begin()].assign(factors.begin(), factors.end());
+    scene.loadHistory = true;
   }
+  scene.loadHistory = scene.loadHistory || n > 1;
 }
 
 /// "xyz", "x", "yz", ...: each of x, y, z at most once, at least one.
@@ -278,6 +280,13 @@ Scene buildScene(const ParameterList& tribos, const std::string& source, MPI_Com
   readBoundary(tribos.sublist("Boundary"), source, twoBricks, scene);
   readLoadSteps(tribos.sublist("Load Steps"), source, scene);
   scene.contacts = readContactInterfaces(tribos.sublist("Contact"), source);
+  // A linear scene (no contact, or Bonded interfaces only) does not depend on the path.
+  const bool linear = std::all_of(scene.contacts.begin(), scene.contacts.end(), [](const ContactInterface& one) {
+    return one.law.model == contact::FrictionModel::Bonded;
+  });
+  core::requireInput(!scene.loadHistory || !linear,
+                     source + ": Load Steps: the scene is linear (no contact, or only Bonded interfaces), so its "
+                              "answer does not depend on the load path: give the last step's loads in one step");
   for (const auto& one : scene.contacts)
     for (const auto* name : {&one.rows.slaveSideSet, &one.rows.masterSideSet}) {
       try {

@@ -22,7 +22,7 @@ SetupReport assembleOwnedSubdomains(const Scene& scene, MPI_Comm comm,
   core::forEachSubdomain(last - first, [&](int i) {
     const auto& subdomain = scene.decomposition.subdomains[first + i];
     systems[i] = fem::assembleSubdomain(scene.mesh, subdomain, scene.materials, scene.loads);
-    if (scene.loadSteps > 1)  // each load on its own for the history (the elements go after the set-up)
+    if (scene.loadHistory)  // each load on its own for the history (the elements go after the set-up)
       for (const auto& named : scene.namedLoads)
         systems[i].loadParts.push_back(fem::assembleSubdomainLoads(scene.mesh, subdomain, scene.materials, named.second));
   });

@@ -35,7 +35,7 @@ struct OuterIterationRecord {
 /// One step of a load history (Load Steps), as the summary's `steps` lists it.
 struct LoadStepRecord {
   int step = 0;
-  double factor = 1.0;          ///< the load factor
+  double factor = 1.0;          ///< the ramp k / N (prescribed values; loads without a table)
   bool converged = false;
   int outerIterations = 0;
   long long pfpApplications = 0;

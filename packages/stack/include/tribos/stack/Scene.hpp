@@ -49,6 +49,7 @@ struct Scene {
   /// Each Loads/<name> on its own (a load history scales them separately), in the list's order.
   std::vector<std::pair<std::string, fem::Loads>> namedLoads;
   int loadSteps = 1;  ///< Load Steps/Number Of Steps
+  bool loadHistory = false;  ///< several steps, or a load's Factors table (solved step by step)
   /// Per named load, its factor in each step (Load Steps/<name>/Factors, else the ramp k / N).
   std::vector<std::vector<double>> loadFactors;
   std::vector<std::string> dirichletNodeSets;  ///< all components zero
