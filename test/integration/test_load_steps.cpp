@@ -121,7 +121,10 @@ TEST(loadSteps, aTableForNoLoadOrOfTheWrongLengthIsAnInputError) {
   for (const auto& [overrides, expected] :
        std::vector<std::pair<std::vector<std::string>, std::string>>{
            {{"Load Steps/Number Of Steps=2", "Load Steps/nothing/Factors={1, 0}"},
-            "Load Steps/nothing: no load of that name"},
+            "Load Steps/nothing: no Loads/nothing or Boundary/nothing of that name"},
+           {{"Load Steps/Number Of Steps=2", "Load Steps/Times={1, 1}"}, "Load Steps/Times must increase"},
+           {{"Load Steps/Number Of Steps=2", "Load Steps/Times={1, 2, 3}"},
+            "Load Steps/Times: 3 values for Load Steps/Number Of Steps = 2"},
            {{"Load Steps/Number Of Steps=3", "Load Steps/press/Factors={1, 0}"},
             "Load Steps/press/Factors: 2 values for Load Steps/Number Of Steps = 3"},
            {{"Load Steps/Number Of Steps=2", "Contact/Friction Model=Bonded"},
@@ -155,6 +158,45 @@ TEST(loadSteps, aHistoryOfPrescribedDisplacementsAloneRampsThem) {
   const double difference = relativeDifference(ramped.result.displacement.value, once.result.displacement.value);
   std::printf("prescribed displacements alone, 3 steps against 1: %.2e\n", difference);
   EXPECT_LT(difference, 1e-7);
+}
+
+TEST(loadSteps, aDisplacementTableScalesItsConditionAlone) {
+  // Load Steps/<Boundary name>/Factors: the push overshoots to twice its value in step 1 and
+  // comes back to half in step 2. Frictionless contact does not depend on the path, so the
+  // history ends where one step with half the push does (the table scales the Dirichlet rows
+  // and the known parts of the contact rows, feti::PrescribedPart).
+  const std::string path = test::sourceDir() + "/test/integration/displacement_driven_history.xml";
+  const auto list = *Teuchos::getParametersFromXmlFile(path);
+  const std::vector<std::string> common = {"Solver/Verbose=false", "Solver/Tolerance=1e-9",
+                                           "Contact/Friction Model=None"};
+  auto half = common;
+  half.push_back("Boundary/push/Displacement={0.00025, 0, -0.001}");
+  auto history = common;
+  history.insert(history.end(), {"Load Steps/Number Of Steps=2", "Load Steps/push/Factors={2, 0.5}"});
+  const auto once = test::solveContactScene(list, path, half);
+  const auto steps = test::solveContactScene(list, path, history);
+  EXPECT_TRUE(steps.result.contact.converged) << steps.result.contact.message;
+  ASSERT_EQ(steps.result.steps.size(), 2u);
+  if (worldRank() != 0) return;
+  const double difference = relativeDifference(steps.result.displacement.value, once.result.displacement.value);
+  std::printf("push at factors {2, 0.5} against half the push in one step: %.2e\n", difference);
+  EXPECT_LT(difference, 1e-7);
+}
+
+TEST(loadSteps, conditionsOnOneComponentWithDifferentTablesAreAnInputError) {
+  const std::string path = test::sourceDir() + "/test/integration/displacement_driven_history.xml";
+  const auto list = *Teuchos::getParametersFromXmlFile(path);
+  try {
+    test::solveContactScene(list, path,
+                            {"Solver/Verbose=false", "Boundary/down/Node Set=block_top", "Boundary/down/Components=z",
+                             "Boundary/down/Displacement={0, 0, -0.002}", "Load Steps/Number Of Steps=2",
+                             "Load Steps/down/Factors={1, 1}"});
+    ADD_FAILURE() << "no error";
+  } catch (const core::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("Boundary/push and Boundary/down prescribe the same component"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(loadSteps, aStepThatFailsEndsTheHistoryNamingIt) {

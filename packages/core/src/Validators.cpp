@@ -79,7 +79,10 @@ void IntRangeValidator::validate(const Teuchos::ParameterEntry& entry, const std
 }
 
 std::string FiniteArrayValidator::rangeText() const {
-  const std::string text = (size_ < 0 ? std::string("one or more") : std::to_string(size_)) + " finite numbers";
+  const std::string text = (size_ == kAnyLength ? std::string("none or more")
+                            : size_ < 0           ? std::string("one or more")
+                                                  : std::to_string(size_)) +
+                           " finite numbers";
   return std::isinf(maxAbs_) ? text : text + " of magnitude <= " + formatShortest(maxAbs_);
 }
 
@@ -88,7 +91,7 @@ void FiniteArrayValidator::validate(const Teuchos::ParameterEntry& entry, const 
   const auto& any = entry.getAny(false);
   if (any.type() != typeid(Teuchos::Array<double>)) refuse("has type " + any.typeName() + " but must be Array(double)");
   const auto& a = Teuchos::any_cast<Teuchos::Array<double>>(any);
-  if (size_ < 0 && a.empty()) refuse("needs at least one component");
+  if (size_ == kOneOrMore && a.empty()) refuse("needs at least one component");
   if (size_ >= 0 && static_cast<int>(a.size()) != size_)
     refuse("needs exactly " + std::to_string(size_) + " components, got " + std::to_string(a.size()));
   for (double x : a)

@@ -7,10 +7,11 @@
 #include "tribos/feti/ConstraintMatrix.hpp"
 
 #include <algorithm>
-#include <iterator>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <numeric>
+#include <set>
 #include <sstream>
 #include <tuple>
 
@@ -68,6 +69,8 @@ struct Row {
   int owner = 0;
   std::tuple<int, LO, int, int> key;
   int contact = -1;  ///< index into the contact nodes (N rows only)
+  size_t firstPart = 0;  ///< its parts of c per displacement condition (RowList::parts)
+  int numParts = 0;
 };
 
 /// The rows and their entries. A row is open from begin() until add() takes it: its entries
@@ -75,16 +78,28 @@ struct Row {
 struct RowList {
   std::vector<Row> rows;
   std::vector<Entry> entries;
+  /// (displacement condition, its part of c) of the rows (Row::firstPart): ConstraintMatrix::prescribedParts.
+  std::vector<std::pair<int, double>> parts;
   Row begin() const {
     Row row;
     row.firstEntry = entries.size();
+    row.firstPart = parts.size();
     return row;
+  }
+  /// The open row's part of c from displacement condition `condition` (none for zero values).
+  void addPart(Row& row, int condition, double value) {
+    if (condition < 0 || value == 0.0) return;
+    parts.push_back({condition, value});
+    row.numParts = static_cast<int>(parts.size() - row.firstPart);
   }
   void append(const Entry& e) { entries.push_back(e); }
   Entry* entriesOf(const Row& row) { return entries.data() + row.firstEntry; }
   /// The open row's entries so far (before add).
   size_t openCount(const Row& row) const { return entries.size() - row.firstEntry; }
-  void drop(const Row& row) { entries.resize(row.firstEntry); }
+  void drop(const Row& row) {
+    entries.resize(row.firstEntry);
+    parts.resize(row.firstPart);
+  }
   void add(Row row) {
     row.numEntries = static_cast<LO>(entries.size() - row.firstEntry);
     rows.push_back(row);
@@ -105,10 +120,16 @@ Vec3 tangent(const Vec3& direction, const Vec3& normal) {
 }
 
 /// Prescribed displacement components: per (node, component) whether it is prescribed,
-/// its value and the condition that prescribed it (for messages).
+/// its value and the condition that prescribed it.
 struct Prescribed {
   std::vector<char> fixed;     ///< 3 * numNodes
   std::vector<double> value;   ///< 3 * numNodes
+  /// 3 * numNodes: index into ConstraintSpec::displacementConditions (-1: none, or a
+  /// Dirichlet Node Set, whose value 0 no factor scales).
+  std::vector<int> condition;
+  /// Pairs of displacement conditions that prescribe one component of a node to the same
+  /// non-zero value (ConstraintMatrix::overlappingConditions).
+  std::set<std::pair<int, int>> overlapping;
   bool any(LO node) const { return fixed[3 * node] || fixed[3 * node + 1] || fixed[3 * node + 2]; }
   bool all(LO node) const { return fixed[3 * node] && fixed[3 * node + 1] && fixed[3 * node + 2]; }
 };
@@ -132,7 +153,8 @@ Prescribed prescribedComponents(const mesh::Mesh& mesh, const ConstraintSpec& sp
     conditions.push_back({"Dirichlet Node Sets (" + name + ")", name, {true, true, true}, {0.0, 0.0, 0.0}});
   conditions.insert(conditions.end(), spec.displacementConditions.begin(), spec.displacementConditions.end());
   const size_t n3 = 3 * static_cast<size_t>(mesh.numNodes());
-  Prescribed p{std::vector<char>(n3, 0), std::vector<double>(n3, 0.0)};
+  Prescribed p{std::vector<char>(n3, 0), std::vector<double>(n3, 0.0), std::vector<int>(n3, -1)};
+  const int firstCondition = static_cast<int>(spec.dirichletNodeSets.size());
   std::vector<int> by(n3, -1);
   for (size_t k = 0; k < conditions.size(); ++k) {
     const auto& condition = conditions[k];
@@ -146,9 +168,13 @@ Prescribed prescribedComponents(const mesh::Mesh& mesh, const ConstraintSpec& sp
           throw core::InputError("Boundary: node " + std::to_string(n + 1) + " at " + str(mesh.coords[n]) + " gets u_" +
                                  "xyz"[c] + " = " + str(p.value[i]) + " from " + conditions[by[i]].name + " and " +
                                  str(condition.value[c]) + " from " + condition.name);
+        const int shared = p.condition[i];
+        if (shared >= 0 && condition.value[c] != 0.0 && shared != static_cast<int>(k) - firstCondition)
+          p.overlapping.insert({shared, static_cast<int>(k) - firstCondition});
         p.fixed[i] = 1;
         p.value[i] = condition.value[c];
         by[i] = static_cast<int>(k);
+        p.condition[i] = static_cast<int>(k) - firstCondition;
       }
   }
   return p;
@@ -235,6 +261,7 @@ bool contactRow(int d, bool tied, ContactNode& node, const std::vector<std::pair
   // Each node's weight is spread evenly over its copies (1/k each): the row is then
   // orthogonal to every gluing row, which is orthogonal to the mean of the copies.
   double known = 0.0, free2 = 0.0, full2 = 0.0, slaveFree2 = 1.0;
+  std::vector<std::pair<int, double>> knownBy;  // the known part per displacement condition
   for (const auto& [global, weight] : sides) {
     const LO k = ctx.copies.count(global);
     const double perCopy = weight / k;
@@ -242,7 +269,10 @@ bool contactRow(int d, bool tied, ContactNode& node, const std::vector<std::pair
     if (prescribed.any(global)) {
       freeDirection2 = 0.0;
       for (int c = 0; c < 3; ++c)
-        if (prescribed.fixed[3 * global + c]) known += weight * dir[c] * prescribed.value[3 * global + c];
+        if (prescribed.fixed[3 * global + c]) {
+          known += weight * dir[c] * prescribed.value[3 * global + c];
+          knownBy.push_back({prescribed.condition[3 * global + c], weight * dir[c] * prescribed.value[3 * global + c]});
+        }
         else freeDirection2 += dir[c] * dir[c];
     }
     if (global == node.slaveNode) slaveFree2 = freeDirection2;
@@ -281,6 +311,14 @@ bool contactRow(int d, bool tied, ContactNode& node, const std::vector<std::pair
   // N u <= d: scale ((u_s - chi u_m) . nu) <= scale (d - known part); tied: = -known part (the
   // initial gap is kept, not closed).
   row.c = scale * ((d == 0 && !tied ? node.gap : 0.0) - known);
+  std::sort(knownBy.begin(), knownBy.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (size_t i = 0; i < knownBy.size();) {  // one part per condition
+    double sum = 0.0;
+    size_t j = i;
+    for (; j < knownBy.size() && knownBy[j].first == knownBy[i].first; ++j) sum += knownBy[j].second;
+    list.addPart(row, knownBy[i].first, -scale * sum);
+    i = j;
+  }
   row.key = {0, node.slaveNode, d, 0};
   row.owner = ctx.ownerOf(entries, count);
   row.numEntries = static_cast<LO>(count);
@@ -508,6 +546,7 @@ void addGluingAndDirichletRows(LO numNodes, const RowContext& ctx, RowList& list
           row.kind = RowKind::Dirichlet;
           list.append({cp.subdomain, 3 * cp.localNode + c, 1.0});
           row.c = ctx.prescribed.value[3 * n + c];
+          list.addPart(row, ctx.prescribed.condition[3 * n + c], row.c);
           row.key = {2, n, j, c};
           row.owner = mesh::ownerRank(cp.subdomain, ctx.numSubdomains, ctx.numRanks);
           list.add(row);
@@ -561,6 +600,10 @@ void numberRows(RowList& list, int numSubdomains, int numRanks, int keepForRank,
     B.c[r] = row.c;
     B.firstRowOfRank[row.owner + 1]++;
     if (row.contact >= 0) B.contact[row.contact].normalRow = static_cast<GO>(r);
+    for (int k = 0; k < row.numParts; ++k) {
+      const auto& [condition, value] = list.parts[row.firstPart + static_cast<size_t>(k)];
+      B.prescribedParts.push_back({static_cast<GO>(r), condition, value});
+    }
     // Scatter into the blocks: rows arrive in ascending order, entries of one row sorted
     // by (subdomain, dof).
     Entry* entries = list.entriesOf(row);
@@ -609,6 +652,7 @@ ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decom
   const RowContext ctx{copies, prescribed, decomposition.numSubdomains(), numRanks};
   RowList list;
   ConstraintMatrix B;
+  B.overlappingConditions.assign(prescribed.overlapping.begin(), prescribed.overlapping.end());
   refuseContactsModelledTwice(mesh, spec.interfaces);
   std::vector<InterfacePairs> found;
   for (const auto& one : spec.interfaces) found.push_back(pairsOf(mesh, one));

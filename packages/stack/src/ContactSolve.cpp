@@ -321,7 +321,10 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
   if (!history) {
     out.contact = contact::solveContact(feti, B, friction, smalse, preconditioner);
   } else {
-    LoadHistory loads(B, rank, std::move(loadParts), scene.loadFactors, steps, dofs);
+    std::vector<std::string> conditionNames;
+    for (const auto& condition : scene.displacementConditions) conditionNames.push_back(condition.name);
+    LoadHistory loads(B, rank, std::move(loadParts), scene.loadFactors, scene.displacementFactors, conditionNames,
+                      steps, dofs);
     out.contact = solveLoadHistory(feti, B, friction, smalse, preconditioner, loads, rank, out.steps);
     // The applied load of the last step solved (B2): the balance and the notes compare with it.
     std::vector<fem::SubdomainSystem> last(dofs.size());

@@ -2,27 +2,41 @@
 
 #include <Tpetra_Vector.hpp>
 
+#include "tribos/core/Errors.hpp"
 #include "tribos/feti/TotalFeti.hpp"
 
 namespace tribos::stack {
 
 LoadHistory::LoadHistory(const feti::ConstraintMatrix& B, int rank,
                          std::vector<std::vector<std::vector<double>>> loadVectors,
-                         std::vector<std::vector<double>> factors, int steps, std::vector<size_t> dofs)
-    : loadVectors_(std::move(loadVectors)), factors_(std::move(factors)), dofs_(std::move(dofs)), steps_(steps) {
-  for (const auto& f : factors_)
-    for (int k = 1; k <= steps_; ++k) proportional_ = proportional_ && f[k - 1] == ramp(k);
+                         std::vector<std::vector<double>> factors, std::vector<std::vector<double>> displacementFactors,
+                         const std::vector<std::string>& conditionNames, int steps, std::vector<size_t> dofs)
+    : loadVectors_(std::move(loadVectors)),
+      factors_(std::move(factors)),
+      displacementFactors_(std::move(displacementFactors)),
+      dofs_(std::move(dofs)),
+      steps_(steps) {
+  for (const auto& [i, j] : B.overlappingConditions)
+    core::requireInput(displacementFactors_[i] == displacementFactors_[j],
+                       "Load Steps: Boundary/" + conditionNames[i] + " and Boundary/" + conditionNames[j] +
+                           " prescribe the same component of a node and have different factors (give them one "
+                           "table, or let one condition prescribe that component)");
+  for (const auto* table : {&factors_, &displacementFactors_})
+    for (const auto& f : *table)
+      for (int k = 1; k <= steps_; ++k) proportional_ = proportional_ && f[k - 1] == ramp(k);
   const GO first = B.firstRowOfRank[rank], end = B.firstRowOfRank[rank + 1];
-  c0_.assign(B.c.begin() + first, B.c.begin() + end);
-  fixed_.assign(c0_.size(), 0.0);
-  tangential_.assign(c0_.size(), 0);
-  slip_.assign(c0_.size(), 0.0);
+  fixed_.assign(B.c.begin() + first, B.c.begin() + end);
+  for (const auto& part : B.prescribedParts) {
+    if (part.row < first || part.row >= end) continue;
+    fixed_[static_cast<size_t>(part.row - first)] -= part.value;
+    parts_.push_back({part.row - first, part.condition, part.value});
+  }
+  tangential_.assign(fixed_.size(), 0);
+  slip_.assign(fixed_.size(), 0.0);
   for (const auto& node : B.contact) {
     if (node.normalRow < first || node.normalRow >= end) continue;
-    // The normal row's c = scale (d - known): the gap d stays (reference configuration), the
-    // known (prescribed) part scales. A tied row has no gap in c and no slip to remember.
+    // A tied row has no slip to remember (its rows are equalities in every step).
     if (B.interfaces.at(static_cast<size_t>(node.interface)).tied) continue;
-    fixed_[static_cast<size_t>(node.normalRow - first)] = node.rowScale * node.gap;
     for (int j = 0; j < 2; ++j)
       if (const GO t = node.tangentialRow(j); t >= 0) tangential_[static_cast<size_t>(t - first)] = 1;
   }
@@ -37,9 +51,16 @@ std::vector<std::vector<double>> LoadHistory::loads(int k) const {
   return f;
 }
 
+std::vector<double> LoadHistory::prescribedValues(int k) const {
+  std::vector<double> c(fixed_);
+  for (const auto& part : parts_)
+    c[static_cast<size_t>(part.row)] += displacementFactors_[static_cast<size_t>(part.condition)][k - 1] * part.value;
+  return c;
+}
+
 std::vector<double> LoadHistory::constraintValues(int k) const {
-  std::vector<double> c(c0_.size());
-  for (size_t r = 0; r < c.size(); ++r) c[r] = fixed_[r] + ramp(k) * (c0_[r] - fixed_[r]) + slip_[r];
+  std::vector<double> c = prescribedValues(k);
+  for (size_t r = 0; r < c.size(); ++r) c[r] += slip_[r];
   return c;
 }
 
@@ -47,8 +68,9 @@ void LoadHistory::advance(const feti::TotalFeti& feti, const std::vector<std::ve
   auto Bu = feti.createDualVector();
   feti.applyB(u, *Bu);
   const auto bu = Bu->getLocalViewHost(Tpetra::Access::ReadOnly);
+  const std::vector<double> c = prescribedValues(k);
   for (size_t r = 0; r < slip_.size(); ++r)
-    if (tangential_[r]) slip_[r] = bu(r, 0) - ramp(k) * c0_[r];
+    if (tangential_[r]) slip_[r] = bu(r, 0) - c[r];
 }
 
 }  // namespace tribos::stack

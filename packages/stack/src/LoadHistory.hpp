@@ -1,10 +1,12 @@
 #pragma once
 // Internal to stack/: the right-hand side of each load step of a quasi-static history
-// (ALGORITHMS.md 11). Step k scales each named load by its factor (Scene::loadFactors) and the
-// prescribed values by the ramp k / N; the normal rows keep their gaps on the reference
+// (ALGORITHMS.md 11). Step k scales each named load by its factor (Scene::loadFactors) and each
+// displacement condition's part of c (feti::PrescribedPart) by its factor
+// (Scene::displacementFactors); the normal rows keep their gaps on the reference
 // configuration; the tangential rows measure the slip increment since step k - 1: their c is
 // shifted by the relative tangential displacement reached there, so Coulomb's and Tresca's laws
 // act on the increment (friction with memory).
+#include <string>
 #include <vector>
 
 #include "tribos/feti/ConstraintMatrix.hpp"
@@ -18,34 +20,40 @@ namespace tribos::stack {
 class LoadHistory {
  public:
   /// `loadVectors[l][i]`: named load l assembled on owned subdomain i; `factors[l][k - 1]`: its
-  /// factor in step k of `steps`. B's c on this rank's rows holds the full prescribed values.
-  /// `dofs[i]`: the size of owned subdomain i's f_s (a history may have no load at all:
-  /// prescribed displacements alone).
+  /// factor in step k of `steps`, `displacementFactors[j][k - 1]` that of displacement condition
+  /// j. B's c on this rank's rows holds the full prescribed values. `dofs[i]`: the size of owned
+  /// subdomain i's f_s (a history may have no load at all: prescribed displacements alone).
+  /// Throws core::InputError where two conditions prescribing one component have different
+  /// factors (B.overlappingConditions; `conditionNames` name them).
   LoadHistory(const feti::ConstraintMatrix& B, int rank, std::vector<std::vector<std::vector<double>>> loadVectors,
-              std::vector<std::vector<double>> factors, int steps, std::vector<size_t> dofs);
+              std::vector<std::vector<double>> factors, std::vector<std::vector<double>> displacementFactors,
+              const std::vector<std::string>& conditionNames, int steps, std::vector<size_t> dofs);
 
   int steps() const { return steps_; }
   /// The ramp k / N: the prescribed values' factor in step k (and a load's without a table).
   double ramp(int k) const { return static_cast<double>(k) / steps_; }
-  /// Every load follows the ramp (a proportional history).
+  /// Every load and prescribed displacement follows the ramp (a proportional history).
   bool proportional() const { return proportional_; }
   /// f_s of step k (1-based).
   std::vector<std::vector<double>> loads(int k) const;
-  /// c on this rank's rows in step k: prescribed values at the ramp, gaps kept, the tangential
-  /// rows shifted by the slip so far.
+  /// c on this rank's rows in step k: prescribed values at their factors, gaps kept, the
+  /// tangential rows shifted by the slip so far.
   std::vector<double> constraintValues(int k) const;
   /// After step k with displacements `u` (owned subdomains): the relative tangential
-  /// displacement so far, T u - ramp(k) c0_T on the tangential rows. Collective.
+  /// displacement so far, T u - (c(k) without the slip) on the tangential rows. Collective.
   void advance(const feti::TotalFeti& feti, const std::vector<std::vector<double>>& u, int k);
 
  private:
   std::vector<std::vector<std::vector<double>>> loadVectors_;
   std::vector<std::vector<double>> factors_;
+  std::vector<std::vector<double>> displacementFactors_;
   std::vector<size_t> dofs_;
   int steps_ = 1;
   bool proportional_ = true;
-  std::vector<double> c0_;        ///< B's c on the owned rows
-  std::vector<double> fixed_;     ///< the part of c0 that no factor scales (the normal rows' gaps)
+  std::vector<double> fixed_;     ///< the part of B's c that no factor scales (the normal rows' gaps)
+  std::vector<feti::PrescribedPart> parts_;  ///< the owned rows' parts, rows counted from the first owned
+  /// c on the owned rows in step k without the slip: the fixed part and the factored parts.
+  std::vector<double> prescribedValues(int k) const;
   std::vector<char> tangential_;  ///< owned row is a contact tangential row (not tied)
   std::vector<double> slip_;      ///< relative tangential displacement so far (tangential rows)
 };

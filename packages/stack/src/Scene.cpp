@@ -9,6 +9,7 @@
 #include <filesystem>
 
 #include "tribos/core/Errors.hpp"
+#include "tribos/core/Format.hpp"
 #include "tribos/core/Timer.hpp"
 #include "tribos/mesh/BoundaryFaces.hpp"
 #include "tribos/mesh/ExodusIO.hpp"
@@ -197,28 +198,52 @@ void readLoads(const ParameterList& list, const std::string& source, bool paperD
     }
   }
 }
-/// Load Steps: the number of steps and each named load's factors (the ramp k / N unless a
-/// Load Steps/<name> table gives them; the table's name must be a load's, its length N).
+/// Load Steps: the number of steps, each named load's and displacement condition's factors (the
+/// ramp k / N unless a Load Steps/<name> table gives them; the name must be a Loads/<name> or a
+/// Boundary/<name>, the table's length N) and the steps' times.
 void readLoadSteps(const ParameterList& list, const std::string& source, Scene& scene) {
   const int n = list.get<int>("Number Of Steps");
   scene.loadSteps = n;
   std::vector<double> ramp(n);
   for (int k = 0; k < n; ++k) ramp[k] = static_cast<double>(k + 1) / n;
   scene.loadFactors.assign(scene.namedLoads.size(), ramp);
+  scene.displacementFactors.assign(scene.displacementConditions.size(), ramp);
+  scene.stepTimes = ramp;
+  auto sizeN = [&](const Teuchos::Array<double>& values, const std::string& where) {
+    core::requireInput(static_cast<int>(values.size()) == n,
+                       where + ": " + std::to_string(values.size()) + " values for Load Steps/Number Of Steps = " +
+                           std::to_string(n));
+  };
+  const auto& times = list.get<Teuchos::Array<double>>("Times");
+  if (!times.empty()) {
+    sizeN(times, source + ": Load Steps/Times");
+    for (size_t k = 1; k < times.size(); ++k)
+      core::requireInput(times[k] > times[k - 1], source + ": Load Steps/Times must increase (step " +
+                                                      std::to_string(k + 1) + ": " + core::formatNumber(times[k]) +
+                                                      " after " + core::formatNumber(times[k - 1]) + ")");
+    scene.stepTimes.assign(times.begin(), times.end());
+  }
   for (auto it = list.begin(); it != list.end(); ++it) {
     if (!list.entry(it).isList()) continue;
-    const std::string where = source + ": Load Steps/" + list.name(it);
-    const auto named = std::find_if(scene.namedLoads.begin(), scene.namedLoads.end(),
-                                    [&](const auto& load) { return load.first == list.name(it); });
-    core::requireInput(named != scene.namedLoads.end(), where + ": no load of that name (give a Loads/" +
-                                                            list.name(it) + " sublist, or take this one out)");
-    const ParameterList& sub = list.sublist(list.name(it));
+    const std::string name = list.name(it);
+    const std::string where = source + ": Load Steps/" + name;
+    const auto load = std::find_if(scene.namedLoads.begin(), scene.namedLoads.end(),
+                                   [&](const auto& one) { return one.first == name; });
+    const auto condition =
+        std::find_if(scene.displacementConditions.begin(), scene.displacementConditions.end(),
+                     [&](const feti::DisplacementCondition& one) { return one.name == name; });
+    const bool isLoad = load != scene.namedLoads.end(), isCondition = condition != scene.displacementConditions.end();
+    core::requireInput(isLoad || isCondition, where + ": no Loads/" + name + " or Boundary/" + name +
+                                                  " of that name (give one, or take this table out)");
+    core::requireInput(!(isLoad && isCondition), where + ": both Loads/" + name + " and Boundary/" + name +
+                                                     " have that name (rename one so that the table names one)");
+    const ParameterList& sub = list.sublist(name);
     core::requireInput(sub.isParameter("Factors"), where + ": \"Factors\" is required");
     const auto& factors = sub.get<Teuchos::Array<double>>("Factors");
-    core::requireInput(static_cast<int>(factors.size()) == n,
-                       where + "/Factors: " + std::to_string(factors.size()) + " values for Load Steps/Number Of "
-                                                                              "Steps = " + std::to_string(n));
-    scene.loadFactors[named - scene.namedLoads.begin()].assign(factors.begin(), factors.end());
+    sizeN(factors, where + "/Factors");
+    auto& target = isLoad ? scene.loadFactors[load - scene.namedLoads.begin()]
+                          : scene.displacementFactors[condition - scene.displacementConditions.begin()];
+    target.assign(factors.begin(), factors.end());
     scene.loadHistory = true;
   }
   scene.loadHistory = scene.loadHistory || n > 1;

@@ -298,14 +298,19 @@ Teuchos::RCP<const Teuchos::ParameterList> sceneValidParameters() {
         "a quasi-static load history (contact scenes): loads and prescribed displacements ramped over the steps, "
         "friction acting on the slip increment of each step (ALGORITHMS.md 11)");
     steps.set("Number Of Steps", 1,
-              "steps of the history; a load without a table and every prescribed displacement follow the linear "
-              "ramp k / N in step k; 1: the static problem, all loads at once. The results are the last step's; the "
-              "summary's steps list each step",
+              "steps of the history; a load or prescribed displacement without a table follows the linear "
+              "ramp k / N in step k; 1: the static problem, all loads at once. Each step is a time step of the "
+              "Exodus result and an entry of the summary's steps",
               core::intRange(1, 100000));
-    steps.sublist("*", false, "one sublist per Loads/<name> that does not follow the ramp, named after it")
+    steps.set("Times", Teuchos::Array<double>(),
+              "the time of each step in the results (Number Of Steps increasing values); not given: the ramp k / N",
+              core::finiteArray(core::FiniteArrayValidator::kAnyLength, core::kMaxMagnitude));
+    steps.sublist("*", false,
+                  "one sublist per Loads/<name> or Boundary/<name> (a prescribed displacement) that does not follow "
+                  "the ramp, named after it")
         .set("Factors", Teuchos::Array<double>(1, 1.0),
-             "the load's factor in each step (Number Of Steps values): e.g. {1, 1} for a normal load held while a "
-             "shear {1, 0} is applied and removed",
+             "its factor in each step (Number Of Steps values): e.g. {1, 1} for a normal load held while a shear "
+             "{1, 0} is applied and removed; a Boundary/<name>'s Displacement is scaled the same way",
              core::finiteArray(-1, core::kMaxMagnitude));
     return Teuchos::rcp_const_cast<const ParameterList>(pl);
   }();

@@ -310,6 +310,50 @@ TEST(ConstraintMatrixNonmatching, contactRowsMeasureTheInterpolatedGap) {
   }
 }
 
+TEST(ConstraintMatrixNonmatching, prescribedPartsAreWhatEachConditionAddsToC) {
+  // A load history scales each displacement condition's part of c (B.prescribedParts) by its
+  // own factor. The parts must be exactly what the condition adds: B built with one condition's
+  // values scaled by f has c = c(without the parts) + f x (that condition's parts) + the others'.
+  // droppingSpec puts non-zero values into contact rows (known parts) and Dirichlet rows.
+  auto m = stackedBoxes({5, 5, 3});
+  for (LO n : m.nodeSet("upper_z0").nodes) m.coords[n][2] += 0.01 * (1.0 + m.coords[n][1]);
+  auto spec = droppingSpec("Mortar");
+  spec.interfaces[0].searchDistance = 0.1;
+  const auto base = build(m, planePartition(m, kPlaneSplit), spec);
+  std::vector<double> rest(base.B.c);
+  int contactParts = 0;
+  for (const auto& part : base.B.prescribedParts) {
+    rest[part.row] -= part.value;
+    contactParts += isContact(base.B.kind[part.row]);
+    EXPECT_NE(part.value, 0.0);
+  }
+  EXPECT_GT(contactParts, 0);
+  for (size_t j = 0; j < spec.displacementConditions.size(); ++j) {
+    SCOPED_TRACE(spec.displacementConditions[j].name);
+    auto scaled = spec;
+    for (double& v : scaled.displacementConditions[j].value) v *= -3.0;
+    const auto b = build(m, planePartition(m, kPlaneSplit), scaled);
+    ASSERT_EQ(b.B.numRows, base.B.numRows);
+    std::vector<double> expected(rest);
+    for (const auto& part : base.B.prescribedParts)
+      expected[part.row] += (part.condition == static_cast<int>(j) ? -3.0 : 1.0) * part.value;
+    for (GO r = 0; r < b.B.numRows; ++r) EXPECT_NEAR(b.B.c[r], expected[r], 1e-15) << "row " << r;
+  }
+  // Without parts: the normal rows keep rowScale x gap, every other row 0.
+  for (const auto& node : base.B.contact) EXPECT_NEAR(rest[node.normalRow], node.rowScale * node.gap, 1e-15);
+  EXPECT_TRUE(base.B.overlappingConditions.empty());
+}
+
+TEST(ConstraintMatrixNonmatching, conditionsPrescribingOneComponentAreListedAsOverlapping) {
+  auto m = stackedBoxes({3, 3, 2});
+  feti::ConstraintSpec spec;
+  spec.displacementConditions = {condition("upper_z1", "z", {0.0, 0.0, -0.001}), condition("upper_x0", "y"),
+                                 condition("upper_z1", "xz", {0.002, 0.0, -0.001})};
+  const auto b = build(m, planePartition(m, kPlaneSplit), spec);
+  ASSERT_EQ(b.B.overlappingConditions.size(), 1u);
+  EXPECT_EQ(b.B.overlappingConditions[0], std::make_pair(0, 2));
+}
+
 TEST(ConstraintMatrixNonmatching, contactRowsSharingMasterNodesAreNotOrthogonal) {
   // The normal rows r, q (nu = e_z everywhere here) are s_r (e_s/k_s - sum_i w_i e_m_i/k_m_i)
   // spread over the copies, so

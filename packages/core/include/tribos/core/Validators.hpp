@@ -55,9 +55,11 @@ class IntRangeValidator : public RangeValidator {
 };
 
 /// Arrays of exactly `size` finite reals (Array(double): tractions, directions), each of
-/// magnitude at most `maxAbs`.
+/// magnitude at most `maxAbs`; size kOneOrMore: any length but empty, kAnyLength: empty too
+/// (an optional table, empty when not given).
 class FiniteArrayValidator : public RangeValidator {
  public:
+  static constexpr int kOneOrMore = -1, kAnyLength = -2;
   explicit FiniteArrayValidator(int size, double maxAbs = std::numeric_limits<double>::infinity())
       : size_(size), maxAbs_(maxAbs) {}
   std::string rangeText() const override;

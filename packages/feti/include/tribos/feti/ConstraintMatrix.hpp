@@ -28,6 +28,7 @@
 /// then Dirichlet rows.
 #include <array>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tribos/core/EnumNames.hpp"
@@ -130,6 +131,15 @@ struct ContactInterfaceRows {
   double largestGapLimit = 0.0;  ///< max |weighted gap - gap kept| over them
 };
 
+/// The part of a row's c that one displacement condition's values make (a Dirichlet row's
+/// value, a contact row's known part from prescribed components): a load history scales it by
+/// the condition's factor in each step (stack/LoadHistory). Zero parts are not listed.
+struct PrescribedPart {
+  GO row = 0;
+  int condition = 0;  ///< index into ConstraintSpec::displacementConditions
+  double value = 0.0;
+};
+
 struct ConstraintMatrix {
   GO numRows = 0;                    ///< n_d after removing redundant rows
   GO removedRedundantRows = 0;       ///< rows removed as redundant (n_d + this = paper's n_d)
@@ -141,6 +151,10 @@ struct ConstraintMatrix {
   /// The dual map's global ids: whatever depends on them (the power method's start vector)
   /// is the same on every rank count (issue 9).
   std::vector<GO> rowId;
+  std::vector<PrescribedPart> prescribedParts;  ///< ascending rows (every row, on every rank)
+  /// Pairs (i < j) of displacement conditions prescribing one component of a node to the same
+  /// non-zero value: a load history must give them the same factors.
+  std::vector<std::pair<int, int>> overlappingConditions;
   std::vector<ContactNode> contact;  ///< contact nodes, in row order
   std::vector<ContactInterfaceRows> interfaces;  ///< per ConstraintSpec::interfaces, same order
   GO unpairedSlaveNodes() const;  ///< over every interface

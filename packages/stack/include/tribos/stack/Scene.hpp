@@ -54,6 +54,11 @@ struct Scene {
   std::vector<std::vector<double>> loadFactors;
   std::vector<std::string> dirichletNodeSets;  ///< all components zero
   std::vector<feti::DisplacementCondition> displacementConditions;  ///< Boundary/<name> sublists
+  /// Per displacement condition, its factor in each step (Load Steps/<name>/Factors, else the
+  /// ramp k / N).
+  std::vector<std::vector<double>> displacementFactors;
+  /// Load Steps/Times: the time of each step in the results (default: the ramp k / N).
+  std::vector<double> stepTimes;
   std::vector<ContactInterface> contacts;  ///< none: no contact
   double meshSeconds = 0.0, decompositionSeconds = 0.0;
 };
