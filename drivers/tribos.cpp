@@ -54,13 +54,19 @@
 namespace {
 using namespace tribos;
 
-/// Everything the Exodus result shows besides the mesh; null pointers: not computed (dry run).
-struct OutputData {
+/// One time step of the Exodus result; null pointers: not computed (dry run).
+struct OutputStep {
+  double time = 0.0;
   const std::vector<std::array<double, 3>>* displacement = nullptr;
   const std::vector<std::array<double, 3>>* reaction = nullptr;
   const stack::StressResults* stress = nullptr;
   const stack::ContactFields* contact = nullptr;  ///< scenes with contact interfaces
   std::vector<mesh::GlobalValue> globals;
+};
+
+/// Everything the Exodus result shows besides the mesh: one time step, or one per load step.
+struct OutputData {
+  std::vector<OutputStep> steps{1};
   std::vector<std::string> info;
 };
 
@@ -87,22 +93,29 @@ void addContactFields(const stack::ContactFields& c, mesh::TimeStep& step) {
       {"contact_normal", &c.contactNormal}, {"contact_t1", &c.contactT1},         {"contact_t2", &c.contactT2},
       {"contact_status", &c.contactStatus}, {"contact_pressure", &c.contactPressure}, {"contact_gap", &c.contactGap},
       {"contact_opening", &c.contactOpening}, {"contact_nx", &c.contactNx},       {"contact_ny", &c.contactNy},
-      {"contact_nz", &c.contactNz},         {"contact_master", &c.contactMaster}};
+      {"contact_nz", &c.contactNz},         {"contact_master", &c.contactMaster},
+      {"contact_slip_t1", &c.contactSlipT1}, {"contact_slip_t2", &c.contactSlipT2},
+      {"contact_tangential_t1", &c.contactTangentialT1}, {"contact_tangential_t2", &c.contactTangentialT2},
+      {"contact_accumulated_slip", &c.contactAccumulatedSlip}};
   for (const auto& [name, values] : fields) step.nodal.push_back({name, *values});
 }
 
 void writeOutput(const std::string& path, const stack::Scene& scene, const OutputData& data) {
-  mesh::TimeStep step;
-  step.time = data.displacement ? 1.0 : 0.0;
-  if (data.displacement) addVectorField("displ_", *data.displacement, step);
-  if (data.reaction) addVectorField("reaction_", *data.reaction, step);
-  if (data.stress) addStressFields(*data.stress, step);
-  if (data.contact) addContactFields(*data.contact, step);
   mesh::Field subdomain{"subdomain", std::vector<double>(scene.mesh.numElements())};
   for (LO e = 0; e < scene.mesh.numElements(); ++e) subdomain.values[e] = scene.decomposition.elementPart[e];
-  step.element.push_back(std::move(subdomain));
-  step.global = data.globals;
-  mesh::writeExodus(path, scene.mesh, {step}, data.info);
+  std::vector<mesh::TimeStep> steps;
+  for (const auto& data : data.steps) {
+    mesh::TimeStep step;
+    step.time = data.displacement ? data.time : 0.0;
+    if (data.displacement) addVectorField("displ_", *data.displacement, step);
+    if (data.reaction) addVectorField("reaction_", *data.reaction, step);
+    if (data.stress) addStressFields(*data.stress, step);
+    if (data.contact) addContactFields(*data.contact, step);
+    step.element.push_back(subdomain);
+    step.global = data.globals;
+    steps.push_back(std::move(step));
+  }
+  mesh::writeExodus(path, scene.mesh, steps, data.info);
 }
 
 /// The result file says how it was made: the command line and the effective parameter list
@@ -120,7 +133,7 @@ std::vector<std::string> infoRecords(int argc, char** argv, const Teuchos::Param
 std::vector<mesh::GlobalValue> globalValues(const nlohmann::json& summary) {
   std::vector<mesh::GlobalValue> out;
   for (const char* key : {"converged", "outer_iterations", "inner_iterations", "pfp_applications",
-                          "fixed_point_iterations", "strain_energy", "force_balance"})
+                          "fixed_point_iterations", "strain_energy", "force_balance", "dissipated_energy"})
     if (summary.contains(key))
       out.push_back({key, summary[key].is_boolean() ? double(summary[key].get<bool>()) : summary[key].get<double>()});
   if (summary.contains("kkt"))
@@ -132,7 +145,7 @@ std::vector<mesh::GlobalValue> globalValues(const nlohmann::json& summary) {
       const std::string name = i.value("name", std::string());
       const std::string prefix = (name.empty() ? std::string("contact") : name) + "_";
       for (const char* key : {"normal_force", "friction_force", "no_contact", "stick", "slip", "peak_pressure",
-                              "largest_opening", "largest_overlap"})
+                              "largest_opening", "largest_overlap", "dissipated_energy"})
         if (i.contains(key) && i[key].is_number()) out.push_back({prefix + key, i[key].get<double>()});
       if (i.contains("contact_force"))
         for (int c = 0; c < 3; ++c) out.push_back({prefix + "force_" + "xyz"[c], i["contact_force"][c].get<double>()});
@@ -297,7 +310,10 @@ void writeResults(int argc, char** argv, const RunStart& start, const stack::Sce
   const auto& [cl, params, meshFile, resultFiles, deadline, total] = start;
   std::string writeError;
   if (resultFiles.exodus) {
-    output.globals = globalValues(summary);
+    // Per-step global variables: a load history's from its steps' entries, else the summary's.
+    const bool history = summary.contains("steps");
+    for (size_t k = 0; k < output.steps.size(); ++k)
+      output.steps[k].globals = globalValues(history ? summary["steps"][k] : summary);
     output.info = infoRecords(argc, argv, params);
     try {
       resultFiles.exodus->writeWith([&](const std::string& path) { writeOutput(path, scene, output); });
@@ -320,6 +336,42 @@ void writeResults(int argc, char** argv, const RunStart& start, const stack::Sce
   if (!writeError.empty()) throw core::IoError(writeError);
 }
 
+/// (5) The time steps of the result (rank 0): each state's stresses and force balance, written
+/// into the summary (a load history: into each step's entry, and the last state's into the
+/// summary itself). One state, or one per load step solved: the earlier steps' results, then the
+/// last state. `stress` holds what the steps point to.
+std::vector<OutputStep> resultSteps(const stack::Scene& scene, const stack::SceneSolveResult& solve,
+                                    nlohmann::json& summary, std::vector<stack::StressResults>& stress) {
+  static const std::vector<stack::StepResults> none;
+  const auto& earlier = solve.contactProblem ? solve.contactSolve.earlierSteps : none;
+  const size_t n = earlier.size() + 1;
+  const bool history = summary.contains("steps");
+  stress.resize(n);
+  std::vector<OutputStep> steps(n);
+  for (size_t k = 0; k < n; ++k) {
+    const bool last = k + 1 == n;
+    OutputStep& out = steps[k];
+    const stack::ContactFields* lastFields =
+        solve.contactProblem ? static_cast<const stack::ContactFields*>(&solve.contactSolve) : &solve.linear;
+    out.displacement = last ? &solve.displacement() : &earlier[k].displacement.value;
+    out.reaction = last ? &solve.reaction() : &earlier[k].reaction;
+    if (!scene.contacts.empty()) out.contact = last ? lastFields : &earlier[k];
+    const auto& appliedLoad = last ? solve.appliedLoad() : earlier[k].appliedLoad;
+    const double magnitude = last ? solve.appliedLoadMagnitude() : earlier[k].appliedLoadMagnitude;
+    stress[k] = stack::evaluateStresses(scene, *out.displacement);
+    out.stress = &stress[k];
+    const auto balance = stack::forceBalance(scene, *out.reaction, appliedLoad, magnitude);
+    out.time = history ? summary["steps"][k]["time"].get<double>() : 1.0;
+    if (history) stack::addResultsToSummary(stress[k], balance, summary["steps"][k]);
+    if (!last) continue;
+    stack::addResultsToSummary(stress[k], balance, summary);
+    std::cout << "  strain energy " << stress[k].strainEnergy << "; applied load (" << appliedLoad[0] << ", "
+              << appliedLoad[1] << ", " << appliedLoad[2] << "), force balance |reactions + load| / scale = "
+              << balance.relativeImbalance << "\n";
+  }
+  return steps;
+}
+
 /// Steps (3) to (6): the set-up, the solve, the results and their files.
 int solveAndReport(int argc, char** argv, int rank, const RunStart& start) {
   const auto& [cl, params, meshFile, resultFiles, deadline, total] = start;
@@ -339,29 +391,16 @@ int solveAndReport(int argc, char** argv, int rank, const RunStart& start) {
     core::ScopedPhase phase("Solve");
     solve = stack::solveScene(set.scene, std::move(set.systems), set.B, params, MPI_COMM_WORLD, total);
     status = solve.converged() ? core::kExitOk : core::kExitNotConverged;
-    output.displacement = &solve.displacement();
-    output.reaction = &solve.reaction();
-    if (!set.scene.contacts.empty())
-      output.contact = solve.contactProblem ? static_cast<const stack::ContactFields*>(&solve.contactSolve)
-                                            : &solve.linear;
     stack::addSolveSummary(solve, params, summary);
     if (rank == 0) std::cout << stack::solveReport(solve);
   }
   summary["times"]["total_s"] = total.seconds();
 
-  // (5) Results on rank 0, which holds the global displacement and reactions.
-  stack::StressResults stress;
+  // (5) Results on rank 0, which holds the global displacement and reactions: one time step,
+  // or one per load step solved (the earlier steps' results, then the last state).
+  std::vector<stack::StressResults> stress;
   std::optional<core::ScopedPhase> resultsPhase(std::in_place, "Results: stresses and reactions");
-  if (rank == 0 && output.displacement) {
-    stress = stack::evaluateStresses(set.scene, *output.displacement);
-    const auto& appliedLoad = solve.appliedLoad();
-    const auto balance = stack::forceBalance(set.scene, *output.reaction, appliedLoad, solve.appliedLoadMagnitude());
-    stack::addResultsToSummary(stress, balance, summary);
-    output.stress = &stress;
-    std::cout << "  strain energy " << stress.strainEnergy << "; applied load (" << appliedLoad[0] << ", "
-              << appliedLoad[1] << ", " << appliedLoad[2] << "), force balance |reactions + load| / scale = "
-              << balance.relativeImbalance << "\n";
-  }
+  if (rank == 0 && !cl.dryRun) output.steps = resultSteps(set.scene, solve, summary, stress);
   // Peak memory per rank (KiB) after the solve and the stresses; rank 0's own figure is read
   // again after writing the Exodus result, just before the summary.
   std::vector<long> maxRssPerRankKb = gatherPeakRssKb(rank);

@@ -99,3 +99,88 @@ TEST(resultOutputs, blockOnPlateReactionsEqualTheLoadAndTheResultSaysHowItWasMad
                           [](const std::string& l) { return l.find("interface_plate") != std::string::npos; }));
   std::filesystem::remove_all(dir);
 }
+
+namespace {
+const tribos::mesh::Field& field(const std::vector<tribos::mesh::Field>& fields, const std::string& name) {
+  const auto it = std::find_if(fields.begin(), fields.end(), [&](const auto& f) { return f.name == name; });
+  if (it == fields.end()) throw std::runtime_error("no field " + name);
+  return *it;
+}
+
+double global(const tribos::mesh::TimeStep& step, const std::string& name) {
+  const auto it = std::find_if(step.global.begin(), step.global.end(), [&](const auto& g) { return g.name == name; });
+  if (it == step.global.end()) throw std::runtime_error("no global variable " + name);
+  return it->value;
+}
+}  // namespace
+
+TEST(resultOutputs, aLoadHistoryWritesEveryStepAndEndsAtTheStepThatFails) {
+  // block_on_plate.xml (Coulomb 0.3, 20 MPa pressure, held by friction alone): a shear of
+  // 5 MPa applied, removed, reversed, then doubled beyond the friction capacity of 6 MPa.
+  // Steps 1-3 converge and step 4 cannot: exit 3, and the file holds all four steps at the
+  // given times, the last flagged not converged. Friction acts on each step's slip increment:
+  // at every slipping node the tangential force has F times the normal force and points along
+  // the increment (maximal dissipation), so the dissipated energy grows by |f_t| |ds| there.
+  const auto dir = std::filesystem::temp_directory_path() / ("tribos_history_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const auto summary = (dir / "summary.json").string(), exo = (dir / "result.exo").string();
+  const auto run = runCommand(
+      std::string(TRIBOS_DRIVER) + " --input " + quote(tribos::test::sourceDir() + "/input/block_on_plate.xml") +
+      " --set Solver/Tolerance=1e-9 --set Solver/Verbose=false --set 'Loads/shear/Side Set=block_top'"
+      " --set 'Loads/shear/Traction={5, 0, 0}' --set 'Load Steps/Number Of Steps=4'"
+      " --set 'Load Steps/Times={10, 20, 30, 40}' --set 'Load Steps/press/Factors={1, 1, 1, 1}'"
+      " --set 'Load Steps/shear/Factors={1, 0, -1, 2}' --summary " + quote(summary) + " --output " + quote(exo));
+  ASSERT_EQ(run.status, 3) << run.output;
+  EXPECT_NE(run.output.find("load step 4 of 4 (ramp 1)"), std::string::npos) << run.output;
+  std::ifstream in(summary);
+  const auto j = nlohmann::json::parse(in);
+  ASSERT_EQ(j["steps"].size(), 4u);
+  const auto data = tribos::mesh::readExodus(exo);
+  ASSERT_EQ(data.steps.size(), 4u);
+  double dissipated = 0.0;
+  std::vector<double> slipSoFar;
+  for (size_t k = 0; k < 4; ++k) {
+    SCOPED_TRACE("step " + std::to_string(k + 1));
+    const auto& step = data.steps[k];
+    const auto& entry = j["steps"][k];
+    EXPECT_EQ(step.time, 10.0 * (k + 1));
+    EXPECT_EQ(global(step, "converged"), k < 3 ? 1.0 : 0.0);
+    EXPECT_EQ(global(step, "pfp_applications"), entry["pfp_applications"].get<double>());
+    EXPECT_EQ(global(step, "contact_dissipated_energy"), entry["interfaces"][0]["dissipated_energy"].get<double>());
+    if (k == 3) break;  // the failed step's state is no equilibrium
+    EXPECT_LE(entry["force_balance"].get<double>(), 1e-8);
+    // The applied shear of this step against the contact force on the master (the block).
+    const double shear = 300.0 + 3000.0 * std::vector<double>{1, 0, -1}[k];
+    EXPECT_NEAR(entry["interfaces"][0]["contact_force"][0].get<double>(), -shear, 1e-6 * 12000.0);
+    const auto& status = field(step.nodal, "contact_status").values;
+    const auto& fn = field(step.nodal, "contact_normal").values;
+    const auto& f1 = field(step.nodal, "contact_t1").values;
+    const auto& f2 = field(step.nodal, "contact_t2").values;
+    const auto& s1 = field(step.nodal, "contact_slip_t1").values;
+    const auto& s2 = field(step.nodal, "contact_slip_t2").values;
+    const auto& total1 = field(step.nodal, "contact_tangential_t1").values;
+    const auto& accumulated = field(step.nodal, "contact_accumulated_slip").values;
+    if (slipSoFar.empty()) slipSoFar.assign(s1.size(), 0.0);
+    double work = 0.0, bound = 0.0, capacity = 0.0, friction = 0.0;
+    for (size_t n = 0; n < status.size(); ++n) {
+      slipSoFar[n] += s1[n];
+      EXPECT_NEAR(total1[n], slipSoFar[n], 1e-12) << "node " << n + 1;
+      if (status[n] != 2.0) continue;
+      work += f1[n] * s1[n] + f2[n] * s2[n];
+      bound += std::hypot(f1[n], f2[n]) * std::hypot(s1[n], s2[n]);
+      capacity += 0.3 * fn[n];
+      friction += std::hypot(f1[n], f2[n]);
+    }
+    EXPECT_NEAR(friction, capacity, 1e-6 * 12000.0);
+    EXPECT_GE(work, 0.999 * bound);
+    dissipated += work;
+    EXPECT_NEAR(global(step, "dissipated_energy"), dissipated, 1e-12 * (1.0 + dissipated));
+    EXPECT_EQ(step.time, entry["time"].get<double>());
+    std::printf("step %zu: %d slip nodes, dissipated so far %.6g, max accumulated slip %.3g\n", k + 1,
+                entry["slip"].get<int>(), dissipated, *std::max_element(accumulated.begin(), accumulated.end()));
+  }
+  // Slip in steps 1 and 3 (the shear up to 5.5 and back to -4.5 MPa), none while it is removed.
+  EXPECT_GT(j["steps"][0]["slip"].get<int>(), 0);
+  EXPECT_GT(j["steps"][2]["slip"].get<int>(), 0);
+  std::filesystem::remove_all(dir);
+}

@@ -19,12 +19,12 @@ void gatherContactFields(const Scene& scene, const feti::ConstraintMatrix& B,
   for (const auto& one : scene.contacts)
     out.interfaces.push_back({one.rows.name, one.rows.slaveSideSet + " -> " + one.rows.masterSideSet, one.law});
   const size_t numNodes = static_cast<size_t>(scene.mesh.numNodes());
-  constexpr int kPerNode = 5;  // force (nu, t1, t2), status, opening
+  constexpr int kPerNode = 7;  // force (nu, t1, t2), status, opening, tangential relative displacement (t1, t2)
   Records mine;  // one per contact node of this rank's rows
   mine.width = kPerNode;
   for (const auto& node : nodes) {
     const double f[kPerNode] = {node.force[0], node.force[1], node.force[2], static_cast<double>(node.status),
-                                node.opening};
+                                node.opening, node.relativeDisplacement[1], node.relativeDisplacement[2]};
     mine.add(node.slaveNode, f);
   }
   const Records gathered = gatherToRoot(mine, comm);
@@ -34,7 +34,8 @@ void gatherContactFields(const Scene& scene, const feti::ConstraintMatrix& B,
     std::copy_n(&gathered.values[kPerNode * k], kPerNode, &all[kPerNode * static_cast<size_t>(gathered.index[k])]);
   for (auto* field : {&out.contactNormal, &out.contactT1, &out.contactT2, &out.contactStatus, &out.contactPressure,
                       &out.contactGap, &out.contactOpening, &out.contactNx, &out.contactNy, &out.contactNz,
-                      &out.contactMaster})
+                      &out.contactMaster, &out.contactSlipT1, &out.contactSlipT2, &out.contactTangentialT1,
+                      &out.contactTangentialT2, &out.contactAccumulatedSlip})
     field->assign(numNodes, 0.0);
   std::vector<std::vector<double>> area;  // per interface: the tributary area of its slave nodes
   for (const auto& one : scene.contacts) area.push_back(tributaryArea(scene.mesh, one.rows.slaveSideSet));
@@ -53,6 +54,8 @@ void gatherContactFields(const Scene& scene, const feti::ConstraintMatrix& B,
     out.contactNy[g] = c.normal[1];
     out.contactNz[g] = c.normal[2];
     out.contactMaster[g] = static_cast<double>(c.masterNode + 1);
+    out.contactSlipT1[g] = out.contactTangentialT1[g] = f[5];
+    out.contactSlipT2[g] = out.contactTangentialT2[g] = f[6];
     out.totalNormalForce += f[0];
     InterfaceResult& i = out.interfaces[c.interface];
     i.normalForce += f[0];
@@ -66,7 +69,28 @@ void gatherContactFields(const Scene& scene, const feti::ConstraintMatrix& B,
     i.peakPressure = std::max(i.peakPressure, out.contactPressure[g]);
     i.largestOpening = std::max(i.largestOpening, f[4]);
     i.largestOverlap = std::max(i.largestOverlap, -f[4]);
+    if (static_cast<int>(f[3]) == static_cast<int>(contact::ContactStatus::Slip)) {
+      // The work of friction over the slip (the step's end force times its increment: the
+      // incremental rule of a load history), >= 0 by the slip rule.
+      out.contactAccumulatedSlip[g] = std::hypot(f[5], f[6]);
+      i.stepDissipation += f[1] * f[5] + f[2] * f[6];
+    }
   }
+  for (auto& i : out.interfaces) {
+    i.dissipatedEnergy = i.stepDissipation;
+    out.dissipatedEnergy += i.stepDissipation;
+  }
+}
+
+void addEarlierSteps(const ContactFields& previous, ContactFields& now) {
+  for (size_t g = 0; g < now.contactTangentialT1.size(); ++g) {
+    now.contactTangentialT1[g] += previous.contactTangentialT1[g];
+    now.contactTangentialT2[g] += previous.contactTangentialT2[g];
+    now.contactAccumulatedSlip[g] += previous.contactAccumulatedSlip[g];
+  }
+  for (size_t i = 0; i < now.interfaces.size(); ++i)
+    now.interfaces[i].dissipatedEnergy += previous.interfaces[i].dissipatedEnergy;
+  now.dissipatedEnergy += previous.dissipatedEnergy;
 }
 
 std::vector<contact::ContactNodeResult> tiedNodeResults(const feti::ConstraintMatrix& B, int rank,

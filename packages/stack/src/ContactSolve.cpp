@@ -242,13 +242,33 @@ std::vector<std::vector<std::vector<double>>> namedLoadVectors(std::vector<fem::
   return out;
 }
 
+/// What the results show of the state `result`: displacement, reactions, contact fields.
+/// Collective over `comm`.
+void gatherStateResults(const Scene& scene, const feti::ConstraintMatrix& B, const feti::TotalFeti& feti,
+                        const contact::ContactResult& result, MPI_Comm comm, StepResults& out) {
+  out.displacement = gatherDisplacement(scene, feti.firstOwnedSubdomain(), result.displacement, comm);
+  out.reaction = gatherReactions(scene, B, result.lambda, comm);
+  gatherContactFields(scene, B, result.nodes, comm, out);
+}
+
+/// The applied load of a state: the sum and the magnitude of the loads `f` (owned subdomains).
+void setAppliedLoad(const std::vector<std::vector<double>>& f, MPI_Comm comm, StepResults& out) {
+  std::vector<fem::SubdomainSystem> loaded(f.size());
+  for (size_t i = 0; i < f.size(); ++i) loaded[i].f = f[i];
+  out.appliedLoad = totalLoad(loaded, comm);
+  out.appliedLoadMagnitude = loadMagnitude(loaded, comm);
+}
+
 /// The steps of a load history (LoadHistory): each a contact solve on the same operators with
 /// its right-hand side; the history stops at the first step that does not converge (its result
-/// returned). The counters are summed over the steps.
+/// returned). `everyStep` gathers the results of each converged step before the last (the
+/// caller gathers the last). The counters are summed over the steps.
 contact::ContactResult solveLoadHistory(feti::TotalFeti& feti, const feti::ConstraintMatrix& B,
                                         const contact::FrictionSettings& friction, const qp::SmalseSettings& smalse,
-                                        feti::DualPreconditioner preconditioner, LoadHistory& history, int rank,
-                                        std::vector<LoadStepRecord>& records) {
+                                        feti::DualPreconditioner preconditioner, LoadHistory& history,
+                                        const std::vector<double>& times, int rank,
+                                        std::vector<LoadStepRecord>& records,
+                                        const std::function<void(int, const contact::ContactResult&)>& everyStep) {
   const int steps = history.steps();
   contact::ContactResult result;
   qp::SmalseCounters total;  // the counts over every step
@@ -266,8 +286,10 @@ contact::ContactResult solveLoadHistory(feti::TotalFeti& feti, const feti::Const
     total.innerIterations += result.counters.innerIterations;
     total.operatorApplications += result.counters.operatorApplications;
     total.seconds += result.counters.seconds;
-    records.push_back({k, factor, result.converged, result.counters.outerIterations,
-                       result.counters.operatorApplications, result.statusCounts, result.message});
+    records.push_back({k, factor, times[static_cast<size_t>(k - 1)], result.converged,
+                       result.counters.outerIterations, result.counters.operatorApplications,
+                       result.fixedPointIterations, result.statusCounts, result.message, result.kkt,
+                       result.kktTolerance});
     if (rank == 0) {
       std::printf("  load step %d/%d (ramp %g): %s, %d outer, %lld PFP; %d no contact, %d stick, %d slip\n", k,
                   steps, factor, result.converged ? "converged" : "NOT CONVERGED", result.counters.outerIterations,
@@ -275,8 +297,9 @@ contact::ContactResult solveLoadHistory(feti::TotalFeti& feti, const feti::Const
                   result.statusCounts[2]);
       std::fflush(stdout);
     }
-    if (!result.converged) break;  // the caller names the step
-    if (k < steps) history.advance(feti, result.displacement, k);
+    if (!result.converged || k == steps) break;  // the caller gathers the last step and names a failed one
+    everyStep(k, result);
+    history.advance(feti, result.displacement, k);
   }
   result.counters.outerIterations = total.outerIterations;
   result.counters.innerIterations = total.innerIterations;
@@ -325,13 +348,16 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
     for (const auto& condition : scene.displacementConditions) conditionNames.push_back(condition.name);
     LoadHistory loads(B, rank, std::move(loadParts), scene.loadFactors, scene.displacementFactors, conditionNames,
                       steps, dofs);
-    out.contact = solveLoadHistory(feti, B, friction, smalse, preconditioner, loads, rank, out.steps);
-    // The applied load of the last step solved (B2): the balance and the notes compare with it.
-    std::vector<fem::SubdomainSystem> last(dofs.size());
-    auto f = loads.loads(out.steps.back().step);
-    for (size_t i = 0; i < last.size(); ++i) last[i].f = std::move(f[i]);
-    out.appliedLoad = totalLoad(last, comm);
-    out.appliedLoadMagnitude = loadMagnitude(last, comm);
+    auto everyStep = [&](int k, const contact::ContactResult& step) {
+      out.earlierSteps.emplace_back();
+      setAppliedLoad(loads.loads(k), comm, out.earlierSteps.back());
+      gatherStateResults(scene, B, feti, step, comm, out.earlierSteps.back());
+      if (out.earlierSteps.size() > 1)
+        addEarlierSteps(out.earlierSteps[out.earlierSteps.size() - 2], out.earlierSteps.back());
+    };
+    out.contact = solveLoadHistory(feti, B, friction, smalse, preconditioner, loads, scene.stepTimes, rank,
+                                   out.steps, everyStep);
+    setAppliedLoad(loads.loads(out.steps.back().step), comm, out);  // the last step solved (B2)
   }
   out.solveSeconds = watch.seconds();
   nameTheLimit(budget, *runs, smalse, friction, out.contact);
@@ -344,10 +370,8 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
   out.profile = feti.profile();
   out.factorNonzeros = feti.factorNonzeros();
   out.bytesPerFApplication = feti.bytesPerFApplication();
-  out.displacement = gatherDisplacement(scene, feti.firstOwnedSubdomain(), out.contact.displacement, comm);
-
-  out.reaction = gatherReactions(scene, B, out.contact.lambda, comm);
-  gatherContactFields(scene, B, out.contact.nodes, comm, out);
+  gatherStateResults(scene, B, feti, out.contact, comm, out);
+  if (!out.earlierSteps.empty()) addEarlierSteps(out.earlierSteps.back(), out);
   addOverloadNote(B, friction, comm, out);
   return out;
 }

@@ -92,7 +92,46 @@ nlohmann::json interfaceSummary(const ContactFields& c) {
                     {"slip", i.counts[2]},
                     {"peak_pressure", i.peakPressure},
                     {"largest_opening", i.largestOpening},
-                    {"largest_overlap", i.largestOverlap}});
+                    {"largest_overlap", i.largestOverlap},
+                    {"dissipated_energy", i.dissipatedEnergy}});
+  return list;
+}
+
+/// The KKT residuals of the contact conditions (contact::KktReport) and their tolerance.
+nlohmann::json contactKktJson(const contact::KktReport& kkt, double tolerance) {
+  return {{"equilibrium", kkt.equilibrium},
+          {"gluing_dirichlet", kkt.equality},
+          {"non_penetration", kkt.nonPenetration},
+          {"complementarity", kkt.complementarity},
+          {"normal_sign", kkt.normalSign},
+          {"friction_admissibility", kkt.frictionAdmissibility},
+          {"slip_rule", kkt.slipRule},
+          {"stick_rule", kkt.stickRule},
+          {"tolerance", tolerance}};
+}
+
+/// Load Steps: one entry per step solved, with its interfaces' resultants (the results of
+/// earlierSteps, then of the last state).
+nlohmann::json stepsJson(const ContactSolveResult& c) {
+  nlohmann::json list = nlohmann::json::array();
+  for (size_t i = 0; i < c.steps.size(); ++i) {
+    const auto& k = c.steps[i];
+    const ContactFields& fields = i < c.earlierSteps.size() ? c.earlierSteps[i] : c;
+    list.push_back({{"step", k.step},
+                    {"time", k.time},
+                    {"ramp", k.factor},
+                    {"converged", k.converged},
+                    {"outer_iterations", k.outerIterations},
+                    {"pfp_applications", k.pfpApplications},
+                    {"fixed_point_iterations", k.fixedPointIterations},
+                    {"no_contact", k.statusCounts[0]},
+                    {"stick", k.statusCounts[1]},
+                    {"slip", k.statusCounts[2]},
+                    {"message", k.message},
+                    {"kkt", contactKktJson(k.kkt, k.kktTolerance)},
+                    {"interfaces", interfaceSummary(fields)},
+                    {"dissipated_energy", fields.dissipatedEnergy}});
+  }
   return list;
 }
 
@@ -127,18 +166,10 @@ void addContactSummary(const ContactSolveResult& contactSolve, double tolerance,
   summary["fixed_point_iterations"] = r.fixedPointIterations;
   summary["fixed_point_change"] = r.fixedPointChange;
   summary["energy"] = r.energy;
-  summary["kkt"] = {{"projected_gradient", r.counters.projectedGradient},
-                    {"equality_constraint", r.counters.equalityResidual},
-                    {"equilibrium", r.kkt.equilibrium},
-                    {"gluing_dirichlet", r.kkt.equality},
-                    {"non_penetration", r.kkt.nonPenetration},
-                    {"complementarity", r.kkt.complementarity},
-                    {"normal_sign", r.kkt.normalSign},
-                    {"friction_admissibility", r.kkt.frictionAdmissibility},
-                    {"slip_rule", r.kkt.slipRule},
-                    {"stick_rule", r.kkt.stickRule},
-                    {"max_copy_jump", contactSolve.displacement.maxCopyJump},
-                    {"tolerance", r.kktTolerance}};
+  summary["kkt"] = contactKktJson(r.kkt, r.kktTolerance);
+  summary["kkt"]["projected_gradient"] = r.counters.projectedGradient;
+  summary["kkt"]["equality_constraint"] = r.counters.equalityResidual;
+  summary["kkt"]["max_copy_jump"] = contactSolve.displacement.maxCopyJump;
   summary["contact_nodes"] = {{"no_contact", r.statusCounts[0]}, {"stick", r.statusCounts[1]},
                               {"slip", r.statusCounts[2]}};
   summary["history"] = historyJson(contactSolve.history);
@@ -146,19 +177,8 @@ void addContactSummary(const ContactSolveResult& contactSolve, double tolerance,
   summary["total_contact_force"] = contactSolve.totalContactForce;
   summary["contact_force_on_master"] = contactSolve.totalContactForce;
   summary["interfaces"] = interfaceSummary(contactSolve);
-  if (!contactSolve.steps.empty()) {
-    summary["steps"] = nlohmann::json::array();
-    for (const auto& k : contactSolve.steps)
-      summary["steps"].push_back({{"step", k.step},
-                                  {"ramp", k.factor},
-                                  {"converged", k.converged},
-                                  {"outer_iterations", k.outerIterations},
-                                  {"pfp_applications", k.pfpApplications},
-                                  {"no_contact", k.statusCounts[0]},
-                                  {"stick", k.statusCounts[1]},
-                                  {"slip", k.statusCounts[2]},
-                                  {"message", k.message}});
-  }
+  summary["dissipated_energy"] = contactSolve.dissipatedEnergy;
+  if (!contactSolve.steps.empty()) summary["steps"] = stepsJson(contactSolve);
   summary["times"]["factorization_s"] = contactSolve.factorizationSeconds;
   summary["times"]["solve_s"] = contactSolve.solveSeconds;
   // Of solve_s: the SMALSE-M runs, and of them the work outside A, M^-1, Q and the

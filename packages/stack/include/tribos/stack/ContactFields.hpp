@@ -29,6 +29,9 @@ struct InterfaceResult {
   double frictionForce = 0.0;          ///< sum of the lengths of its tangential nodal forces
   std::array<int, 3> counts{0, 0, 0};  ///< its contact nodes: no contact, stick, slip
   double peakPressure = 0.0, largestOpening = 0.0, largestOverlap = 0.0;
+  /// Friction work: sum over its slipping nodes of the tangential force times the slip (this
+  /// solve, a load step's increment in a history), and so far over the history.
+  double stepDissipation = 0.0, dissipatedEnergy = 0.0;
 };
 
 struct ContactFields {
@@ -40,6 +43,11 @@ struct ContactFields {
   /// (negative: overlap), the gap after deformation (ContactNodeResult::opening), the
   /// normal nu, and the master node with the largest weight (1-based id; 0 off the surface).
   std::vector<double> contactGap, contactOpening, contactNx, contactNy, contactNz, contactMaster;
+  /// Per global node (rank 0), zero off the slave surface: the tangential relative displacement
+  /// (u_slave - u_master along t1, t2) in this solve (a load step: its increment), the total so
+  /// far, and the accumulated slip (sum of the increments' lengths where the node slipped).
+  std::vector<double> contactSlipT1, contactSlipT2, contactTangentialT1, contactTangentialT2, contactAccumulatedSlip;
+  double dissipatedEnergy = 0.0;  ///< over every interface, so far (rank 0)
   double totalNormalForce = 0.0;    ///< sum of the normal nodal forces (rank 0)
   std::array<double, 3> totalContactForce{};  ///< sum of nodal contact forces in x, y, z (rank 0)
   std::vector<InterfaceResult> interfaces;  ///< per scene interface, in the scene's order (rank 0)
@@ -50,6 +58,10 @@ struct ContactFields {
 /// names and laws, rank 0 their sums. Collective over `comm`.
 void gatherContactFields(const Scene& scene, const feti::ConstraintMatrix& B,
                          const std::vector<contact::ContactNodeResult>& nodes, MPI_Comm comm, ContactFields& out);
+
+/// A load step after `previous`: the totals so far (tangential displacement, accumulated slip,
+/// dissipated energy) are the previous step's plus this one's (rank 0).
+void addEarlierSteps(const ContactFields& previous, ContactFields& now);
 
 /// The contact nodes of this rank's rows of a bonded (tied) solve: forces rowScale lambda,
 /// status stick, opening -(B u - c)_N / rowScale. `ownedLambda` and `ownedResidual` (B u - c)

@@ -31,27 +31,39 @@ struct OuterIterationRecord {
   double elapsedSeconds = 0.0;     ///< since the solver stack was set up (factorisation included)
 };
 
-/// The contact solve, its counts and times, and the contact fields (ContactFields).
 /// One step of a load history (Load Steps), as the summary's `steps` lists it.
 struct LoadStepRecord {
   int step = 0;
   double factor = 1.0;          ///< the ramp k / N (prescribed values; loads without a table)
+  double time = 1.0;            ///< Load Steps/Times (default: the ramp)
   bool converged = false;
   int outerIterations = 0;
   long long pfpApplications = 0;
+  int fixedPointIterations = 0;
   std::array<int, 3> statusCounts{0, 0, 0};  ///< no contact, stick, slip
   std::string message;
+  contact::KktReport kkt;
+  double kktTolerance = 0.0;
 };
 
-struct ContactSolveResult : ContactFields {
-  contact::ContactResult contact;   ///< counters, KKT, status counts (node list: this rank's); of the
-                                    ///< last step, its counters summed over the steps
-  std::vector<LoadStepRecord> steps;  ///< Load Steps: one per step solved (empty for one step)
+/// What the results show of one solved state: the displacement, reactions, applied load and
+/// contact fields on the user's mesh (rank 0's fields; the applied load on every rank).
+struct StepResults : ContactFields {
   GlobalDisplacement displacement;  ///< rank 0
   /// Reaction force per global node (gatherReactions), rank 0.
   std::vector<std::array<double, 3>> reaction;
   std::array<double, 3> appliedLoad{};  ///< sum of the nodal loads (every rank)
   double appliedLoadMagnitude = 0.0;    ///< sum of their lengths (loadMagnitude)
+};
+
+/// The contact solve, its counts and times, and the results of its last state (StepResults).
+struct ContactSolveResult : StepResults {
+  contact::ContactResult contact;   ///< counters, KKT, status counts (node list: this rank's); of the
+                                    ///< last step, its counters summed over the steps
+  std::vector<LoadStepRecord> steps;  ///< Load Steps: one per step solved (empty for one step)
+  /// Load Steps: the results of every step before the last (rank 0's fields; kept until the
+  /// results file is written, about 30 doubles per mesh node and step).
+  std::vector<StepResults> earlierSteps;
   double factorizationSeconds = 0.0, solveSeconds = 0.0;
   long long fApplications = 0;
   feti::OperatorProfile profile;  ///< rank 0's operator times and counts (doc/measurements/coarse_problem.md)
