@@ -261,12 +261,12 @@ void setAppliedLoad(const std::vector<std::vector<double>>& f, MPI_Comm comm, St
 
 /// The steps of a load history (LoadHistory): each a contact solve on the same operators with
 /// its right-hand side; the history stops at the first step that does not converge (its result
-/// returned). `everyStep` gathers the results of each converged step before the last (the
+/// returned). Each step starts warm from the last (`warmStart`) or from zero. `everyStep` gathers the results of each converged step before the last (the
 /// caller gathers the last). The counters are summed over the steps.
 contact::ContactResult solveLoadHistory(feti::TotalFeti& feti, const feti::ConstraintMatrix& B,
                                         const contact::FrictionSettings& friction, const qp::SmalseSettings& smalse,
                                         feti::DualPreconditioner preconditioner, LoadHistory& history,
-                                        const std::vector<double>& times, int rank,
+                                        const std::vector<double>& times, bool warmStart, int rank,
                                         std::vector<LoadStepRecord>& records,
                                         const std::function<void(int, const contact::ContactResult&)>& everyStep) {
   const int steps = history.steps();
@@ -278,8 +278,9 @@ contact::ContactResult solveLoadHistory(feti::TotalFeti& feti, const feti::Const
     // Warm: the last step's multipliers (scaled to this step's load factor where every load
     // follows the ramp: exact for a proportional history), the slip bound they imply and the
     // last ||PFP|| (ALGORITHMS.md 11).
-    contact::WarmStart warm{result.lambda, result.counters.normA};
-    if (history.proportional())
+    contact::WarmStart warm;
+    if (warmStart) warm = {result.lambda, result.counters.normA};
+    if (warmStart && history.proportional())
       for (double& v : warm.lambda) v *= factor / history.ramp(k - 1);
     result = contact::solveContact(feti, B, friction, smalse, preconditioner, warm);
     total.outerIterations += result.counters.outerIterations;
@@ -355,8 +356,9 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
       if (out.earlierSteps.size() > 1)
         addEarlierSteps(out.earlierSteps[out.earlierSteps.size() - 2], out.earlierSteps.back());
     };
-    out.contact = solveLoadHistory(feti, B, friction, smalse, preconditioner, loads, scene.stepTimes, rank,
-                                   out.steps, everyStep);
+    const bool warmStart = tribos.sublist("Load Steps").get<bool>("Warm Start");
+    out.contact = solveLoadHistory(feti, B, friction, smalse, preconditioner, loads, scene.stepTimes, warmStart,
+                                   rank, out.steps, everyStep);
     setAppliedLoad(loads.loads(out.steps.back().step), comm, out);  // the last step solved (B2)
   }
   out.solveSeconds = watch.seconds();

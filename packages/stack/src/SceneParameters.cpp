@@ -302,6 +302,10 @@ Teuchos::RCP<const Teuchos::ParameterList> sceneValidParameters() {
               "ramp k / N in step k; 1: the static problem, all loads at once. Each step is a time step of the "
               "Exodus result and an entry of the summary's steps",
               core::intRange(1, 100000));
+    steps.set("Warm Start", true,
+              "start each step from the last step's multipliers (scaled to the load factor when every load and "
+              "prescribed displacement follows the ramp), the slip bound they imply and the last ||PFP||; false: "
+              "each step from zero, as a one-step solve (for comparison: ALGORITHMS.md 11)");
     steps.set("Times", Teuchos::Array<double>(),
               "the time of each step in the results (Number Of Steps increasing values); not given: the ramp k / N",
               core::finiteArray(core::FiniteArrayValidator::kAnyLength, core::kMaxMagnitude));
