@@ -123,3 +123,44 @@ def side_set_triangles(mesh, name):
     """The faces of side set `name` as node triples (0-based, Exodus TETRA side order)."""
     elements = element_nodes(mesh)
     return [tuple(elements[e][v] for v in TET_FACES[side]) for e, side in mesh["side_sets"][name]]
+
+
+# ---- every time step (load histories: tribos writes each load step as a time step)
+
+
+def time_values(path, header):
+    """The time of every step (time_whole), [] when the file has none."""
+    return ncdump_vars(path, ["time_whole"])["time_whole"] if has_variable(header, "time_whole") else []
+
+
+def global_variables(path, header):
+    """{name: [value at step 1, step 2, ...]} of the global variables ({} when none), in file order."""
+    names = _names(path, header, "name_glo_var")
+    if not names or not has_variable(header, "vals_glo_var"):
+        return {}
+    vals = ncdump_vars(path, ["vals_glo_var"])["vals_glo_var"]  # (time_step, num_glo_var), row-major
+    return {name: vals[i::len(names)] for i, name in enumerate(names)}
+
+
+def nodal_steps(path, header, wanted):
+    """{name: [[values at step 1], [values at step 2], ...]} of the named nodal variables
+    (absent names: KeyError); last_step_nodal's data, every step kept."""
+    var_names = nodal_variable_names(path, header)
+    for v in wanted:
+        if v not in var_names:
+            raise KeyError(v + " (the file has: " + ", ".join(var_names) + ")")
+    n = dimension(header, "num_nodes")
+    separate = has_variable(header, "vals_nod_var1")  # else one vals_nod_var(time, var, node)
+    fields = ["vals_nod_var%d" % (var_names.index(v) + 1) for v in wanted] if separate else ["vals_nod_var"]
+    d = ncdump_vars(path, fields) if wanted else {}
+    out = {}
+    for v in wanted:
+        i = var_names.index(v) + 1
+        if separate:
+            vals = d["vals_nod_var%d" % i]
+            out[v] = [vals[s * n:(s + 1) * n] for s in range(len(vals) // n)]
+        else:
+            vals = d["vals_nod_var"]
+            steps = len(vals) // (len(var_names) * n)
+            out[v] = [vals[((s * len(var_names)) + i - 1) * n:((s * len(var_names)) + i) * n] for s in range(steps)]
+    return out

@@ -4,9 +4,13 @@
 Usage:
   python3 doc/tools/plot_results.py RESULT.exo SUMMARY.json OUTDIR [--slave SIDE_SET] [--scale S]
                                     [--profile X0,Y0,Z0:X1,Y1,Z1 [--profile-samples N]] [--dpi N]
+                                    [--step K] [--history NODE_SET[:COMPONENT]]
 
-  RESULT.exo    written by `tribos --output RESULT.exo`
-  SUMMARY.json  written by `tribos --summary SUMMARY.json` (its "history" and "interfaces")
+  RESULT.exo    written by `tribos --output RESULT.exo`; of a load history (Load Steps) one
+                time step per load step, the maps, profile and deformed shape drawn at the
+                last one unless --step says otherwise
+  SUMMARY.json  written by `tribos --summary SUMMARY.json` (its "history" and "interfaces",
+                and with --step its "steps")
   OUTDIR        created if missing; receives
     contact_stress.png  normal and tangential contact stress on the slave surface, over its two
                         in-plane coordinates, with the contact zone and the stick zone outlined
@@ -21,6 +25,8 @@ Usage:
     deformed.png        the boundary of the bodies warped by the displacements (magnified)
     profile.csv, profile.png
                         with --profile: the contact stresses along a straight segment (below)
+    history.csv, history.png
+                        with --history: the force-displacement history of a load history (below)
 
   --slave NAME  draw contact_stress.png of this side set only, whatever the summary's
                 interfaces. Without it the slave side sets are the summary's "interfaces"
@@ -42,15 +48,43 @@ Usage:
                 three columns empty (a gap in profile.png), so that rows stay evenly spaced
                 in s. profile.png draws both stresses against s.
   --dpi N       resolution of the PNGs (default 100)
+  --step K      draw the contact stress maps, the profile and deformed.png at time step K
+                (1-based, 1 to the result's number of steps; default the last). The maps'
+                titles then take the counts and normal force of the summary's steps[K-1], and
+                the pictures of a result of several steps name the step and its time (those
+                of a one-step result are unchanged)
+  --history NODE_SET[:COMPONENT]
+                the load history seen from a node set (e.g. the loaded face's, block_top in
+                input/block_on_plate.xml); COMPONENT x, y or z, default the one along which the
+                node set's mean displacement changes most (from the unloaded state over the
+                steps). history.csv has one row per time step with the header
+                  time,step,converged,displ_x,displ_y,displ_z,reaction_x,reaction_y,reaction_z,
+                  <I>_force_x,<I>_force_y,<I>_force_z,<I>_dissipated_energy (each interface I),
+                  dissipated_energy
+                step 1-based, converged 1 or 0 (the global variable converged), displ_* the mean
+                displacement of the node set's nodes, reaction_* the sum of reaction_x/y/z over
+                them (empty cells when none of its nodes is prescribed, i.e. every reaction is
+                zero at every step), <I>_force_* the resultant contact force of interface I on
+                its master body (global variables <I>_force_x/y/z; I is the Contact/<I> sublist's
+                name, "contact" for a flat Contact list), <I>_dissipated_energy and
+                dissipated_energy the frictional dissipation so far (of I, and in all).
+                history.png: (a) each interface's force along COMPONENT and, when not zero, the
+                node set's reaction sum along COMPONENT against its mean displacement along
+                COMPONENT, the steps joined in order from the unloaded state (0, 0) and
+                numbered (every step up to 12 steps, sparser beyond; unconverged steps always),
+                unconverged steps drawn as hollow red markers: a hysteresis loop under a
+                reversed friction load; (b) the dissipated energy against time
 
 Normal stress: the nodal variable contact_pressure (normal force per tributary area);
 tangential stress: |(contact_t1, contact_t2)| per tributary area (a third of the slave faces
-around the node), in the scene's units. Zones from contact_status (0 none, 1 stick, 2 slip):
+around the node). Every number drawn or written is in the scene's units (its mesh's lengths,
+its loads' forces: mm, N and N mm = mJ for the MPa scenes). Zones from contact_status (0 none, 1 stick, 2 slip):
 the lines are where the indicator of "in contact" and of "stick", interpolated linearly on the
 surface, crosses 1/2, i.e. half-way between nodes of different status.
 
 Needs python3-matplotlib (numpy comes with it) and ncdump (netcdf-bin) on Debian.
-Exit status: 0 written, 2 bad input (missing file, variable or side set, bad --profile),
+Exit status: 0 written, 2 bad input (missing file, variable, side set or node set, bad
+--profile, --step or --history),
 77 matplotlib or ncdump missing (the CTest reports a skip).
 """
 import argparse
@@ -99,16 +133,41 @@ def save(fig, out, dpi):
 CONTACT_FIELDS = ("contact_normal", "contact_t1", "contact_t2", "contact_status", "contact_pressure")
 
 
-def read_result(path):
-    """Mesh, coordinates and the last step's nodal fields (the contact ones only if present)."""
+def read_result(path, step):
+    """Header, mesh, coordinates, the nodal fields of time step `step` (1-based, 0: the last;
+    the contact ones only if present), the step drawn (1-based) and the number of steps."""
     header = exodus_read.ncdump_header(path)
     mesh = exodus_read.read_mesh(path, header)
     names = ["displ_x", "displ_y", "displ_z"]
     if set(CONTACT_FIELDS) <= set(exodus_read.nodal_variable_names(path, header)):
         names += CONTACT_FIELDS
-    fields = exodus_read.last_step_nodal(path, header, names)
+    steps = exodus_read.nodal_steps(path, header, names)
+    count = len(steps["displ_x"])
+    if count == 0:
+        raise ValueError("%s: no time step written" % path)
+    if not 0 <= step <= count:
+        raise ValueError("--step %d: the result has %d time step%s (1 to %d)" % (step, count, "s" * (count > 1),
+                                                                                  count))
+    step = step or count
     coords = np.column_stack([mesh["x"], mesh["y"], mesh["z"]])
-    return mesh, coords, {k: np.asarray(v) for k, v in fields.items()}
+    return header, mesh, coords, {k: np.asarray(v[step - 1]) for k, v in steps.items()}, step, count
+
+
+def step_summary(summary, step, count):
+    """The summary with "interfaces" of time step `step` (its steps[step - 1]) when that is not
+    the last step; the summary itself for the last (its own "interfaces" describe it)."""
+    steps = summary.get("steps") or []
+    if step == count or len(steps) != count:
+        return summary
+    return dict(summary, interfaces=steps[step - 1].get("interfaces") or [])
+
+
+def step_label(step, count, times):
+    """"step K of N, time t" for a result of several steps, "" for one step (titles unchanged)."""
+    if count <= 1:
+        return ""
+    return "step %d of %d, time %.4g" % (step, count, times[step - 1]) if len(times) == count else \
+        "step %d of %d" % (step, count)
 
 
 def slave_side_set(mesh, fields, requested):
@@ -219,7 +278,7 @@ def map_title(surface, counts):
         name, entry["normal_force"], entry["no_contact"], entry["stick"], entry["slip"])
 
 
-def plot_contact(mesh, coords, fields, surface, out, dpi):
+def plot_contact(mesh, coords, fields, surface, out, dpi, label=""):
     triangles = exodus_read.side_set_triangles(mesh, surface["slave"])
     nodes = sorted({n for tri in triangles for n in tri})
     local = {n: i for i, n in enumerate(nodes)}
@@ -246,7 +305,7 @@ def plot_contact(mesh, coords, fields, surface, out, dpi):
         ax.set_title("%s (max %.4g)" % (title, values.max()))
     if handles:
         axes[1].legend(handles=handles, loc="upper right", fontsize=8, framealpha=0.8)
-    fig.suptitle(map_title(surface, counts))
+    fig.suptitle(map_title(surface, counts) + ("\n" + label if label else ""))
     save(fig, out, dpi)
 
 # ---------------------------------------------------------------- pressure profile
@@ -330,7 +389,7 @@ def write_profile_csv(rows, out):
             f.write("%.9g,%.9g,%.9g,%.9g,%s,%s,%s\n" % (s, *point, *values))
 
 
-def plot_profile(rows, segment, out, dpi):
+def plot_profile(rows, segment, out, dpi, label=""):
     s = np.array([r[0] for r in rows])
     pressure = np.array([np.nan if r[3] is None else r[3] for r in rows])
     tangential = np.array([np.nan if r[4] is None else r[4] for r in rows])
@@ -340,7 +399,8 @@ def plot_profile(rows, segment, out, dpi):
     ax.axhline(0.0, color="gray", linewidth=0.6)
     ax.set_xlabel("s, distance from (%s)" % ", ".join("%g" % v for v in segment[0]))
     ax.set_ylabel("force / area")
-    ax.set_title("contact stresses from (%s) to (%s)" % tuple(", ".join("%g" % v for v in p) for p in segment))
+    ax.set_title("contact stresses from (%s) to (%s)" % tuple(", ".join("%g" % v for v in p) for p in segment)
+                 + (", " + label if label else ""))
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
     save(fig, out, dpi)
@@ -383,6 +443,151 @@ def plot_convergence(summary, out, dpi):
     save(fig, out, dpi)
     return True
 
+# ---------------------------------------------------------------- load history
+
+
+def parse_history(text, mesh):
+    """"NODE_SET[:COMPONENT]" as (node set, axis index or None for the default)."""
+    name, _, component = text.partition(":")
+    if name not in mesh["node_sets"]:
+        raise KeyError("--history %s: no node set %s (the file has: %s)" % (text, name, ", ".join(mesh["node_sets"])))
+    if not mesh["node_sets"][name]:
+        raise ValueError("--history %s: node set %s is empty" % (text, name))
+    if component and component not in AXES:
+        raise ValueError("--history %s: COMPONENT is x, y or z" % text)
+    return name, (AXES.index(component) if component else None)
+
+
+def read_history(path, header, mesh, node_set):
+    """Per time step: the node set's mean displacement and reaction sum (None when none of its
+    nodes is prescribed), each interface's contact force and dissipated energy (from the
+    global variables <I>_force_x/y/z and <I>_dissipated_energy), the total dissipated energy,
+    converged and the time."""
+    nodes = mesh["node_sets"][node_set]
+    names = ["displ_x", "displ_y", "displ_z"]
+    with_reactions = {"reaction_x", "reaction_y", "reaction_z"} <= set(exodus_read.nodal_variable_names(path, header))
+    if with_reactions:
+        names += ["reaction_x", "reaction_y", "reaction_z"]
+    steps = exodus_read.nodal_steps(path, header, names)
+    count = len(steps["displ_x"])
+    displacement = np.array([[np.mean(np.asarray(steps["displ_" + c][k])[nodes]) for c in AXES] for k in range(count)])
+    reaction = None
+    if with_reactions:
+        nodal = np.array([[np.asarray(steps["reaction_" + c][k])[nodes] for c in AXES] for k in range(count)])
+        if np.any(nodal != 0):  # the solver writes zero reactions at free components
+            reaction = nodal.sum(axis=2)
+    globals_ = exodus_read.global_variables(path, header)
+    interfaces = [n[:-len("_force_x")] for n in globals_ if n.endswith("_force_x")
+                  and n[:-len("x")] + "y" in globals_ and n[:-len("x")] + "z" in globals_]
+    nan = [float("nan")] * count
+
+    def series(name):
+        values = globals_.get(name)
+        return np.array(values if values is not None and len(values) == count else nan, dtype=float)
+
+    times = exodus_read.time_values(path, header)
+    return dict(node_set=node_set, count=count, displacement=displacement, reaction=reaction,
+                times=np.array(times if len(times) == count else range(1, count + 1), dtype=float),
+                converged=series("converged"), dissipated=series("dissipated_energy"),
+                interfaces=[dict(name=i, force=np.column_stack([series(i + "_force_" + c) for c in AXES]),
+                                 dissipated=series(i + "_dissipated_energy")) for i in interfaces])
+
+
+def default_component(history):
+    """The axis along which the node set's mean displacement changes most, the unloaded state
+    (zero) included, so that a one-step result takes its largest displacement."""
+    u = np.vstack([np.zeros(3), history["displacement"]])
+    return int(np.argmax(np.ptp(u, axis=0)))
+
+
+def write_history_csv(history, out):
+    """history.csv: one row per step; empty reaction cells when the node set has no prescribed
+    node, empty cells for a global variable the result lacks."""
+    cell = lambda v: "" if v is None or not np.isfinite(v) else "%.12g" % v  # noqa: E731
+    header = ["time", "step", "converged"] + ["displ_" + c for c in AXES] + ["reaction_" + c for c in AXES]
+    for interface in history["interfaces"]:
+        header += [interface["name"] + "_force_" + c for c in AXES] + [interface["name"] + "_dissipated_energy"]
+    header.append("dissipated_energy")
+    with open(out, "w") as f:
+        f.write(",".join(header) + "\n")
+        for k in range(history["count"]):
+            converged = history["converged"][k]
+            row = [cell(history["times"][k]), "%d" % (k + 1), "" if not np.isfinite(converged) else "%d" % converged]
+            row += [cell(v) for v in history["displacement"][k]]
+            row += ["", "", ""] if history["reaction"] is None else [cell(v) for v in history["reaction"][k]]
+            for interface in history["interfaces"]:
+                row += [cell(v) for v in interface["force"][k]] + [cell(interface["dissipated"][k])]
+            row.append(cell(history["dissipated"][k]))
+            f.write(",".join(row) + "\n")
+
+
+def annotated_steps(count, unconverged):
+    """The steps numbered on the force-displacement curve: all up to 12, else about 10 evenly
+    spaced ones, the first and the last, and every unconverged step."""
+    every = 1 if count <= 12 else int(math.ceil(count / 10.0))
+    return sorted({k for k in range(count) if k % every == every - 1 or k in (0, count - 1)} | set(unconverged))
+
+
+def plot_history_curve(ax, u, force, label, style, annotate, unconverged):
+    """One force-displacement series: from the unloaded state (0, 0), dotted, then the steps in
+    order, unconverged ones hollow and red."""
+    line, = ax.plot(u, force, style, ms=5, label=label)
+    ax.plot([0.0, u[0]], [0.0, force[0]], ":", color=line.get_color(), linewidth=1)
+    if unconverged:
+        ax.plot(u[unconverged], force[unconverged], "o", ms=9, markerfacecolor="none", markeredgecolor="red",
+                markeredgewidth=1.5)
+    for k in annotate:  # odd steps above right, even ones below left: a return to a point stays legible
+        ax.annotate("%d" % (k + 1), (u[k], force[k]), textcoords="offset points",
+                    xytext=(4, 4) if k % 2 == 0 else (-10, -12), fontsize=7,
+                    color="red" if k in unconverged else line.get_color())
+
+
+def plot_history(history, axis, out, dpi, title=""):
+    c = AXES[axis]
+    u = history["displacement"][:, axis]
+    count = history["count"]
+    unconverged = [k for k in range(count) if history["converged"][k] == 0]
+    annotate = annotated_steps(count, unconverged)
+    fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.6), constrained_layout=True)
+    styles = ("o-", "s-", "^-", "D-", "v-", "P-")
+    for n, interface in enumerate(history["interfaces"]):
+        plot_history_curve(left, u, interface["force"][:, axis], "%s_force_%s (contact force on its master)"
+                           % (interface["name"], c), styles[n % len(styles)], annotate, unconverged)
+    reaction = history["reaction"]
+    if reaction is not None and np.any(reaction[:, axis] != 0):
+        plot_history_curve(left, u, reaction[:, axis], "reaction_%s summed over %s" % (c, history["node_set"]),
+                           "k.--", annotate, unconverged)
+    left.axhline(0.0, color="gray", linewidth=0.6)
+    left.axvline(0.0, color="gray", linewidth=0.6)
+    left.set_xlabel("mean displ_%s of node set %s" % (c, history["node_set"]))
+    left.set_ylabel("force along %s" % c)
+    left.set_title("(a) force against displacement, steps numbered")
+    left.grid(True, alpha=0.3)
+    handles, labels = left.get_legend_handles_labels()
+    if unconverged:
+        handles.append(Line2D([], [], marker="o", linestyle="none", markerfacecolor="none", markeredgecolor="red"))
+        labels.append("not converged")
+    if handles:
+        left.legend(handles, labels, fontsize=8)
+
+    times = history["times"]
+    right.plot(times, history["dissipated"], "ko-", ms=4, label="dissipated_energy (all interfaces)")
+    if len(history["interfaces"]) > 1:
+        for n, interface in enumerate(history["interfaces"]):
+            right.plot(times, interface["dissipated"], styles[n % len(styles)][0] + "--", ms=4,
+                       label=interface["name"] + "_dissipated_energy")
+    if unconverged:
+        right.plot(times[unconverged], history["dissipated"][unconverged], "o", ms=9, markerfacecolor="none",
+                   markeredgecolor="red", markeredgewidth=1.5, label="not converged")
+    right.set_xlabel("time")
+    right.set_ylabel("frictional dissipation so far (force x length)")
+    right.set_title("(b) dissipated energy")
+    right.grid(True, alpha=0.3)
+    right.legend(fontsize=8)
+    fig.suptitle(title or "load history: %d steps, %d not converged" % (count, len(unconverged)))
+    save(fig, out, dpi)
+
+
 # ---------------------------------------------------------------- deformed shape
 
 
@@ -409,7 +614,7 @@ def magnification(coords, displacement, requested):
     return max(m * step for m in (1, 2, 5) if m * step <= raw)  # a round number
 
 
-def plot_deformed(mesh, coords, fields, requested_scale, out, dpi):
+def plot_deformed(mesh, coords, fields, requested_scale, out, dpi, label=""):
     displacement = np.column_stack([fields["displ_x"], fields["displ_y"], fields["displ_z"]])
     scale = magnification(coords, displacement, requested_scale)
     warped = coords + scale * displacement
@@ -433,7 +638,7 @@ def plot_deformed(mesh, coords, fields, requested_scale, out, dpi):
     ax3.set_xlabel("x")
     ax3.set_ylabel("y")
     ax3.set_zlabel("z")
-    ax3.set_title("deformed boundary, displacements x %g" % scale)
+    ax3.set_title("deformed boundary, displacements x %g" % scale + ("\n" + label if label else ""))
 
     # Side view along the axis of smallest extent: undeformed silhouette in grey, the faces
     # that look at the viewer drawn far to near (painter's order).
@@ -480,6 +685,8 @@ def main():
     parser.add_argument("--profile", default="")
     parser.add_argument("--profile-samples", type=int, default=200)
     parser.add_argument("--dpi", type=int, default=100)
+    parser.add_argument("--step", type=int, default=None)
+    parser.add_argument("--history", default="")
     args = parser.parse_args(attach_profile_value(sys.argv[1:]))
     if shutil.which("ncdump") is None:
         print("plot_results.py: needs ncdump to read Exodus (apt-get install netcdf-bin)", file=sys.stderr)
@@ -488,13 +695,19 @@ def main():
         segment = parse_segment(args.profile) if args.profile else None
         if segment is not None and args.profile_samples < 2:
             raise ValueError("--profile-samples %d: at least 2 (the two ends)" % args.profile_samples)
+        if args.step is not None and args.step < 1:
+            raise ValueError("--step %d: time steps count from 1" % args.step)
         if not os.path.isfile(args.result):
             raise OSError("%s: no such file (write it with tribos --output)" % args.result)
         with open(args.summary) as f:
             summary = json.load(f)
-        mesh, coords, fields = read_result(args.result)
+        header, mesh, coords, fields, step, count = read_result(args.result, args.step or 0)
+        label = step_label(step, count, exodus_read.time_values(args.result, header) if count > 1 else [])
         contact = "contact_status" in fields
-        surfaces = interface_surfaces(summary, mesh, fields, args.slave) if contact else []
+        surfaces = interface_surfaces(step_summary(summary, step, count), mesh, fields, args.slave) if contact else []
+        if args.history:
+            node_set, axis = parse_history(args.history, mesh)
+            history = read_history(args.result, header, mesh, node_set)
     except (OSError, KeyError, ValueError, IndexError, subprocess.CalledProcessError) as e:
         print("plot_results.py: %s" % e, file=sys.stderr)
         return 2
@@ -502,7 +715,7 @@ def main():
     path = lambda name: os.path.join(args.outdir, name)  # noqa: E731
     if contact:
         for surface in surfaces:
-            plot_contact(mesh, coords, fields, surface, path(surface["png"]), args.dpi)
+            plot_contact(mesh, coords, fields, surface, path(surface["png"]), args.dpi, label)
             print("wrote", path(surface["png"]))
     else:
         print("plot_results.py: no contact fields (a scene without contact): contact_stress.png%s not written"
@@ -510,7 +723,7 @@ def main():
     if contact and segment is not None:
         rows = sample_profile(coords, fields, mesh, surfaces, segment, args.profile_samples)
         write_profile_csv(rows, path("profile.csv"))
-        plot_profile(rows, segment, path("profile.png"), args.dpi)
+        plot_profile(rows, segment, path("profile.png"), args.dpi, label)
         print("wrote", path("profile.csv"), "and", path("profile.png"),
               "(%d of %d points on a slave surface)" % (sum(r[2] is not None for r in rows), len(rows)))
     if plot_convergence(summary, path("convergence.png"), args.dpi):
@@ -518,8 +731,20 @@ def main():
     else:
         print("plot_results.py: no \"history\" in %s (not a contact solve): convergence.png not written"
               % args.summary, file=sys.stderr)
-    plot_deformed(mesh, coords, fields, args.scale, path("deformed.png"), args.dpi)
+    plot_deformed(mesh, coords, fields, args.scale, path("deformed.png"), args.dpi, label)
     print("wrote", path("deformed.png"))
+    if args.history:
+        axis = default_component(history) if axis is None else axis
+        write_history_csv(history, path("history.csv"))
+        plot_history(history, axis, path("history.png"), args.dpi,
+                     "%s: load history of %d step%s seen from node set %s along %s"
+                     % (os.path.basename(str(summary.get("input", ""))) or os.path.basename(args.result),
+                        history["count"], "s" * (history["count"] > 1), node_set, AXES[axis]))
+        if not history["interfaces"]:
+            print("plot_results.py: no <interface>_force_x/y/z global variables in %s: history.png has no contact"
+                  " force" % args.result, file=sys.stderr)
+        print("wrote", path("history.csv"), "and", path("history.png"),
+              "(%d step%s, %s along %s)" % (history["count"], "s" * (history["count"] > 1), node_set, AXES[axis]))
     return 0
 
 

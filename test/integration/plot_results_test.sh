@@ -3,8 +3,10 @@
 # then doc/tools/plot_results.py on its Exodus result and JSON summary; every picture must be
 # a non-empty PNG. Then the three-body scene (two contact interfaces, issue 30): one map per
 # interface, and a pressure profile along y = 0 on the block's top (z = 10) under the punch,
-# whose numbers are checked. Exit 77 (CTest: skipped) when the Python has no matplotlib or
-# ncdump is missing, with the plotting tool's message saying what to install.
+# whose numbers are checked. Then a load history (9 steps of block_on_plate.xml sheared back
+# and forth): history.csv and history.png of --history, whose numbers are checked. Exit 77
+# (CTest: skipped) when the Python has no matplotlib or ncdump is missing, with the plotting
+# tool's message saying what to install.
 # Usage: plot_results_test.sh TRIBOS PYTHON SOURCE_DIR
 set -u
 tribos=$1
@@ -108,4 +110,56 @@ checks = ((at(0.0) > 0, "no pressure at x = 0, under the punch's flat face"),
 failed = [message for ok, message in checks if not ok]
 if failed:
     sys.exit("profile.csv: " + "; ".join(failed))
+PY
+
+# A load history: block_on_plate.xml's block pressed (press: 0.5, 0, -20 MPa on block_top's
+# 600 mm^2, i.e. 300, 0, -12000 N) and sheared along x by 5 MPa x factor (3000 N x factor):
+# up to 1, back to 0, on to -1 and back to 0, with Coulomb F = 0.3 (a hysteresis loop).
+"$tribos" --input "$source/input/block_on_plate.xml" --set Solver/Verbose=false \
+  --set 'Loads/shear/Side Set=block_top' --set 'Loads/shear/Traction={5, 0, 0}' \
+  --set 'Load Steps/Number Of Steps=9' --set 'Load Steps/press/Factors={1,1,1,1,1,1,1,1,1}' \
+  --set 'Load Steps/shear/Factors={0.25,0.5,0.75,1,0.5,0,-0.5,-1,0}' \
+  --output "$dir/history.exo" --summary "$dir/history.json" || exit 1
+plot "$dir/history.exo" "$dir/history.json" "$dir/history" --history block_top:x
+png "$dir/history" history contact_stress deformed
+
+# Measured (8 subdomains, any thread count): contact_force_x = -1050.001, -1800.000,
+# -2549.998, -3300.003, -1800.000, -300.000, 1200.000, 2700.000, -300.000 (the force of the
+# plate on the block balances the block's load 300 + 3000 x factor, to 9.6e-7 relative at
+# most: the solver's tolerance is 1e-5, so 1e-5 is checked); mean displ_x of block_top
+# 5.909e-4, 1.011e-3, 1.431e-3, 2.155e-3, 1.316e-3, 4.764e-4, -3.628e-4, -1.224e-3, 4.546e-4;
+# dissipated energy 0, 0, 0.00405, 0.9687 (88 nodes slip), 0.9687 x 4, 1.0307 (41 slip),
+# 1.0307.
+"$python" - "$dir/history/history.csv" <<'PY' || exit 1
+import csv
+import sys
+
+with open(sys.argv[1]) as f:
+    rows = list(csv.DictReader(f))
+if len(rows) != 9:
+    sys.exit("history.csv: %d rows, expected 9 (one per load step)" % len(rows))
+for name in ("time", "step", "converged", "displ_x", "reaction_x", "contact_force_x", "contact_dissipated_energy",
+             "dissipated_energy"):
+    if name not in rows[0]:
+        sys.exit("history.csv: no column " + name)
+force = [float(r["contact_force_x"]) for r in rows]
+u = [float(r["displ_x"]) for r in rows]
+energy = [float(r["dissipated_energy"]) for r in rows]
+print("history: contact_force_x %s" % ", ".join("%.6g" % v for v in force))
+print("history: displ_x %s" % ", ".join("%.4g" % v for v in u))
+print("history: dissipated_energy %s" % ", ".join("%.4g" % v for v in energy))
+expected = -(300.0 + 3000.0)  # step 4: the whole shear; the contact force on the block opposes its load
+checks = ((all(r["converged"] == "1" for r in rows), "a step not converged"),
+          ([r["step"] for r in rows] == [str(k) for k in range(1, 10)], "steps not numbered 1 to 9"),
+          (abs(force[3] - expected) <= 1e-5 * abs(expected),
+           "contact_force_x at step 4 %.9g, expected %.9g" % (force[3], expected)),
+          # The friction's memory: shear 0 after loading (step 6) and shear 0 after the reversal
+          # (step 9) leave the block at different places (measured 2.2e-5 apart): an open loop.
+          (abs(u[5] - u[8]) > 1e-9, "displ_x equal at steps 6 and 9 (a closed loop: no friction memory)"),
+          (all(b >= a for a, b in zip(energy, energy[1:])), "dissipated energy decreases"),
+          (energy[-1] > 0, "no energy dissipated though the block slipped"),
+          (all(r["reaction_x"] == "" for r in rows), "reactions summed over block_top, which is not prescribed"))
+failed = [message for ok, message in checks if not ok]
+if failed:
+    sys.exit("history.csv: " + "; ".join(failed))
 PY
