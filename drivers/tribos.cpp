@@ -136,6 +136,7 @@ std::vector<mesh::GlobalValue> globalValues(const nlohmann::json& summary) {
                           "fixed_point_iterations", "strain_energy", "force_balance", "dissipated_energy"})
     if (summary.contains(key))
       out.push_back({key, summary[key].is_boolean() ? double(summary[key].get<bool>()) : summary[key].get<double>()});
+  if (summary.contains("step")) out.push_back({"load_step", summary["step"].get<double>()});  // a load history's
   if (summary.contains("kkt"))
     for (const auto& [name, value] : summary["kkt"].items())
       if (value.is_number()) out.push_back({"kkt_" + name, value.get<double>()});

@@ -12,6 +12,8 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <tuple>
+#include <vector>
 
 #include "RunCommand.hpp"
 #include "TestPaths.hpp"
@@ -182,5 +184,75 @@ TEST(resultOutputs, aLoadHistoryWritesEveryStepAndEndsAtTheStepThatFails) {
   // Slip in steps 1 and 3 (the shear up to 5.5 and back to -4.5 MPa), none while it is removed.
   EXPECT_GT(j["steps"][0]["slip"].get<int>(), 0);
   EXPECT_GT(j["steps"][2]["slip"].get<int>(), 0);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(resultOutputs, aHistoryRestartedFromItsResultEndsWhereTheWholeHistoryDoes) {
+  // block_on_plate.xml sheared by 5 MPa, then unloaded, reversed and unloaded (4 steps), at
+  // eps = 1e-10: the whole history, and its first 2 steps followed by a run restarted from
+  // their result (Load Steps/Restart From) for steps 3 and 4. The restart carries the
+  // tangential displacement reached (friction's memory), the accumulated slip and the
+  // dissipated energy; its first step starts cold. Measured: the displacements agree to
+  // 2.4e-10 relative, the dissipated energy to 6e-11.
+  const auto dir = std::filesystem::temp_directory_path() / ("tribos_restart_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const auto path = [&](const char* name) { return quote((dir / name).string()); };
+  const std::string scene = std::string(TRIBOS_DRIVER) + " --input " +
+                            quote(tribos::test::sourceDir() + "/input/block_on_plate.xml") +
+                            " --set Solver/Tolerance=1e-10 --set Solver/Verbose=false"
+                            " --set 'Loads/shear/Side Set=block_top' --set 'Loads/shear/Traction={5, 0, 0}'";
+  const std::string four = " --set 'Load Steps/Number Of Steps=4' --set 'Load Steps/press/Factors={1, 1, 1, 1}'"
+                           " --set 'Load Steps/shear/Factors={1, 0, -1, 0}'";
+  const std::string two = " --set 'Load Steps/Number Of Steps=2' --set 'Load Steps/press/Factors={1, 1}'"
+                          " --set 'Load Steps/shear/Factors={1, 0}'";
+  auto run = runCommand(scene + four + " --output " + path("whole.exo") + " --summary " + path("whole.json"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  run = runCommand(scene + two + " --output " + path("first.exo"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  run = runCommand(scene + four + " --set 'Load Steps/Restart From=" + (dir / "first.exo").string() + "' --output " +
+                   path("rest.exo") + " --summary " + path("rest.json"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("load step 3/4"), std::string::npos) << run.output;
+  EXPECT_EQ(run.output.find("load step 1/4"), std::string::npos) << run.output;
+  const auto whole = tribos::mesh::readExodus((dir / "whole.exo").string());
+  const auto rest = tribos::mesh::readExodus((dir / "rest.exo").string());
+  ASSERT_EQ(whole.steps.size(), 4u);
+  ASSERT_EQ(rest.steps.size(), 2u);  // the new steps only
+  EXPECT_EQ(global(rest.steps[0], "load_step"), 3.0);
+  EXPECT_EQ(rest.steps[1].time, whole.steps[3].time);
+  for (const char* name : {"displ_x", "displ_z", "contact_tangential_t1", "contact_accumulated_slip"}) {
+    const auto& a = field(whole.steps[3].nodal, name).values;
+    const auto& b = field(rest.steps[1].nodal, name).values;
+    double diff = 0.0, size = 0.0;
+    for (size_t n = 0; n < a.size(); ++n) {
+      diff = std::max(diff, std::abs(a[n] - b[n]));
+      size = std::max(size, std::abs(a[n]));
+    }
+    std::printf("%s: whole history against the restart %.2e of %.2e\n", name, diff, size);
+    EXPECT_LE(diff, 1e-8 * size) << name;
+  }
+  const double energy = global(whole.steps[3], "dissipated_energy");
+  EXPECT_GT(energy, 0.0);
+  EXPECT_NEAR(global(rest.steps[1], "dissipated_energy"), energy, 1e-8 * energy);
+  std::ifstream in((dir / "rest.json").string());
+  const auto j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["restart"]["step"].get<int>(), 2);
+
+  // What cannot be continued is exit 2 naming the file: a result of another mesh, a result
+  // without a history, a history with no step left.
+  run = runCommand(std::string(TRIBOS_DRIVER) + " --input " + quote(tribos::test::sourceDir() + "/input/two_bricks.xml") +
+                   " --set Solver/Verbose=false --output " + path("bricks.exo"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  for (const auto& [file, steps, expected] :
+       std::vector<std::tuple<std::string, std::string, std::string>>{
+           {"bricks.exo", four, "nodes, the scene's mesh has"},
+           {"whole.exo", " --set 'Load Steps/Number Of Steps=4' --set 'Load Steps/press/Factors={1, 1, 1, 1}'"
+                         " --set 'Load Steps/shear/Factors={1, 0, -1, 0}'", "no step left to solve"},
+           {"missing.exo", four, "missing.exo"}}) {
+    run = runCommand(scene + steps + " --set 'Load Steps/Restart From=" + (dir / file).string() + "'");
+    EXPECT_EQ(run.status, 2) << run.output;
+    EXPECT_NE(run.output.find(expected), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("Load Steps/Restart From"), std::string::npos) << run.output;
+  }
   std::filesystem::remove_all(dir);
 }

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "tribos/core/Format.hpp"
@@ -19,6 +20,7 @@
 #include "tribos/stack/SceneParameters.hpp"
 #include "tribos/stack/SolveBudget.hpp"
 #include "LoadHistory.hpp"
+#include "Restart.hpp"
 
 namespace tribos::stack {
 
@@ -259,35 +261,48 @@ void setAppliedLoad(const std::vector<std::vector<double>>& f, MPI_Comm comm, St
   out.appliedLoadMagnitude = loadMagnitude(loaded, comm);
 }
 
+/// The contact solver's settings, as every solve of a scene takes them.
+struct ContactChain {
+  contact::FrictionSettings friction;
+  qp::SmalseSettings smalse;
+  feti::DualPreconditioner preconditioner = feti::DualPreconditioner::None;
+};
+
+/// How the steps of a history run: their times (Load Steps/Times), warm or cold (Load Steps/Warm
+/// Start), and the first step (after a restart: the step after the file's last).
+struct HistoryRun {
+  const std::vector<double>& times;
+  bool warmStart = true;
+  int firstStep = 1;
+};
+
 /// The steps of a load history (LoadHistory): each a contact solve on the same operators with
 /// its right-hand side; the history stops at the first step that does not converge (its result
-/// returned). Each step starts warm from the last (`warmStart`) or from zero. `everyStep` gathers the results of each converged step before the last (the
+/// returned). `everyStep` gathers the results of each converged step before the last (the
 /// caller gathers the last). The counters are summed over the steps.
 contact::ContactResult solveLoadHistory(feti::TotalFeti& feti, const feti::ConstraintMatrix& B,
-                                        const contact::FrictionSettings& friction, const qp::SmalseSettings& smalse,
-                                        feti::DualPreconditioner preconditioner, LoadHistory& history,
-                                        const std::vector<double>& times, bool warmStart, int rank,
-                                        std::vector<LoadStepRecord>& records,
+                                        const ContactChain& chain, LoadHistory& history, const HistoryRun& run,
+                                        int rank, std::vector<LoadStepRecord>& records,
                                         const std::function<void(int, const contact::ContactResult&)>& everyStep) {
   const int steps = history.steps();
   contact::ContactResult result;
   qp::SmalseCounters total;  // the counts over every step
-  for (int k = 1; k <= steps; ++k) {
+  for (int k = run.firstStep; k <= steps; ++k) {
     const double factor = history.ramp(k);
     feti.setRightHandSide(history.loads(k), history.constraintValues(k));
     // Warm: the last step's multipliers (scaled to this step's load factor where every load
     // follows the ramp: exact for a proportional history), the slip bound they imply and the
     // last ||PFP|| (ALGORITHMS.md 11).
     contact::WarmStart warm;
-    if (warmStart) warm = {result.lambda, result.counters.normA};
-    if (warmStart && history.proportional())
+    if (run.warmStart) warm = {result.lambda, result.counters.normA};
+    if (run.warmStart && history.proportional())
       for (double& v : warm.lambda) v *= factor / history.ramp(k - 1);
-    result = contact::solveContact(feti, B, friction, smalse, preconditioner, warm);
+    result = contact::solveContact(feti, B, chain.friction, chain.smalse, chain.preconditioner, warm);
     total.outerIterations += result.counters.outerIterations;
     total.innerIterations += result.counters.innerIterations;
     total.operatorApplications += result.counters.operatorApplications;
     total.seconds += result.counters.seconds;
-    records.push_back({k, factor, times[static_cast<size_t>(k - 1)], result.converged,
+    records.push_back({k, factor, run.times[static_cast<size_t>(k - 1)], result.converged,
                        result.counters.outerIterations, result.counters.operatorApplications,
                        result.fixedPointIterations, result.statusCounts, result.message, result.kkt,
                        result.kktTolerance});
@@ -308,6 +323,40 @@ contact::ContactResult solveLoadHistory(feti::TotalFeti& feti, const feti::Const
   result.counters.seconds = total.seconds;
   return result;
 }
+
+/// A load history (Scene::loadHistory) on the factorised operators, from step 1 or after the
+/// restart file's last step: each step's record and results (out.steps, out.earlierSteps), the
+/// last state's contact result and applied load in `out`. Returns the totals before the last
+/// state (accumulated slip, dissipated energy): the last earlier step's, the file's, or none.
+const ContactFields* solveHistory(const Scene& scene, const feti::ConstraintMatrix& B,
+                                  const Teuchos::ParameterList& stepsList, feti::TotalFeti& feti,
+                                  const ContactChain& chain, LoadHistory& loads, const RestartState& restart,
+                                  MPI_Comm comm, ContactSolveResult& out) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  HistoryRun run{scene.stepTimes, stepsList.get<bool>("Warm Start")};
+  if (!restart.file.empty()) {
+    loads.restore(B, rank, restart.totals.contactTangentialT1, restart.totals.contactTangentialT2);
+    run.firstStep = restart.step + 1;
+    out.restartFile = restart.file;
+    out.restartStep = restart.step;
+  }
+  auto previous = [&]() -> const ContactFields* {
+    if (!out.earlierSteps.empty()) return &out.earlierSteps.back();
+    return restart.file.empty() ? nullptr : &restart.totals;
+  };
+  auto everyStep = [&](int k, const contact::ContactResult& step) {
+    const ContactFields* before = previous();
+    StepResults results;
+    setAppliedLoad(loads.loads(k), comm, results);
+    gatherStateResults(scene, B, feti, step, comm, results);
+    if (before) addEarlierSteps(*before, results);
+    out.earlierSteps.push_back(std::move(results));
+  };
+  out.contact = solveLoadHistory(feti, B, chain, loads, run, rank, out.steps, everyStep);
+  setAppliedLoad(loads.loads(out.steps.back().step), comm, out);  // the last step solved (B2)
+  return previous();
+}
 }  // namespace
 
 ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
@@ -318,54 +367,46 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
   MPI_Comm_rank(comm, &rank);
   const auto& fetiList = tribos.sublist("FETI");
   feti::TotalFetiSettings settings = totalFetiSettings(fetiList, false);
-  const feti::DualPreconditioner preconditioner = dualPreconditioner(fetiList);
-  auto friction = frictionSettings(tribos);
-  auto smalse = smalseSettings(tribos);
+  ContactChain chain{frictionSettings(tribos), smalseSettings(tribos), dualPreconditioner(fetiList)};
   const core::Deadline deadline(tribos.sublist("Solver").get<double>("Max Seconds"), runStart);
   settings.deadline = &deadline;
   WallClockBudget budget(deadline, comm);
-  smalse.stopRequested = budget.stopRequest();
-  if (rank == 0) attachProgress(tribos.sublist("Solver"), friction, smalse, out.history);
+  chain.smalse.stopRequested = budget.stopRequest();
+  if (rank == 0) attachProgress(tribos.sublist("Solver"), chain.friction, chain.smalse, out.history);
   auto runs = std::make_shared<RunRecord>();
-  attachRunRecord(runs, smalse.mpgp.maxIterations, friction);
+  attachRunRecord(runs, chain.smalse.mpgp.maxIterations, chain.friction);
   out.chain = describeContactChain(tribos);
 
   out.appliedLoad = totalLoad(owned, comm);
   out.appliedLoadMagnitude = loadMagnitude(owned, comm);
-  const int steps = scene.loadSteps;
   const bool history = scene.loadHistory;  // several steps, or a table on one step too
-  auto loadParts = history ? namedLoadVectors(owned, scene.namedLoads.size())
-                           : std::vector<std::vector<std::vector<double>>>{};
-  std::vector<size_t> dofs;
-  for (const auto& system : owned) dofs.push_back(system.f.size());
+  const auto& stepsList = tribos.sublist("Load Steps");
+  RestartState restart;  // read before the factorisation: a file that cannot serve costs nothing
+  if (history && !stepsList.get<std::string>("Restart From").empty())
+    restart = readRestart(stepsList.get<std::string>("Restart From"), scene);
+  std::optional<LoadHistory> loads;
+  if (history) {
+    std::vector<std::string> conditionNames;
+    for (const auto& condition : scene.displacementConditions) conditionNames.push_back(condition.name);
+    std::vector<size_t> dofs;
+    for (const auto& system : owned) dofs.push_back(system.f.size());
+    loads.emplace(B, rank, namedLoadVectors(owned, scene.namedLoads.size()), scene.loadFactors,
+                  scene.displacementFactors, conditionNames, scene.loadSteps, std::move(dofs));
+  }
   feti::TotalFeti feti(scene.mesh, scene.decomposition, std::move(owned), B,
                        Teuchos::rcp(new Teuchos::MpiComm<int>(comm)), settings);
   out.factorizationSeconds = feti.factorizationSeconds();
   core::Stopwatch watch;
-  if (!history) {
-    out.contact = contact::solveContact(feti, B, friction, smalse, preconditioner);
-  } else {
-    std::vector<std::string> conditionNames;
-    for (const auto& condition : scene.displacementConditions) conditionNames.push_back(condition.name);
-    LoadHistory loads(B, rank, std::move(loadParts), scene.loadFactors, scene.displacementFactors, conditionNames,
-                      steps, dofs);
-    auto everyStep = [&](int k, const contact::ContactResult& step) {
-      out.earlierSteps.emplace_back();
-      setAppliedLoad(loads.loads(k), comm, out.earlierSteps.back());
-      gatherStateResults(scene, B, feti, step, comm, out.earlierSteps.back());
-      if (out.earlierSteps.size() > 1)
-        addEarlierSteps(out.earlierSteps[out.earlierSteps.size() - 2], out.earlierSteps.back());
-    };
-    const bool warmStart = tribos.sublist("Load Steps").get<bool>("Warm Start");
-    out.contact = solveLoadHistory(feti, B, friction, smalse, preconditioner, loads, scene.stepTimes, warmStart,
-                                   rank, out.steps, everyStep);
-    setAppliedLoad(loads.loads(out.steps.back().step), comm, out);  // the last step solved (B2)
-  }
+  const ContactFields* totalsBefore = nullptr;  // a history's totals before its last state
+  if (history)
+    totalsBefore = solveHistory(scene, B, stepsList, feti, chain, *loads, restart, comm, out);
+  else
+    out.contact = contact::solveContact(feti, B, chain.friction, chain.smalse, chain.preconditioner);
   out.solveSeconds = watch.seconds();
-  nameTheLimit(budget, *runs, smalse, friction, out.contact);
+  nameTheLimit(budget, *runs, chain.smalse, chain.friction, out.contact);
   if (!out.steps.empty() && !out.contact.converged) {
     const auto& last = out.steps.back();
-    out.contact.message = "load step " + std::to_string(last.step) + " of " + std::to_string(steps) +
+    out.contact.message = "load step " + std::to_string(last.step) + " of " + std::to_string(scene.loadSteps) +
                           " (ramp " + core::formatNumber(last.factor) + "): " + out.contact.message;
   }
   out.fApplications = feti.fApplications();
@@ -373,8 +414,8 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
   out.factorNonzeros = feti.factorNonzeros();
   out.bytesPerFApplication = feti.bytesPerFApplication();
   gatherStateResults(scene, B, feti, out.contact, comm, out);
-  if (!out.earlierSteps.empty()) addEarlierSteps(out.earlierSteps.back(), out);
-  addOverloadNote(B, friction, comm, out);
+  if (totalsBefore) addEarlierSteps(*totalsBefore, out);
+  addOverloadNote(B, chain.friction, comm, out);
   return out;
 }
 

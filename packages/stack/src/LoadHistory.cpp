@@ -73,4 +73,19 @@ void LoadHistory::advance(const feti::TotalFeti& feti, const std::vector<std::ve
     if (tangential_[r]) slip_[r] = bu(r, 0) - c[r];
 }
 
+void LoadHistory::restore(const feti::ConstraintMatrix& B, int rank, const std::vector<double>& t1,
+                          const std::vector<double>& t2) {
+  const GO first = B.firstRowOfRank[rank], end = B.firstRowOfRank[rank + 1];
+  for (const auto& node : B.contact) {
+    if (node.normalRow < first || node.normalRow >= end) continue;
+    for (int j = 0; j < 2; ++j) {
+      const GO t = node.tangentialRow(j);
+      if (t < 0 || !tangential_[static_cast<size_t>(t - first)]) continue;
+      // The row measures tangentialScale (u_slave - chi u_master) . t_j (ConstraintMatrix.hpp).
+      slip_[static_cast<size_t>(t - first)] =
+          node.tangentialScale[j] * (j == 0 ? t1 : t2)[static_cast<size_t>(node.slaveNode)];
+    }
+  }
+}
+
 }  // namespace tribos::stack

@@ -42,6 +42,9 @@ class LoadHistory {
   /// After step k with displacements `u` (owned subdomains): the relative tangential
   /// displacement so far, T u - (c(k) without the slip) on the tangential rows. Collective.
   void advance(const feti::TotalFeti& feti, const std::vector<std::vector<double>>& u, int k);
+  /// A restart (Load Steps/Restart From): the relative tangential displacement reached so far,
+  /// per global node along each contact node's t1 and t2 (the result's contact_tangential_t1/t2).
+  void restore(const feti::ConstraintMatrix& B, int rank, const std::vector<double>& t1, const std::vector<double>& t2);
 
  private:
   std::vector<std::vector<std::vector<double>>> loadVectors_;

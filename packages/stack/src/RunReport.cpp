@@ -179,6 +179,8 @@ void addContactSummary(const ContactSolveResult& contactSolve, double tolerance,
   summary["interfaces"] = interfaceSummary(contactSolve);
   summary["dissipated_energy"] = contactSolve.dissipatedEnergy;
   if (!contactSolve.steps.empty()) summary["steps"] = stepsJson(contactSolve);
+  if (!contactSolve.restartFile.empty())
+    summary["restart"] = {{"file", contactSolve.restartFile}, {"step", contactSolve.restartStep}};
   summary["times"]["factorization_s"] = contactSolve.factorizationSeconds;
   summary["times"]["solve_s"] = contactSolve.solveSeconds;
   // Of solve_s: the SMALSE-M runs, and of them the work outside A, M^-1, Q and the

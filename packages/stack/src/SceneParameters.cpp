@@ -306,6 +306,11 @@ Teuchos::RCP<const Teuchos::ParameterList> sceneValidParameters() {
               "start each step from the last step's multipliers (scaled to the load factor when every load and "
               "prescribed displacement follows the ramp), the slip bound they imply and the last ||PFP||; false: "
               "each step from zero, as a one-step solve (for comparison: ALGORITHMS.md 11)");
+    steps.set("Restart From", std::string(),
+              "an Exodus result of a load history of this scene (a path relative to the working directory, like "
+              "--output): the history continues after its last converged step, from the relative tangential "
+              "displacement, accumulated slip and dissipated energy reached there (the first step starts cold); the "
+              "new result holds the new steps. Empty: start at step 1");
     steps.set("Times", Teuchos::Array<double>(),
               "the time of each step in the results (Number Of Steps increasing values); not given: the ramp k / N",
               core::finiteArray(core::FiniteArrayValidator::kAnyLength, core::kMaxMagnitude));

@@ -64,6 +64,9 @@ struct ContactSolveResult : StepResults {
   /// Load Steps: the results of every step before the last (rank 0's fields; kept until the
   /// results file is written, about 30 doubles per mesh node and step).
   std::vector<StepResults> earlierSteps;
+  /// Load Steps/Restart From: the file and its last converged step ("" and 0 without).
+  std::string restartFile;
+  int restartStep = 0;
   double factorizationSeconds = 0.0, solveSeconds = 0.0;
   long long fApplications = 0;
   feti::OperatorProfile profile;  ///< rank 0's operator times and counts (doc/measurements/coarse_problem.md)

@@ -1,0 +1,84 @@
+#include "Restart.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "tribos/core/Errors.hpp"
+#include "tribos/core/Format.hpp"
+#include "tribos/mesh/ExodusIO.hpp"
+
+namespace tribos::stack {
+namespace {
+const std::vector<double>& nodalField(const mesh::TimeStep& step, const std::string& name, const std::string& where) {
+  const auto it = std::find_if(step.nodal.begin(), step.nodal.end(), [&](const auto& f) { return f.name == name; });
+  core::requireInput(it != step.nodal.end(), where + ": no nodal variable " + name + " (not a tribos load history result)");
+  return it->values;
+}
+
+const double* globalValue(const mesh::TimeStep& step, const std::string& name) {
+  const auto it = std::find_if(step.global.begin(), step.global.end(), [&](const auto& g) { return g.name == name; });
+  return it == step.global.end() ? nullptr : &it->value;
+}
+
+// The file's mesh must be the scene's: the same nodes at the same places.
+void requireSameNodes(const mesh::Mesh& file, const mesh::Mesh& scene, const std::string& where) {
+  core::requireInput(file.numNodes() == scene.numNodes(),
+                     where + ": " + std::to_string(file.numNodes()) + " nodes, the scene's mesh has " +
+                         std::to_string(scene.numNodes()) + " (a result of another mesh)");
+  double size = 0.0;
+  for (const auto& x : scene.coords) size = std::max({size, std::abs(x[0]), std::abs(x[1]), std::abs(x[2])});
+  for (LO n = 0; n < scene.numNodes(); ++n)
+    for (int c = 0; c < 3; ++c)
+      core::requireInput(std::abs(file.coords[n][c] - scene.coords[n][c]) <= 1e-9 * size,
+                         where + ": node " + std::to_string(n + 1) + " is at " + core::formatPoint(file.coords[n]) +
+                             ", in the scene's mesh at " + core::formatPoint(scene.coords[n]) +
+                             " (a result of another mesh)");
+}
+}  // namespace
+
+RestartState readRestart(const std::string& file, const Scene& scene) {
+  const std::string where = "Load Steps/Restart From: " + file;
+  mesh::ExodusData data;
+  try {
+    data = mesh::readExodus(file);
+  } catch (const core::InputError& e) {
+    throw core::InputError(where + ": " + e.what());
+  }
+  requireSameNodes(data.mesh, scene.mesh, where);
+  // The last converged step; the steps before it converged too (a history stops at a failure).
+  const mesh::TimeStep* last = nullptr;
+  RestartState state;
+  state.file = file;
+  for (const auto& step : data.steps) {
+    const double* number = globalValue(step, "load_step");
+    const double* converged = globalValue(step, "converged");
+    core::requireInput(number && converged, where + ": no global variables load_step and converged (not a result of "
+                                                    "a tribos load history)");
+    if (*converged != 1.0) break;
+    last = &step;
+    state.step = static_cast<int>(*number);
+  }
+  core::requireInput(last != nullptr, where + ": no converged load step to continue from");
+  core::requireInput(state.step < scene.loadSteps,
+                     where + ": its last converged step is " + std::to_string(state.step) +
+                         ", and the scene has Load Steps/Number Of Steps = " + std::to_string(scene.loadSteps) +
+                         ": no step left to solve");
+  ContactFields& t = state.totals;
+  t.contactTangentialT1 = nodalField(*last, "contact_tangential_t1", where);
+  t.contactTangentialT2 = nodalField(*last, "contact_tangential_t2", where);
+  t.contactAccumulatedSlip = nodalField(*last, "contact_accumulated_slip", where);
+  for (const auto& one : scene.contacts) {
+    const std::string name = (one.rows.name.empty() ? std::string("contact") : one.rows.name) + "_dissipated_energy";
+    const double* energy = globalValue(*last, name);
+    core::requireInput(energy != nullptr, where + ": no global variable " + name + " (the scene's " + one.rows.list() +
+                                              " is not in that result)");
+    t.interfaces.push_back({one.rows.name, one.rows.slaveSideSet + " -> " + one.rows.masterSideSet, one.law});
+    t.interfaces.back().dissipatedEnergy = *energy;
+  }
+  const double* total = globalValue(*last, "dissipated_energy");
+  core::requireInput(total != nullptr, where + ": no global variable dissipated_energy");
+  t.dissipatedEnergy = *total;
+  return state;
+}
+
+}  // namespace tribos::stack

@@ -1,0 +1,28 @@
+#pragma once
+// Internal to stack/: the state a load history continues from (Load Steps/Restart From): the
+// last converged load step of a tribos result of the same scene. What a step carries to the
+// next is the tangential relative displacement reached at every contact node (LoadHistory's
+// slip), and the totals the results accumulate (the accumulated slip and the dissipated
+// energy); the multipliers are not in the file, so the first step after a restart starts cold.
+#include <string>
+
+#include "tribos/stack/ContactFields.hpp"
+#include "tribos/stack/Scene.hpp"
+
+namespace tribos::stack {
+
+struct RestartState {
+  std::string file;
+  int step = 0;  ///< the last converged load step in the file (its global variable load_step)
+  /// The file's totals at that step, per global node and interface (every rank):
+  /// contactTangentialT1/T2, contactAccumulatedSlip, interfaces[i].dissipatedEnergy and
+  /// dissipatedEnergy; the other fields are empty.
+  ContactFields totals;
+};
+
+/// Reads `file` (an Exodus result of a load history of this scene). Throws core::InputError
+/// naming the file when it cannot be read, is no load-history result, has another mesh, lacks
+/// an interface of the scene, holds no converged step, or has solved every step of the scene.
+RestartState readRestart(const std::string& file, const Scene& scene);
+
+}  // namespace tribos::stack
