@@ -41,6 +41,22 @@ test::SolvedContactScene solveScene(const std::string& file, int steps) {
                                   "Load Steps/Number Of Steps=" + std::to_string(steps)});
 }
 
+/// The scene `file` (under the source tree) solved with `once` and with `history` (a history of
+/// `steps` steps): the history converges and ends at the same displacements to 1e-7.
+void expectTheSameAnswer(const std::string& file, const std::vector<std::string>& once,
+                         const std::vector<std::string>& history, size_t steps, const char* what) {
+  const std::string path = test::sourceDir() + "/" + file;
+  const auto list = *Teuchos::getParametersFromXmlFile(path);
+  const auto one = test::solveContactScene(list, path, once);
+  const auto many = test::solveContactScene(list, path, history);
+  EXPECT_TRUE(many.result.contact.converged) << many.result.contact.message;
+  ASSERT_EQ(many.result.steps.size(), steps);
+  if (worldRank() != 0) return;
+  const double difference = relativeDifference(many.result.displacement.value, one.result.displacement.value);
+  std::printf("%s: %.2e\n", what, difference);
+  EXPECT_LT(difference, 1e-7);
+}
+
 TEST(loadSteps, aProportionalHistoryReachesTheOneStepAnswerWhereNothingDependsOnThePath) {
   for (const std::string file : {"two_bricks_frictionless.xml", "two_bricks.xml", "block_on_plate.xml"}) {
     SCOPED_TRACE(file);
@@ -68,22 +84,14 @@ TEST(loadSteps, aBondedInterfaceBesideAFrictionlessOneDoesNotDependOnThePath) {
   // three_bodies.xml with the block bonded to the foundation and the punch frictionless on the
   // block (held along x and y at its top, pressed by 50 MPa): 4 proportional steps against 1.
   // Measured at eps = 1e-9: 10 steps against 1 differ by 2.1e-10.
-  const std::string path = test::sourceDir() + "/input/three_bodies.xml";
-  const auto list = *Teuchos::getParametersFromXmlFile(path);
   const std::vector<std::string> common = {
       "Solver/Verbose=false", "Solver/Tolerance=1e-9", "Contact/punch_on_block/Friction Model=None",
       "Contact/block_on_foundation/Friction Model=Bonded", "Loads/press/Traction={0, 0, 0}",
       "Boundary/hold/Node Set=punch_top", "Boundary/hold/Components=xy"};
   auto ramped = common;
   ramped.push_back("Load Steps/Number Of Steps=4");
-  const auto once = test::solveContactScene(list, path, common);
-  const auto steps = test::solveContactScene(list, path, ramped);
-  EXPECT_TRUE(steps.result.contact.converged) << steps.result.contact.message;
-  ASSERT_EQ(steps.result.steps.size(), 4u);
-  if (worldRank() != 0) return;
-  const double difference = relativeDifference(steps.result.displacement.value, once.result.displacement.value);
-  std::printf("bonded and frictionless interfaces, 4 steps against 1: %.2e\n", difference);
-  EXPECT_LT(difference, 1e-7);
+  expectTheSameAnswer("input/three_bodies.xml", common, ramped, 4,
+                      "bonded and frictionless interfaces, 4 steps against 1");
 }
 
 TEST(loadSteps, warmStepsCostLessThanAColdOneStepSolve) {
@@ -169,17 +177,10 @@ TEST(loadSteps, aHistoryOfPrescribedDisplacementsAloneRampsThem) {
   // No load at all: the ramp acts on the prescribed values only (a history of such a scene had
   // no load vectors and stopped with an internal error). Proportional and all stick: 3 steps
   // end where 1 step does.
-  const std::string path = test::sourceDir() + "/test/integration/displacement_driven_history.xml";
-  const auto list = *Teuchos::getParametersFromXmlFile(path);
-  const auto once = test::solveContactScene(list, path, {"Solver/Verbose=false", "Solver/Tolerance=1e-9"});
-  const auto ramped = test::solveContactScene(list, path, {"Solver/Verbose=false", "Solver/Tolerance=1e-9",
-                                                           "Load Steps/Number Of Steps=3"});
-  EXPECT_TRUE(ramped.result.contact.converged) << ramped.result.contact.message;
-  ASSERT_EQ(ramped.result.steps.size(), 3u);
-  if (worldRank() != 0) return;
-  const double difference = relativeDifference(ramped.result.displacement.value, once.result.displacement.value);
-  std::printf("prescribed displacements alone, 3 steps against 1: %.2e\n", difference);
-  EXPECT_LT(difference, 1e-7);
+  expectTheSameAnswer("test/integration/displacement_driven_history.xml",
+                      {"Solver/Verbose=false", "Solver/Tolerance=1e-9"},
+                      {"Solver/Verbose=false", "Solver/Tolerance=1e-9", "Load Steps/Number Of Steps=3"}, 3,
+                      "prescribed displacements alone, 3 steps against 1");
 }
 
 TEST(loadSteps, aDisplacementTableScalesItsConditionAlone) {
@@ -187,22 +188,14 @@ TEST(loadSteps, aDisplacementTableScalesItsConditionAlone) {
   // comes back to half in step 2. Frictionless contact does not depend on the path, so the
   // history ends where one step with half the push does (the table scales the Dirichlet rows
   // and the known parts of the contact rows, feti::PrescribedPart).
-  const std::string path = test::sourceDir() + "/test/integration/displacement_driven_history.xml";
-  const auto list = *Teuchos::getParametersFromXmlFile(path);
   const std::vector<std::string> common = {"Solver/Verbose=false", "Solver/Tolerance=1e-9",
                                            "Contact/Friction Model=None"};
   auto half = common;
   half.push_back("Boundary/push/Displacement={0.00025, 0, -0.001}");
   auto history = common;
   history.insert(history.end(), {"Load Steps/Number Of Steps=2", "Load Steps/push/Factors={2, 0.5}"});
-  const auto once = test::solveContactScene(list, path, half);
-  const auto steps = test::solveContactScene(list, path, history);
-  EXPECT_TRUE(steps.result.contact.converged) << steps.result.contact.message;
-  ASSERT_EQ(steps.result.steps.size(), 2u);
-  if (worldRank() != 0) return;
-  const double difference = relativeDifference(steps.result.displacement.value, once.result.displacement.value);
-  std::printf("push at factors {2, 0.5} against half the push in one step: %.2e\n", difference);
-  EXPECT_LT(difference, 1e-7);
+  expectTheSameAnswer("test/integration/displacement_driven_history.xml", half, history, 2,
+                      "push at factors {2, 0.5} against half the push in one step");
 }
 
 TEST(loadSteps, conditionsOnOneComponentWithDifferentTablesAreAnInputError) {

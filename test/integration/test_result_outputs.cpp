@@ -240,8 +240,9 @@ TEST(resultOutputs, aHistoryRestartedFromItsResultEndsWhereTheWholeHistoryDoes) 
 
   // What cannot be continued is exit 2 naming the file: a result of another mesh, a result
   // without a history, a history with no step left.
-  run = runCommand(std::string(TRIBOS_DRIVER) + " --input " + quote(tribos::test::sourceDir() + "/input/two_bricks.xml") +
-                   " --set Solver/Verbose=false --output " + path("bricks.exo"));
+  run = runCommand(std::string(TRIBOS_DRIVER) + " --input " +
+                   quote(tribos::test::sourceDir() + "/input/two_bricks.xml") + " --set Solver/Verbose=false --output " +
+                   path("bricks.exo"));
   ASSERT_EQ(run.status, 0) << run.output;
   for (const auto& [file, steps, expected] :
        std::vector<std::tuple<std::string, std::string, std::string>>{

@@ -11,7 +11,8 @@ namespace tribos::stack {
 namespace {
 const std::vector<double>& nodalField(const mesh::TimeStep& step, const std::string& name, const std::string& where) {
   const auto it = std::find_if(step.nodal.begin(), step.nodal.end(), [&](const auto& f) { return f.name == name; });
-  core::requireInput(it != step.nodal.end(), where + ": no nodal variable " + name + " (not a tribos load history result)");
+  core::requireInput(it != step.nodal.end(),
+                     where + ": no nodal variable " + name + " (not a tribos load history result)");
   return it->values;
 }
 
