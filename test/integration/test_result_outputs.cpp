@@ -133,10 +133,20 @@ TEST(resultOutputs, aLoadHistoryWritesEveryStepAndEndsAtTheStepThatFails) {
       " --set 'Load Steps/Times={10, 20, 30, 40}' --set 'Load Steps/press/Factors={1, 1, 1, 1}'"
       " --set 'Load Steps/shear/Factors={1, 0, -1, 2}' --summary " + quote(summary) + " --output " + quote(exo));
   ASSERT_EQ(run.status, 3) << run.output;
-  EXPECT_NE(run.output.find("load step 4 of 4 (ramp 1)"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("load step 4 of 4 (press 1, shear 2)"), std::string::npos) << run.output;
   std::ifstream in(summary);
   const auto j = nlohmann::json::parse(in);
   ASSERT_EQ(j["steps"].size(), 4u);
+  // The top-level counts are the sums over the steps; each step lists its factors.
+  int outer = 0, updates = 0;
+  for (const auto& step : j["steps"]) {
+    outer += step["outer_iterations"].get<int>();
+    updates += step["fixed_point_iterations"].get<int>();
+  }
+  EXPECT_EQ(j["outer_iterations"].get<int>(), outer);
+  EXPECT_EQ(j["fixed_point_iterations"].get<int>(), updates);
+  EXPECT_EQ(j["steps"][2]["factors"]["shear"].get<double>(), -1.0);
+  EXPECT_EQ(j["steps"][2]["factors"]["press"].get<double>(), 1.0);
   const auto data = tribos::mesh::readExodus(exo);
   ASSERT_EQ(data.steps.size(), 4u);
   double dissipated = 0.0;
@@ -238,8 +248,17 @@ TEST(resultOutputs, aHistoryRestartedFromItsResultEndsWhereTheWholeHistoryDoes) 
   const auto j = nlohmann::json::parse(in);
   EXPECT_EQ(j["restart"]["step"].get<int>(), 2);
 
-  // What cannot be continued is exit 2 naming the file: a result of another mesh, a result
-  // without a history, a history with no step left.
+  // What cannot be continued is exit 2 naming the file: a result of another mesh, a history
+  // with no step left, a missing file, a result of other contact interfaces (slave and master
+  // swapped: its memory would go to the wrong nodes); and a restart of a scene without history.
+  run = runCommand(scene + two + " --set 'Contact/Slave Side Set=interface_block'"
+                                 " --set 'Contact/Master Side Set=interface_plate' --output " + path("swapped.exo"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  run = runCommand(scene + " --set 'Load Steps/Restart From=" + (dir / "first.exo").string() + "'");
+  EXPECT_EQ(run.status, 2) << run.output;
+  EXPECT_NE(run.output.find("Load Steps/Restart From continues a load history, and the scene has none"),
+            std::string::npos)
+      << run.output;
   run = runCommand(std::string(TRIBOS_DRIVER) + " --input " +
                    quote(tribos::test::sourceDir() + "/input/two_bricks.xml") + " --set Solver/Verbose=false --output " +
                    path("bricks.exo"));
@@ -249,7 +268,8 @@ TEST(resultOutputs, aHistoryRestartedFromItsResultEndsWhereTheWholeHistoryDoes) 
            {"bricks.exo", four, "nodes, the scene's mesh has"},
            {"whole.exo", " --set 'Load Steps/Number Of Steps=4' --set 'Load Steps/press/Factors={1, 1, 1, 1}'"
                          " --set 'Load Steps/shear/Factors={1, 0, -1, 0}'", "no step left to solve"},
-           {"missing.exo", four, "missing.exo"}}) {
+           {"missing.exo", four, "missing.exo"},
+           {"swapped.exo", four, "(a result of other contact interfaces)"}}) {
     run = runCommand(scene + steps + " --set 'Load Steps/Restart From=" + (dir / file).string() + "'");
     EXPECT_EQ(run.status, 2) << run.output;
     EXPECT_NE(run.output.find(expected), std::string::npos) << run.output;

@@ -287,6 +287,7 @@ contact::ContactResult solveLoadHistory(feti::TotalFeti& feti, const feti::Const
   const int steps = history.steps();
   contact::ContactResult result;
   qp::SmalseCounters total;  // the counts over every step
+  int fixedPointIterations = 0;
   for (int k = run.firstStep; k <= steps; ++k) {
     const double factor = history.ramp(k);
     feti.setRightHandSide(history.loads(k), history.constraintValues(k));
@@ -302,13 +303,15 @@ contact::ContactResult solveLoadHistory(feti::TotalFeti& feti, const feti::Const
     total.innerIterations += result.counters.innerIterations;
     total.operatorApplications += result.counters.operatorApplications;
     total.seconds += result.counters.seconds;
-    records.push_back({k, factor, run.times[static_cast<size_t>(k - 1)], result.converged,
-                       result.counters.outerIterations, result.counters.operatorApplications,
+    fixedPointIterations += result.fixedPointIterations;
+    records.push_back({k, factor, run.times[static_cast<size_t>(k - 1)], history.label(k), history.factors(k),
+                       result.converged, result.counters.outerIterations, result.counters.operatorApplications,
                        result.fixedPointIterations, result.statusCounts, result.message, result.kkt,
                        result.kktTolerance});
     if (rank == 0) {
-      std::printf("  load step %d/%d (ramp %g): %s, %d outer, %lld PFP; %d no contact, %d stick, %d slip\n", k,
-                  steps, factor, result.converged ? "converged" : "NOT CONVERGED", result.counters.outerIterations,
+      std::printf("  load step %d/%d (%s): %s, %d outer, %lld PFP; %d no contact, %d stick, %d slip\n", k, steps,
+                  history.label(k).c_str(), result.converged ? "converged" : "NOT CONVERGED",
+                  result.counters.outerIterations,
                   result.counters.operatorApplications, result.statusCounts[0], result.statusCounts[1],
                   result.statusCounts[2]);
       std::fflush(stdout);
@@ -321,6 +324,7 @@ contact::ContactResult solveLoadHistory(feti::TotalFeti& feti, const feti::Const
   result.counters.innerIterations = total.innerIterations;
   result.counters.operatorApplications = total.operatorApplications;
   result.counters.seconds = total.seconds;
+  result.fixedPointIterations = fixedPointIterations;
   return result;
 }
 
@@ -383,15 +387,12 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
   const auto& stepsList = tribos.sublist("Load Steps");
   RestartState restart;  // read before the factorisation: a file that cannot serve costs nothing
   if (history && !stepsList.get<std::string>("Restart From").empty())
-    restart = readRestart(stepsList.get<std::string>("Restart From"), scene);
+    restart = readRestart(stepsList.get<std::string>("Restart From"), scene, B);
   std::optional<LoadHistory> loads;
   if (history) {
-    std::vector<std::string> conditionNames;
-    for (const auto& condition : scene.displacementConditions) conditionNames.push_back(condition.name);
     std::vector<size_t> dofs;
     for (const auto& system : owned) dofs.push_back(system.f.size());
-    loads.emplace(B, rank, namedLoadVectors(owned, scene.namedLoads.size()), scene.loadFactors,
-                  scene.displacementFactors, conditionNames, scene.loadSteps, std::move(dofs));
+    loads.emplace(B, rank, scene, namedLoadVectors(owned, scene.namedLoads.size()), std::move(dofs));
   }
   feti::TotalFeti feti(scene.mesh, scene.decomposition, std::move(owned), B,
                        Teuchos::rcp(new Teuchos::MpiComm<int>(comm)), settings);
@@ -407,7 +408,7 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
   if (!out.steps.empty() && !out.contact.converged) {
     const auto& last = out.steps.back();
     out.contact.message = "load step " + std::to_string(last.step) + " of " + std::to_string(scene.loadSteps) +
-                          " (ramp " + core::formatNumber(last.factor) + "): " + out.contact.message;
+                          " (" + last.label + "): " + out.contact.message;
   }
   out.fApplications = feti.fApplications();
   out.profile = feti.profile();

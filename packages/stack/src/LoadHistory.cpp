@@ -3,22 +3,23 @@
 #include <Tpetra_Vector.hpp>
 
 #include "tribos/core/Errors.hpp"
+#include "tribos/core/Format.hpp"
 #include "tribos/feti/TotalFeti.hpp"
 
 namespace tribos::stack {
 
-LoadHistory::LoadHistory(const feti::ConstraintMatrix& B, int rank,
-                         std::vector<std::vector<std::vector<double>>> loadVectors,
-                         std::vector<std::vector<double>> factors, std::vector<std::vector<double>> displacementFactors,
-                         const std::vector<std::string>& conditionNames, int steps, std::vector<size_t> dofs)
+LoadHistory::LoadHistory(const feti::ConstraintMatrix& B, int rank, const Scene& scene,
+                         std::vector<std::vector<std::vector<double>>> loadVectors, std::vector<size_t> dofs)
     : loadVectors_(std::move(loadVectors)),
-      factors_(std::move(factors)),
-      displacementFactors_(std::move(displacementFactors)),
+      factors_(scene.loadFactors),
+      displacementFactors_(scene.displacementFactors),
       dofs_(std::move(dofs)),
-      steps_(steps) {
+      steps_(scene.loadSteps) {
+  for (const auto& load : scene.namedLoads) loadNames_.push_back(load.first);
+  for (const auto& condition : scene.displacementConditions) conditionNames_.push_back(condition.name);
   for (const auto& [i, j] : B.overlappingConditions)
     core::requireInput(displacementFactors_[i] == displacementFactors_[j],
-                       "Load Steps: Boundary/" + conditionNames[i] + " and Boundary/" + conditionNames[j] +
+                       "Load Steps: Boundary/" + conditionNames_[i] + " and Boundary/" + conditionNames_[j] +
                            " prescribe the same component of a node and have different factors (give them one "
                            "table, or let one condition prescribe that component)");
   for (const auto* table : {&factors_, &displacementFactors_})
@@ -40,6 +41,22 @@ LoadHistory::LoadHistory(const feti::ConstraintMatrix& B, int rank,
     for (int j = 0; j < 2; ++j)
       if (const GO t = node.tangentialRow(j); t >= 0) tangential_[static_cast<size_t>(t - first)] = 1;
   }
+}
+
+std::vector<std::pair<std::string, double>> LoadHistory::factors(int k) const {
+  std::vector<std::pair<std::string, double>> out;
+  for (size_t l = 0; l < loadNames_.size(); ++l) out.push_back({loadNames_[l], factors_[l][k - 1]});
+  for (size_t j = 0; j < conditionNames_.size(); ++j)
+    out.push_back({conditionNames_[j], displacementFactors_[j][k - 1]});
+  return out;
+}
+
+std::string LoadHistory::label(int k) const {
+  if (proportional_) return "ramp " + core::formatNumber(ramp(k));
+  std::string text;
+  for (const auto& [name, factor] : factors(k))
+    text += (text.empty() ? "" : ", ") + name + " " + core::formatNumber(factor);
+  return text;
 }
 
 std::vector<std::vector<double>> LoadHistory::loads(int k) const {

@@ -7,9 +7,11 @@
 // shifted by the relative tangential displacement reached there, so Coulomb's and Tresca's laws
 // act on the increment (friction with memory).
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tribos/feti/ConstraintMatrix.hpp"
+#include "tribos/stack/Scene.hpp"
 
 namespace tribos::feti {
 class TotalFeti;
@@ -19,21 +21,24 @@ namespace tribos::stack {
 
 class LoadHistory {
  public:
-  /// `loadVectors[l][i]`: named load l assembled on owned subdomain i; `factors[l][k - 1]`: its
-  /// factor in step k of `steps`, `displacementFactors[j][k - 1]` that of displacement condition
-  /// j. B's c on this rank's rows holds the full prescribed values. `dofs[i]`: the size of owned
-  /// subdomain i's f_s (a history may have no load at all: prescribed displacements alone).
-  /// Throws core::InputError where two conditions prescribing one component have different
-  /// factors (B.overlappingConditions; `conditionNames` name them).
-  LoadHistory(const feti::ConstraintMatrix& B, int rank, std::vector<std::vector<std::vector<double>>> loadVectors,
-              std::vector<std::vector<double>> factors, std::vector<std::vector<double>> displacementFactors,
-              const std::vector<std::string>& conditionNames, int steps, std::vector<size_t> dofs);
+  /// `loadVectors[l][i]`: the scene's named load l (Scene::namedLoads) assembled on owned
+  /// subdomain i; the factors of the loads and displacement conditions are the scene's
+  /// (Scene::loadFactors, Scene::displacementFactors). B's c on this rank's rows holds the full
+  /// prescribed values. `dofs[i]`: the size of owned subdomain i's f_s (a history may have no
+  /// load at all: prescribed displacements alone). Throws core::InputError where two conditions
+  /// prescribing one component have different factors (B.overlappingConditions).
+  LoadHistory(const feti::ConstraintMatrix& B, int rank, const Scene& scene,
+              std::vector<std::vector<std::vector<double>>> loadVectors, std::vector<size_t> dofs);
 
   int steps() const { return steps_; }
   /// The ramp k / N: the prescribed values' factor in step k (and a load's without a table).
   double ramp(int k) const { return static_cast<double>(k) / steps_; }
   /// Every load and prescribed displacement follows the ramp (a proportional history).
   bool proportional() const { return proportional_; }
+  /// Each load's and displacement condition's factor in step k, by name (Loads/<name>, Boundary/<name>).
+  std::vector<std::pair<std::string, double>> factors(int k) const;
+  /// Step k in words: "ramp r" for a proportional history, else each factor ("press 1, shear -1").
+  std::string label(int k) const;
   /// f_s of step k (1-based).
   std::vector<std::vector<double>> loads(int k) const;
   /// c on this rank's rows in step k: prescribed values at their factors, gaps kept, the
@@ -48,6 +53,7 @@ class LoadHistory {
 
  private:
   std::vector<std::vector<std::vector<double>>> loadVectors_;
+  std::vector<std::string> loadNames_, conditionNames_;
   std::vector<std::vector<double>> factors_;
   std::vector<std::vector<double>> displacementFactors_;
   std::vector<size_t> dofs_;

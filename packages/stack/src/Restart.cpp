@@ -35,9 +35,34 @@ void requireSameNodes(const mesh::Mesh& file, const mesh::Mesh& scene, const std
                              ", in the scene's mesh at " + core::formatPoint(scene.coords[n]) +
                              " (a result of another mesh)");
 }
+// The file's contact pairs must be B's: the same master node at every slave node, and no
+// tangential displacement or slip on a node that is not one of B's slave nodes (a file of a
+// scene with other interfaces would hand its memory to the wrong nodes).
+void requireSameContactNodes(const mesh::TimeStep& step, const feti::ConstraintMatrix& B, const std::string& where) {
+  const auto& master = nodalField(step, "contact_master", where);
+  std::vector<char> slave(master.size(), 0);
+  for (const auto& node : B.contact) {
+    const size_t n = static_cast<size_t>(node.slaveNode);
+    slave[n] = 1;
+    core::requireInput(master[n] != 0.0, where + ": node " + std::to_string(n + 1) +
+                                             ", a slave node of this scene, is none there (a result of other contact "
+                                             "interfaces)");
+    core::requireInput(master[n] == static_cast<double>(node.masterNode + 1),
+                       where + ": slave node " + std::to_string(n + 1) + " faces master node " +
+                           core::formatNumber(master[n]) + " there and node " + std::to_string(node.masterNode + 1) +
+                           " in this scene (a result of other contact interfaces)");
+  }
+  for (const char* name : {"contact_tangential_t1", "contact_tangential_t2", "contact_accumulated_slip"}) {
+    const auto& values = nodalField(step, name, where);
+    for (size_t n = 0; n < values.size(); ++n)
+      core::requireInput(slave[n] || values[n] == 0.0,
+                         where + ": node " + std::to_string(n + 1) + " has " + name +
+                             " there and is no slave node of this scene (a result of other contact interfaces)");
+  }
+}
 }  // namespace
 
-RestartState readRestart(const std::string& file, const Scene& scene) {
+RestartState readRestart(const std::string& file, const Scene& scene, const feti::ConstraintMatrix& B) {
   const std::string where = "Load Steps/Restart From: " + file;
   mesh::ExodusData data;
   try {
@@ -64,6 +89,7 @@ RestartState readRestart(const std::string& file, const Scene& scene) {
                      where + ": its last converged step is " + std::to_string(state.step) +
                          ", and the scene has Load Steps/Number Of Steps = " + std::to_string(scene.loadSteps) +
                          ": no step left to solve");
+  requireSameContactNodes(*last, B, where);
   ContactFields& t = state.totals;
   t.contactTangentialT1 = nodalField(*last, "contact_tangential_t1", where);
   t.contactTangentialT2 = nodalField(*last, "contact_tangential_t2", where);

@@ -20,9 +20,11 @@ struct RestartState {
   ContactFields totals;
 };
 
-/// Reads `file` (an Exodus result of a load history of this scene). Throws core::InputError
-/// naming the file when it cannot be read, is no load-history result, has another mesh, lacks
-/// an interface of the scene, holds no converged step, or has solved every step of the scene.
-RestartState readRestart(const std::string& file, const Scene& scene);
+/// Reads `file` (an Exodus result of a load history of this scene, whose contact nodes are B's).
+/// Throws core::InputError naming the file when it cannot be read, is no load-history result,
+/// has another mesh or other contact pairs (a slave node's master, tangential displacement off
+/// B's slave nodes), lacks an interface of the scene, holds no converged step, or has solved
+/// every step of the scene.
+RestartState readRestart(const std::string& file, const Scene& scene, const feti::ConstraintMatrix& B);
 
 }  // namespace tribos::stack

@@ -110,6 +110,12 @@ nlohmann::json contactKktJson(const contact::KktReport& kkt, double tolerance) {
           {"tolerance", tolerance}};
 }
 
+nlohmann::json factorsJson(const std::vector<std::pair<std::string, double>>& factors) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const auto& [name, factor] : factors) out[name] = factor;
+  return out;
+}
+
 /// Load Steps: one entry per step solved, with its interfaces' resultants (the results of
 /// earlierSteps, then of the last state).
 nlohmann::json stepsJson(const ContactSolveResult& c) {
@@ -120,6 +126,7 @@ nlohmann::json stepsJson(const ContactSolveResult& c) {
     list.push_back({{"step", k.step},
                     {"time", k.time},
                     {"ramp", k.factor},
+                    {"factors", factorsJson(k.factors)},
                     {"converged", k.converged},
                     {"outer_iterations", k.outerIterations},
                     {"pfp_applications", k.pfpApplications},

@@ -247,6 +247,9 @@ void readLoadSteps(const ParameterList& list, const std::string& source, Scene& 
     scene.loadHistory = true;
   }
   scene.loadHistory = scene.loadHistory || n > 1;
+  core::requireInput(scene.loadHistory || list.get<std::string>("Restart From").empty(),
+                     source + ": Load Steps/Restart From continues a load history, and the scene has none (give "
+                              "Load Steps/Number Of Steps > 1 or a Factors table)");
 }
 
 /// "xyz", "x", "yz", ...: each of x, y, z at most once, at least one.

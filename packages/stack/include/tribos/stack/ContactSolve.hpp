@@ -36,6 +36,8 @@ struct LoadStepRecord {
   int step = 0;
   double factor = 1.0;          ///< the ramp k / N (prescribed values; loads without a table)
   double time = 1.0;            ///< Load Steps/Times (default: the ramp)
+  std::string label;            ///< "ramp r" (a proportional history), else each factor
+  std::vector<std::pair<std::string, double>> factors;  ///< each load's and condition's factor, by name
   bool converged = false;
   int outerIterations = 0;
   long long pfpApplications = 0;
