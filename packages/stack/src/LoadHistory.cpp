@@ -1,5 +1,7 @@
 #include "LoadHistory.hpp"
 
+#include <algorithm>
+
 #include <Tpetra_Vector.hpp>
 
 #include "tribos/core/Errors.hpp"
@@ -16,7 +18,11 @@ LoadHistory::LoadHistory(const feti::ConstraintMatrix& B, int rank, const Scene&
       dofs_(std::move(dofs)),
       steps_(scene.loadSteps) {
   for (const auto& load : scene.namedLoads) loadNames_.push_back(load.first);
-  for (const auto& condition : scene.displacementConditions) conditionNames_.push_back(condition.name);
+  for (const auto& condition : scene.displacementConditions) {
+    conditionNames_.push_back(condition.name);
+    // A condition of zero values (a clamp, a symmetry plane) has no factor worth naming.
+    nonZero_.push_back(std::any_of(condition.value.begin(), condition.value.end(), [](double v) { return v != 0.0; }));
+  }
   for (const auto& [i, j] : B.overlappingConditions)
     core::requireInput(displacementFactors_[i] == displacementFactors_[j],
                        "Load Steps: Boundary/" + conditionNames_[i] + " and Boundary/" + conditionNames_[j] +
@@ -47,7 +53,7 @@ std::vector<std::pair<std::string, double>> LoadHistory::factors(int k) const {
   std::vector<std::pair<std::string, double>> out;
   for (size_t l = 0; l < loadNames_.size(); ++l) out.push_back({loadNames_[l], factors_[l][k - 1]});
   for (size_t j = 0; j < conditionNames_.size(); ++j)
-    out.push_back({conditionNames_[j], displacementFactors_[j][k - 1]});
+    if (nonZero_[j]) out.push_back({conditionNames_[j], displacementFactors_[j][k - 1]});
   return out;
 }
 

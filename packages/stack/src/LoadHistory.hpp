@@ -35,7 +35,8 @@ class LoadHistory {
   double ramp(int k) const { return static_cast<double>(k) / steps_; }
   /// Every load and prescribed displacement follows the ramp (a proportional history).
   bool proportional() const { return proportional_; }
-  /// Each load's and displacement condition's factor in step k, by name (Loads/<name>, Boundary/<name>).
+  /// Each load's and displacement condition's factor in step k, by name (Loads/<name>,
+  /// Boundary/<name>); conditions of zero values (clamps, symmetry planes) are left out.
   std::vector<std::pair<std::string, double>> factors(int k) const;
   /// Step k in words: "ramp r" for a proportional history, else each factor ("press 1, shear -1").
   std::string label(int k) const;
@@ -54,6 +55,7 @@ class LoadHistory {
  private:
   std::vector<std::vector<std::vector<double>>> loadVectors_;
   std::vector<std::string> loadNames_, conditionNames_;
+  std::vector<char> nonZero_;  ///< per condition: some Displacement component is not zero
   std::vector<std::vector<double>> factors_;
   std::vector<std::vector<double>> displacementFactors_;
   std::vector<size_t> dofs_;
