@@ -132,16 +132,21 @@ TEST(tribosDriver, outputCarriesTheSubdomainsAndReadsBackThroughMetis) {
 }
 
 TEST(tribosDriver, everySceneInInputRunsAndConvergesWithResults) {
+  // The Cattaneo-Mindlin scenes (load histories, 14 and 60 s) run as delivered in their own
+  // CTests, integration.cattaneoMindlin.sphere and .cylinder, which check their results.
+  const std::vector<std::string> runElsewhere = {"cattaneo_sphere.xml", "cattaneo_cylinder.xml"};
   const auto dir = scratch();
   for (const auto& entry : std::filesystem::directory_iterator(tribos::test::sourceDir() + "/input")) {
     if (entry.path().extension() != ".xml") continue;
+    const std::string name = entry.path().filename().string();
+    if (std::find(runElsewhere.begin(), runElsewhere.end(), name) != runElsewhere.end()) continue;
     SCOPED_TRACE(entry.path().string());
     const auto exo = dir / "result.exo";
     const auto run = runCommand(kDriver + " --input " + quote(entry.path().string()) + " --set Solver/Verbose=false" +
                                 " --output " + quote(exo.string()));
     EXPECT_EQ(run.status, 0) << run.output;
     const auto data = tribos::mesh::readExodus(exo.string());
-    ASSERT_EQ(data.steps.size(), 1u);
+    ASSERT_EQ(data.steps.size(), 1u);  // no scene here has a load history
     std::vector<std::string> names;
     for (const auto& f : data.steps[0].nodal) names.push_back(f.name);
     for (const char* required : {"displ_x", "displ_y", "displ_z"})
