@@ -60,26 +60,7 @@ def nodal_variable_names(path, header):
 
 def last_step_nodal(path, header, wanted):
     """{name: values} of the named nodal variables at the last time step (absent names: KeyError)."""
-    var_names = nodal_variable_names(path, header)
-    for v in wanted:
-        if v not in var_names:
-            raise KeyError(v + " (the file has: " + ", ".join(var_names) + ")")
-    n = dimension(header, "num_nodes")
-    separate = has_variable(header, "vals_nod_var1")  # else one vals_nod_var(time, var, node)
-    fields = ["vals_nod_var%d" % (var_names.index(v) + 1) for v in wanted] if separate else ["vals_nod_var"]
-    d = ncdump_vars(path, fields) if wanted else {}
-    out = {}
-    for v in wanted:
-        i = var_names.index(v) + 1
-        if separate:
-            vals = d["vals_nod_var%d" % i]
-            out[v] = vals[len(vals) - n:]
-        else:
-            vals = d["vals_nod_var"]
-            steps = len(vals) // (len(var_names) * n)
-            off = ((steps - 1) * len(var_names) + (i - 1)) * n
-            out[v] = vals[off:off + n]
-    return out
+    return {v: (steps[-1] if steps else []) for v, steps in nodal_steps(path, header, wanted).items()}
 
 
 def read_mesh(path, header=None):
@@ -144,7 +125,7 @@ def global_variables(path, header):
 
 def nodal_steps(path, header, wanted):
     """{name: [[values at step 1], [values at step 2], ...]} of the named nodal variables
-    (absent names: KeyError); last_step_nodal's data, every step kept."""
+    (absent names: KeyError)."""
     var_names = nodal_variable_names(path, header)
     for v in wanted:
         if v not in var_names:
