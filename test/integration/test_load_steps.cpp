@@ -214,6 +214,20 @@ TEST(loadSteps, conditionsOnOneComponentWithDifferentTablesAreAnInputError) {
   }
 }
 
+TEST(loadSteps, theCoulombFixedPointGoesOnWhereOnlyItsStickRuleFails) {
+  // The Cattaneo sphere's normal approach at eps = 1e-7: the inexact fixed point's slip-bound
+  // test passed while one edge node, still under a bound below F lambda_nu, had slid; the KKT
+  // gate failed it on the stick rule alone (1.7e-3, exit 3). solveContact now runs more rounds
+  // from where it stopped (kStickRuleRounds), and the step converges.
+  const std::string path = test::sourceDir() + "/input/cattaneo_sphere.xml";
+  const auto r = test::solveContactScene(*Teuchos::getParametersFromXmlFile(path), path,
+                                         {"Solver/Verbose=false", "Solver/Tolerance=1e-7",
+                                          "Load Steps/Number Of Steps=1", "Load Steps/top normal/Factors={1}",
+                                          "Load Steps/top shear/Factors={0}"});
+  EXPECT_TRUE(r.result.contact.converged) << r.result.contact.message;
+  EXPECT_LE(r.result.contact.kkt.stickRule, r.result.contact.kktTolerance);
+}
+
 TEST(loadSteps, aStepThatFailsEndsTheHistoryNamingIt) {
   const std::string path = test::sourceDir() + "/input/two_bricks.xml";
   const auto r = test::solveContactScene(*Teuchos::getParametersFromXmlFile(path), path,

@@ -77,6 +77,29 @@ qp::SmalseSettings smalseSettingsFor(const qp::SmalseSettings& given, const Fric
     };
   return settings;
 }
+
+/// More rounds of the inexact Coulomb fixed point, from where it stopped, when SMALSE-M
+/// converged and every KKT residual but the stick rule holds: a node whose slip bound g was
+/// still below F lambda_nu slid under g, and is inside Coulomb's cone by then (stick) while it
+/// moved. Its global change passed the slip-bound test, but the fixed point had not settled
+/// there. Measured: the normal step of the Cattaneo sphere at eps = 1e-7 (stick rule 1.7e-3)
+/// and of the Cattaneo cylinder at 1e-6 (7.1e-4) ended not converged; with the rounds they
+/// converge (the sphere's step in 2124 PFP, against 1311 to the failure), and the cylinder's
+/// stick sizes and tractions at 1e-6 are those at 1e-7 to 3 digits.
+constexpr int kStickRuleRounds = 3;
+
+bool onlyTheStickRuleFailed(const FrictionSettings& friction, double kktTolerance, const ContactResult& result) {
+  // "Paper" stops as the paper does, and the gate then judges it (doc/parameters.md): no rounds.
+  if (!friction.uses(FrictionModel::Coulomb) || friction.fixedPoint != FixedPoint::Inexact ||
+      friction.slipBoundTest != SlipBoundTest::Epsilon)
+    return false;
+  if (!result.counters.converged || result.counters.nonFinite) return false;
+  const KktReport& k = result.kkt;
+  for (double value : {k.equilibrium, k.equality, k.nonPenetration, k.complementarity, k.normalSign,
+                       k.frictionAdmissibility, k.slipRule})
+    if (!(value <= kktTolerance)) return false;
+  return k.stickRule > kktTolerance;
+}
 }  // namespace
 
 bool FrictionSettings::uses(FrictionModel model) const {
@@ -123,24 +146,32 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
     if (!(knownNormA > 0.0)) knownNormA = warm.normA;
     tally.add(smalse.solve(A, Q, problem.rightHandSide(), problem.omega(), *mu, hook, knownNormA));
   };
-  {
-    core::ScopedPhase phase("Contact: SMALSE-M");
-    makeSlipBoundStrategy(friction, problem.hasCoulombNodes(), eps, kktTolerance)->solve(run, problem, *mu, result);
+  const auto strategy = makeSlipBoundStrategy(friction, problem.hasCoulombNodes(), eps, kktTolerance);
+  for (int round = 0;; ++round) {
+    {
+      core::ScopedPhase phase("Contact: SMALSE-M");
+      strategy->solve(run, problem, *mu, result);
+    }
+    if (result.counters.nonFinite) {
+      result.converged = false;
+      result.message = "diverged: non-finite values (NaN or Inf) in the dual iterations; check the loads, the "
+                       "materials and Solver parameters for non-finite or extreme values";
+    }
+    // (4) lambda = mu + lambda_Im; alpha over the rows where the dual constraints are inactive
+    // (ALGORITHMS.md 7); u = K^dagger (f - B^T lambda) + R alpha.
+    core::ScopedPhase phase("Contact: recovery and KKT");
+    result.lambda.clear();  // a later round recovers and reports afresh
+    result.nodes.clear();
+    result.statusCounts = {0, 0, 0};
+    result.note.clear();
+    result.kkt = {};
+    const auto recovered = recoverPrimal(feti, B, problem, *mu, kktTolerance, result);
+    // (5) KKT residuals of the discrete problem and the contact status per node.
+    reportKkt(feti, B, problem, recovered, result);
+    // (6) "Converged" only if the discrete KKT conditions hold too (to max(100 eps, 1e-8)).
+    gateOnKkt(kktTolerance, result);
+    if (result.converged || round >= kStickRuleRounds || !onlyTheStickRuleFailed(friction, kktTolerance, result)) break;
   }
-  if (result.counters.nonFinite) {
-    result.converged = false;
-    result.message = "diverged: non-finite values (NaN or Inf) in the dual iterations; check the loads, the "
-                     "materials and Solver parameters for non-finite or extreme values";
-  }
-
-  // (4) lambda = mu + lambda_Im; alpha over the rows where the dual constraints are inactive
-  // (ALGORITHMS.md 7); u = K^dagger (f - B^T lambda) + R alpha.
-  core::ScopedPhase phase("Contact: recovery and KKT");
-  const auto recovered = recoverPrimal(feti, B, problem, *mu, kktTolerance, result);
-  // (5) KKT residuals of the discrete problem and the contact status per node.
-  reportKkt(feti, B, problem, recovered, result);
-  // (6) "Converged" only if the discrete KKT conditions hold too (to max(100 eps, 1e-8)).
-  gateOnKkt(kktTolerance, result);
   return result;
 }
 
