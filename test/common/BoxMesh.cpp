@@ -54,10 +54,10 @@ mesh::Mesh boxMesh(std::array<double, 3> origin, std::array<double, 3> size, std
           const int first = 1 << order[0], second = first | (1 << order[1]);
           std::array<LO, 4> tet{corner[0], corner[first], corner[second], corner[7]};
           if (signedVolume(m, tet) < 0.0) std::swap(tet[2], tet[3]);
-          m.tets.push_back(tet);
+          m.elements.add(mesh::ElementType::Tet4, tet.data());
         }
       }
-  m.blocks.push_back({blockName, 1, 0, static_cast<LO>(m.tets.size())});
+  m.blocks.push_back({blockName, 1, 0, m.numElements()});
 
   // Faces: a node is on face (axis, upper) when its grid index along axis is 0 or n
   // (integer test, no floating-point comparison).
@@ -77,7 +77,7 @@ mesh::Mesh boxMesh(std::array<double, 3> origin, std::array<double, 3> size, std
       for (LO e = 0; e < m.numElements(); ++e)
         for (int side = 0; side < 4; ++side) {
           bool all = true;
-          for (int v : mesh::kTetFaceVertices[side]) all = all && gridIndex(m.tets[e][v], axis) == plane;
+          for (LO n : m.faceNodes(e, side)) all = all && gridIndex(n, axis) == plane;
           if (!all) continue;
           ss.elements.push_back(e);
           ss.sides.push_back(side);
@@ -93,9 +93,11 @@ mesh::Mesh mergeMeshes(const mesh::Mesh& a, const mesh::Mesh& b) {
   const LO nodeShift = a.numNodes(), elementShift = a.numElements();
   const int blockShift = maxId(a.blocks), nodeSetShift = maxSetId(a.nodeSets), sideSetShift = maxSetId(a.sideSets);
   m.coords.insert(m.coords.end(), b.coords.begin(), b.coords.end());
-  for (auto tet : b.tets) {
-    for (LO& n : tet) n += nodeShift;
-    m.tets.push_back(tet);
+  for (LO e = 0; e < b.numElements(); ++e) {
+    LO nodes[mesh::kMaxElementNodes];
+    int count = 0;
+    for (LO n : b.elementNodes(e)) nodes[count++] = n + nodeShift;
+    m.elements.add(b.elementType(e), nodes);
   }
   for (auto block : b.blocks) {
     block.first += elementShift;

@@ -91,7 +91,7 @@ double fieldError(const test::SolvedBoxScene& r, const Stack& s) {
   for (int b = 0; b < mesh.numBlocks(); ++b) {
     const auto& block = mesh.blocks[b];
     for (LO e = block.first; e < block.first + block.count; ++e)
-      for (LO n : mesh.tets[e]) {
+      for (LO n : mesh.elementNodes(e)) {
         const auto ref = exact(s, mesh.coords[n], block.name);
         for (int c = 0; c < 3; ++c) {
           error = std::max(error, std::abs(u[n][c] - ref[c]));

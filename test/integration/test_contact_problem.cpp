@@ -46,7 +46,7 @@ std::array<double, 3> contactForceFromStiffness(const test::SolvedContactScene& 
     for (LO n : mesh.nodeSet(name).nodes) clamped[n] = 1;
   const auto& block = mesh.blocks[body];
   for (LO e = block.first; e < block.first + block.count; ++e)
-    for (LO n : mesh.tets[e]) inBody[n] = 1;
+    for (LO n : mesh.elementNodes(e)) inBody[n] = 1;
   std::array<double, 3> sum{0, 0, 0};
   for (LO n = 0; n < mesh.numNodes(); ++n)
     if (inBody[n] && !clamped[n])
@@ -239,7 +239,7 @@ double maxDisplacementOfBody(const mesh::Mesh& mesh, int b, const std::vector<st
   const auto& block = mesh.blocks[b];
   double m = 0.0;
   for (LO e = block.first; e < block.first + block.count; ++e)
-    for (LO n : mesh.tets[e])
+    for (LO n : mesh.elementNodes(e))
       for (int c = 0; c < 3; ++c) m = std::max(m, std::abs(u[n][c]));
   return m;
 }
@@ -288,7 +288,7 @@ TEST(contactProblem, initialGapsAreRespected) {
     std::set<LO> slaveNodes;
     const auto& slaveSide = m.sideSet("contact_aluminium");
     for (size_t i = 0; i < slaveSide.elements.size(); ++i)
-      for (int v : mesh::kTetFaceVertices[slaveSide.sides[i]]) slaveNodes.insert(m.tets[slaveSide.elements[i]][v]);
+      for (LO n : m.faceNodes(slaveSide.elements[i], slaveSide.sides[i])) slaveNodes.insert(n);
     for (const auto& name : open.scene.dirichletNodeSets)
       for (LO n : m.nodeSet(name).nodes) slaveNodes.erase(n);
     EXPECT_EQ(open.B.unpairedSlaveNodes(), 0);

@@ -67,7 +67,7 @@ std::array<double, 2> displacementErrors(const test::SolvedBoxScene& s) {
   const auto& m = s.scene.mesh;
   std::vector<int> body(m.numNodes(), -1);
   for (LO e = 0; e < m.numElements(); ++e)
-    for (LO n : m.tets[e]) body[n] = m.blockOf(e);
+    for (LO n : m.elementNodes(e)) body[n] = m.blockOf(e);
   std::array<double, 2> diff{0, 0}, norm{0, 0};
   for (LO n = 0; n < m.numNodes(); ++n) {
     const int b = body[n];

@@ -79,7 +79,7 @@ TEST(openGaps, aClampedUnloadedBodyOutOfContactStaysAtRest) {
     for (int b = 0; b < 2; ++b) {
       const auto& block = r.scene.mesh.blocks[b];
       for (LO e = block.first; e < block.first + block.count; ++e)
-        for (LO n : r.scene.mesh.tets[e])
+        for (LO n : r.scene.mesh.elementNodes(e))
           for (int c = 0; c < 3; ++c) (block.name == "upper" ? upper : lower) = std::max(
                                           block.name == "upper" ? upper : lower, std::abs(u[n][c]));
     }

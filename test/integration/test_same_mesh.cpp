@@ -25,7 +25,7 @@ TEST(SameMeshOnEveryRank, theChecksumSeesEveryValue) {
   renamed.nodeSets[0].name = "other";
   EXPECT_NE(meshChecksum(mesh), meshChecksum(renamed));
   auto rewired = mesh;
-  std::swap(rewired.tets[0][1], rewired.tets[0][2]);
+  std::swap(rewired.elements.mutableNodes(0)[1], rewired.elements.mutableNodes(0)[2]);
   EXPECT_NE(meshChecksum(mesh), meshChecksum(rewired));
 }
 

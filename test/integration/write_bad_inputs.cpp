@@ -30,11 +30,11 @@ void writeExodusFiles(const std::filesystem::path& dir) {
   write("good", stackedBoxes());
 
   mesh::Mesh inverted = stackedBoxes();
-  std::swap(inverted.tets[4][1], inverted.tets[4][2]);
+  std::swap(inverted.elements.mutableNodes(4)[1], inverted.elements.mutableNodes(4)[2]);
   write("invertedElement", inverted);  // element 5 of block "lower"
 
   mesh::Mesh degenerate = stackedBoxes();
-  degenerate.tets[30][3] = degenerate.tets[30][2];
+  degenerate.elements.mutableNodes(30)[3] = degenerate.elements.mutableNodes(30)[2];
   write("degenerateElement", degenerate);  // element 31 of block "upper"
 
   mesh::Mesh nan = stackedBoxes();
@@ -42,7 +42,7 @@ void writeExodusFiles(const std::filesystem::path& dir) {
   write("nonFiniteCoordinate", nan);  // node 4
 
   mesh::Mesh outOfRange = stackedBoxes();
-  outOfRange.tets[2][1] = 998;
+  outOfRange.elements.mutableNodes(2)[1] = 998;
   write("nodeOutOfRange", outOfRange);  // element 3 references node 999
 
   // "lower" = the lower box and a third box far away: one block in two pieces.

@@ -14,6 +14,7 @@
 
 #include "tribos/core/Errors.hpp"
 #include "tribos/fem/ElementKernels.hpp"
+#include "tribos/fem/SolidElements.hpp"
 #include "tribos/fem/SubdomainSystem.hpp"
 
 namespace tribos::fem {
@@ -23,23 +24,22 @@ using ExecSpace = Kokkos::Serial;
 template <class T>
 using Unmanaged = Kokkos::View<T*, Kokkos::HostSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>>;
 
-/// Element matrices: Ke(e) = 12 x 12 block of element e, row-major, at Ke[144 e].
+/// Element matrices: Ke(e) = the (3 n_e) x (3 n_e) matrix of element e (n_e nodes),
+/// row-major, at Ke[matrixStart(e)].
 struct ElementStiffnessKernel {
-  Unmanaged<const double> coords;      // 3 per local node
-  Unmanaged<const LO> tets;            // 4 per element, local node ids
-  Unmanaged<const double> lambda, mu;  // per element
-  Unmanaged<double> Ke;                // 144 per element
-  Unmanaged<double> volume;            // per element
+  Unmanaged<const double> coords;             // 3 per local node
+  Unmanaged<const LO> nodes, nodeStart;       // element e: nodes[nodeStart(e) .. nodeStart(e + 1))
+  Unmanaged<const mesh::ElementType> type;    // per element
+  Unmanaged<const double> lambda, mu;         // per element
+  Unmanaged<const size_t> matrixStart;        // per element
+  Unmanaged<double> Ke;
+  Unmanaged<double> volume;                   // per element
 
   KOKKOS_INLINE_FUNCTION void operator()(const LO e) const {
-    double x[4][3];
-    for (int v = 0; v < 4; ++v)
-      for (int c = 0; c < 3; ++c) x[v][c] = coords(3 * tets(4 * e + v) + c);
-    double K[12][12];
-    volume(e) = tetStiffness(x, lambda(e), mu(e), K);
-    if (!(volume(e) > 0.0)) return;
-    for (int i = 0; i < 12; ++i)
-      for (int j = 0; j < 12; ++j) Ke(144 * e + 12 * i + j) = K[i][j];
+    double x[mesh::kMaxElementNodes][3];
+    for (LO k = nodeStart(e); k < nodeStart(e + 1); ++k)
+      for (int c = 0; c < 3; ++c) x[k - nodeStart(e)][c] = coords(3 * nodes(k) + c);
+    volume(e) = solidStiffness(type(e), x, lambda(e), mu(e), &Ke(matrixStart(e)));
   }
 };
 
@@ -47,7 +47,8 @@ struct ElementStiffnessKernel {
 /// (a, b). Each node row is written by one iteration only: no atomics needed.
 struct GatherRowsKernel {
   Unmanaged<const LO> adjacencyPtr, adjacentElement, adjacentVertex;  // node -> (element, local vertex)
-  Unmanaged<const LO> tets;
+  Unmanaged<const LO> nodes, nodeStart;
+  Unmanaged<const size_t> matrixStart;
   Unmanaged<const double> Ke;
   Unmanaged<const LO> nodeRowPtr, neighbour;  // sorted neighbour nodes of every node (incl. itself)
   Unmanaged<const LO> rowPtr;
@@ -66,11 +67,12 @@ struct GatherRowsKernel {
   KOKKOS_INLINE_FUNCTION void operator()(const LO a) const {
     for (LO k = adjacencyPtr(a); k < adjacencyPtr(a + 1); ++k) {
       const LO e = adjacentElement(k), va = adjacentVertex(k);
-      for (int vb = 0; vb < 4; ++vb) {
-        const LO pos = position(a, tets(4 * e + vb));
+      const LO count = nodeStart(e + 1) - nodeStart(e), dofs = 3 * count;
+      for (LO vb = 0; vb < count; ++vb) {
+        const LO pos = position(a, nodes(nodeStart(e) + vb));
         for (int i = 0; i < 3; ++i)
           for (int j = 0; j < 3; ++j)
-            values(rowPtr(3 * a + i) + 3 * pos + j) += Ke(144 * e + 12 * (3 * va + i) + 3 * vb + j);
+            values(rowPtr(3 * a + i) + 3 * pos + j) += Ke(matrixStart(e) + dofs * (3 * va + i) + 3 * vb + j);
       }
     }
   }
@@ -93,20 +95,21 @@ struct TractionLoadKernel {
   }
 };
 
-/// Consistent load of the volume force density b of each element's block: V/4 * b per vertex.
+/// Consistent load of the volume force density b of each element's block (V/4 * b per
+/// vertex of a linear tetrahedron), at fe[3 nodeStart(e)].
 struct VolumeForceKernel {
   Unmanaged<const double> coords;  // 3 per local node
-  Unmanaged<const LO> tets;        // 4 per element
+  Unmanaged<const LO> nodes, nodeStart;
+  Unmanaged<const mesh::ElementType> type;
   Unmanaged<const double> force;   // 3 per element: b of its block
-  Unmanaged<double> fe;            // 12 per element
+  Unmanaged<double> fe;            // 3 per element node
 
   KOKKOS_INLINE_FUNCTION void operator()(const LO e) const {
-    double x[4][3], load[12];
-    for (int v = 0; v < 4; ++v)
-      for (int c = 0; c < 3; ++c) x[v][c] = coords(3 * tets(4 * e + v) + c);
+    double x[mesh::kMaxElementNodes][3];
+    for (LO k = nodeStart(e); k < nodeStart(e + 1); ++k)
+      for (int c = 0; c < 3; ++c) x[k - nodeStart(e)][c] = coords(3 * nodes(k) + c);
     const double b[3] = {force(3 * e), force(3 * e + 1), force(3 * e + 2)};
-    tetVolumeForce(x, b, load);
-    for (int k = 0; k < 12; ++k) fe(12 * e + k) = load[k];
+    solidVolumeForce(type(e), x, b, &fe(3 * nodeStart(e)));
   }
 };
 
@@ -131,19 +134,22 @@ void requireConsistentArguments(const mesh::Mesh& mesh, const mesh::Subdomain& s
     throw std::invalid_argument("tribos::fem::assembleSubdomain: Loads::volumeForce has " +
                                 std::to_string(loads.volumeForce.size()) + " entries for " +
                                 std::to_string(mesh.numBlocks()) + " element blocks (give one per block or none)");
-  if (subdomain.tets.size() != subdomain.elements.size())
+  if (static_cast<size_t>(subdomain.localElements.size()) != subdomain.elements.size())
     throw std::invalid_argument("tribos::fem::assembleSubdomain: subdomain has " +
                                 std::to_string(subdomain.elements.size()) + " elements but " +
-                                std::to_string(subdomain.tets.size()) + " local connectivities");
+                                std::to_string(subdomain.localElements.size()) + " local connectivities");
 }
 
 /// The subdomain's elements as the kernels read them: local coordinates, connectivity and
 /// the Lame parameters per element.
 struct LocalElements {
   LO numNodes = 0, numElements = 0;
-  std::vector<double> coords;  ///< 3 per local node
-  std::vector<LO> tets;        ///< 4 per element
+  std::vector<double> coords;             ///< 3 per local node
+  const mesh::Connectivity* connectivity;  ///< the subdomain's, in local node numbering
   std::vector<double> lambda, mu;
+  const std::vector<LO>& nodes() const { return connectivity->flatNodes(); }
+  const std::vector<LO>& nodeStart() const { return connectivity->offsets(); }
+  const std::vector<mesh::ElementType>& types() const { return connectivity->types(); }
 };
 
 LocalElements localElements(const mesh::Mesh& mesh, const mesh::Subdomain& subdomain,
@@ -154,11 +160,10 @@ LocalElements localElements(const mesh::Mesh& mesh, const mesh::Subdomain& subdo
   el.coords.resize(3 * static_cast<size_t>(el.numNodes));
   for (LO k = 0; k < el.numNodes; ++k)
     for (int c = 0; c < 3; ++c) el.coords[3 * k + c] = mesh.coords[subdomain.nodes[k]][c];
-  el.tets.resize(4 * static_cast<size_t>(el.numElements));
+  el.connectivity = &subdomain.localElements;
   el.lambda.resize(el.numElements);
   el.mu.resize(el.numElements);
   for (LO e = 0; e < el.numElements; ++e) {
-    for (int v = 0; v < 4; ++v) el.tets[4 * e + v] = subdomain.tets[e][v];
     const int block = mesh.blockOf(subdomain.elements[e]);
     el.lambda[e] = materials.at(block).lambda;
     el.mu[e] = materials.at(block).mu;
@@ -166,23 +171,34 @@ LocalElements localElements(const mesh::Mesh& mesh, const mesh::Subdomain& subdo
   return el;
 }
 
-// (1) Element matrices K_e = V B^T D B (paper Section 2, Hooke's law with Lame lambda, mu),
-// independent per element, into a buffer of 144 values per element. An inverted element
+// (1) Element matrices K_e = int B^T D B (paper Section 2, Hooke's law with Lame lambda, mu),
+// independent per element, into a buffer of (3 n_e)^2 values per element. An inverted element
 // would give a negative-definite K_e and a meaningless K_s: the kernel skips it and the
 // host reports it below, naming it as the user's mesh does (1-based id, block name).
-std::vector<double> elementMatrices(LocalElements& el, const mesh::Mesh& mesh, const mesh::Subdomain& subdomain) {
-  std::vector<double> Ke(144 * static_cast<size_t>(el.numElements)), volume(el.numElements);
+std::vector<double> elementMatrices(const LocalElements& el, const std::vector<size_t>& matrixStart,
+                                    const mesh::Mesh& mesh, const mesh::Subdomain& subdomain) {
+  std::vector<double> Ke(matrixStart.back()), volume(el.numElements);
   Kokkos::parallel_for("tribos::fem::elementStiffness", Kokkos::RangePolicy<ExecSpace>(0, el.numElements),
-                       ElementStiffnessKernel{view(el.coords), view(el.tets), view(el.lambda), view(el.mu), view(Ke),
-                                              view(volume)});
+                       ElementStiffnessKernel{view(el.coords), view(el.nodes()), view(el.nodeStart()),
+                                              view(el.types()), view(el.lambda), view(el.mu), view(matrixStart),
+                                              view(Ke), view(volume)});
   for (LO e = 0; e < el.numElements; ++e)
     if (!(volume[e] > 0.0)) {
       const LO global = subdomain.elements[e];
-      throw core::InputError("element " + std::to_string(global + 1) + " of block \"" +
-                             mesh.blocks[mesh.blockOf(global)].name + "\" is inverted or degenerate (volume " +
+      throw core::InputError(mesh.elementLabel(global) + " is inverted or degenerate (volume " +
                              std::to_string(volume[e]) + ")");
     }
   return Ke;
+}
+
+/// Where each element's matrix starts in the buffer of step (1), and its end last.
+std::vector<size_t> matrixStarts(const LocalElements& el) {
+  std::vector<size_t> start(el.numElements + 1, 0);
+  for (LO e = 0; e < el.numElements; ++e) {
+    const size_t dofs = 3 * static_cast<size_t>(el.nodeStart()[e + 1] - el.nodeStart()[e]);
+    start[e + 1] = start[e] + dofs * dofs;
+  }
+  return start;
 }
 
 /// (2) The graph on the host: node -> adjacent (element, local vertex), by counting sort so
@@ -193,27 +209,30 @@ struct NodeGraph {
   std::vector<LO> nodeRowPtr, neighbour;
 };
 
-NodeGraph nodeGraph(const std::vector<LO>& tets, LO numNodes, LO numElements) {
+NodeGraph nodeGraph(const mesh::Connectivity& elements, LO numNodes) {
   NodeGraph g;
+  const std::vector<LO>& all = elements.flatNodes();
   g.adjacencyPtr.assign(numNodes + 1, 0);
-  g.adjacentElement.resize(4 * static_cast<size_t>(numElements));
-  g.adjacentVertex.resize(4 * static_cast<size_t>(numElements));
-  for (LO t : tets) g.adjacencyPtr[t + 1]++;
+  g.adjacentElement.resize(all.size());
+  g.adjacentVertex.resize(all.size());
+  for (LO t : all) g.adjacencyPtr[t + 1]++;
   for (LO a = 0; a < numNodes; ++a) g.adjacencyPtr[a + 1] += g.adjacencyPtr[a];
   std::vector<LO> fill(g.adjacencyPtr.begin(), g.adjacencyPtr.end() - 1);
-  for (LO e = 0; e < numElements; ++e)
-    for (int v = 0; v < 4; ++v) {
-      const LO k = fill[tets[4 * e + v]]++;
+  for (LO e = 0; e < elements.size(); ++e) {
+    const mesh::ElementNodes nodes = elements.nodes(e);
+    for (int v = 0; v < nodes.size(); ++v) {
+      const LO k = fill[nodes[v]]++;
       g.adjacentElement[k] = e;
       g.adjacentVertex[k] = v;
     }
+  }
   g.nodeRowPtr.assign(numNodes + 1, 0);
   g.neighbour.reserve(16 * static_cast<size_t>(numNodes));
   std::vector<LO> scratch;
   for (LO a = 0; a < numNodes; ++a) {
     scratch.clear();
     for (LO k = g.adjacencyPtr[a]; k < g.adjacencyPtr[a + 1]; ++k)
-      for (int v = 0; v < 4; ++v) scratch.push_back(tets[4 * g.adjacentElement[k] + v]);
+      for (LO n : elements.nodes(g.adjacentElement[k])) scratch.push_back(n);
     std::sort(scratch.begin(), scratch.end());
     scratch.erase(std::unique(scratch.begin(), scratch.end()), scratch.end());
     g.neighbour.insert(g.neighbour.end(), scratch.begin(), scratch.end());
@@ -241,6 +260,20 @@ void stiffnessPattern(const NodeGraph& g, LO numNodes, CsrMatrix& K) {
   K.values.assign(K.colInd.size(), 0.0);
 }
 
+/// The traction and pressure on quadrilaterals and 6-node triangles (local node ids), by
+/// quadrature over each face, into f.
+void addOtherFaceLoads(const std::vector<mesh::FaceNodes>& faces, const LocalElements& el, const Traction& traction,
+                       std::vector<double>& f) {
+  for (const auto& face : faces) {
+    double x[mesh::kMaxFaceNodes][3], fe[3 * mesh::kMaxFaceNodes];
+    for (int k = 0; k < face.numNodes; ++k)
+      for (int c = 0; c < 3; ++c) x[k][c] = el.coords[3 * face.node[k] + c];
+    faceLoad(mesh::faceType(face.numVertices, face.numNodes), x, traction.p.data(), traction.pressure, fe);
+    for (int k = 0; k < face.numNodes; ++k)
+      for (int c = 0; c < 3; ++c) f[3 * face.node[k] + c] += fe[3 * k + c];
+  }
+}
+
 /// The traction and pressure loads of the faces whose element lies in this subdomain, into f
 /// (each face is loaded once over all subdomains, so the subdomain loads sum to the global
 /// one). A pressure q on a face of outward normal n and area A loads each vertex with
@@ -251,13 +284,21 @@ void addTractionLoads(const mesh::Mesh& mesh, const mesh::Subdomain& subdomain, 
     const auto& set = mesh.sideSet(traction.sideSet);  // InputError naming a missing set
     std::vector<LO> faceNodes;
     std::vector<std::array<double, 3>> faceNormals;  // outward, of length twice the area
+    std::vector<mesh::FaceNodes> otherFaces;          // quadrilaterals and 6-node triangles
+    const auto local = [&](LO n) {
+      return static_cast<LO>(std::lower_bound(subdomain.nodes.begin(), subdomain.nodes.end(), n) -
+                             subdomain.nodes.begin());
+    };
     for (size_t face = 0; face < set.elements.size(); ++face) {
       if (!std::binary_search(subdomain.elements.begin(), subdomain.elements.end(), set.elements[face])) continue;
+      mesh::FaceNodes nodes = mesh.faceNodes(set.elements[face], set.sides[face]);
+      for (LO& n : nodes.node) n = local(n);
+      if (nodes.numNodes != 3) {
+        otherFaces.push_back(nodes);
+        continue;
+      }
       if (traction.pressure != 0.0) faceNormals.push_back(mesh.faceNormal(set.elements[face], set.sides[face]));
-      const auto& tet = mesh.tets[set.elements[face]];
-      for (int v : mesh::kTetFaceVertices[set.sides[face]])
-        faceNodes.push_back(static_cast<LO>(
-            std::lower_bound(subdomain.nodes.begin(), subdomain.nodes.end(), tet[v]) - subdomain.nodes.begin()));
+      faceNodes.insert(faceNodes.end(), nodes.begin(), nodes.end());
     }
     const LO numFaces = static_cast<LO>(faceNodes.size() / 3);
     std::vector<double> fe(9 * static_cast<size_t>(numFaces));
@@ -270,6 +311,7 @@ void addTractionLoads(const mesh::Mesh& mesh, const mesh::Subdomain& subdomain, 
     for (size_t face = 0; face < faceNormals.size(); ++face)
       for (int v = 0; v < 3; ++v)
         for (int c = 0; c < 3; ++c) f[3 * faceNodes[3 * face + v] + c] -= traction.pressure * faceNormals[face][c] / 6.0;
+    addOtherFaceLoads(otherFaces, el, traction, f);
   }
 }
 
@@ -278,15 +320,15 @@ void addVolumeForces(const mesh::Mesh& mesh, const mesh::Subdomain& subdomain, c
                      const Loads& loads, std::vector<double>& f) {
   if (loads.volumeForce.empty()) return;
   const LO numElements = el.numElements;
-  std::vector<double> force(3 * static_cast<size_t>(numElements)), fe(12 * static_cast<size_t>(numElements));
+  const std::vector<LO>& nodes = el.nodes();
+  std::vector<double> force(3 * static_cast<size_t>(numElements)), fe(3 * nodes.size());
   for (LO e = 0; e < numElements; ++e)
     for (int c = 0; c < 3; ++c) force[3 * e + c] = loads.volumeForce[mesh.blockOf(subdomain.elements[e])][c];
   Kokkos::parallel_for("tribos::fem::volumeForceLoads", Kokkos::RangePolicy<ExecSpace>(0, numElements),
-                       VolumeForceKernel{view(std::as_const(el.coords)), view(std::as_const(el.tets)),
-                                         view(std::as_const(force)), view(fe)});
-  for (LO e = 0; e < numElements; ++e)
-    for (int v = 0; v < 4; ++v)
-      for (int c = 0; c < 3; ++c) f[3 * el.tets[4 * e + v] + c] += fe[12 * e + 3 * v + c];
+                       VolumeForceKernel{view(std::as_const(el.coords)), view(nodes), view(el.nodeStart()),
+                                         view(el.types()), view(std::as_const(force)), view(fe)});
+  for (size_t k = 0; k < nodes.size(); ++k)
+    for (int c = 0; c < 3; ++c) f[3 * nodes[k] + c] += fe[3 * k + c];
 }
 }  // namespace
 
@@ -304,8 +346,9 @@ SubdomainSystem assembleSubdomain(const mesh::Mesh& mesh, const mesh::Subdomain&
                                   const std::vector<Material>& materials, const Loads& loads) {
   requireConsistentArguments(mesh, subdomain, materials, loads);
   LocalElements el = localElements(mesh, subdomain, materials);
-  std::vector<double> Ke = elementMatrices(el, mesh, subdomain);  // (1)
-  NodeGraph graph = nodeGraph(el.tets, el.numNodes, el.numElements);  // (2)
+  const std::vector<size_t> matrixStart = matrixStarts(el);
+  std::vector<double> Ke = elementMatrices(el, matrixStart, mesh, subdomain);  // (1)
+  NodeGraph graph = nodeGraph(subdomain.localElements, el.numNodes);  // (2)
   SubdomainSystem system;
   CsrMatrix& K = system.K;
   stiffnessPattern(graph, el.numNodes, K);
@@ -314,7 +357,8 @@ SubdomainSystem assembleSubdomain(const mesh::Mesh& mesh, const mesh::Subdomain&
   // needed and the result is the same (bitwise) on any back end and any thread count.
   Kokkos::parallel_for("tribos::fem::gatherStiffnessRows", Kokkos::RangePolicy<ExecSpace>(0, el.numNodes),
                        GatherRowsKernel{view(graph.adjacencyPtr), view(graph.adjacentElement),
-                                        view(graph.adjacentVertex), view(el.tets), view(Ke), view(graph.nodeRowPtr),
+                                        view(graph.adjacentVertex), view(el.nodes()), view(el.nodeStart()),
+                                        view(matrixStart), view(std::as_const(Ke)), view(graph.nodeRowPtr),
                                         view(graph.neighbour), view(K.rowPtr), view(K.values)});
   // (4) Loads f_s: element/face contributions in kernels, then summed on the host in a
   // fixed order (load by load, face by face), so f_s does not depend on the thread count.
@@ -336,7 +380,7 @@ SubdomainSystem assembleGlobal(const mesh::Mesh& mesh, const std::vector<Materia
   for (LO e = 0; e < mesh.numElements(); ++e) all.elements[e] = e;
   all.nodes.resize(mesh.numNodes());
   for (LO n = 0; n < mesh.numNodes(); ++n) all.nodes[n] = n;
-  all.tets = mesh.tets;
+  all.localElements = mesh.elements;
   return assembleSubdomain(mesh, all, materials, loads);
 }
 

@@ -48,7 +48,7 @@ std::vector<BodyFrame> bodyFrames(const mesh::Mesh& mesh) {
     std::vector<LO> nodes;
     const auto& block = mesh.blocks[b];
     for (LO e = block.first; e < block.first + block.count; ++e)
-      for (LO n : mesh.tets[e])
+      for (LO n : mesh.elementNodes(e))
         if (seenBy[n] != b) {
           seenBy[n] = b;
           nodes.push_back(n);

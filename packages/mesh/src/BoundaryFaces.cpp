@@ -11,7 +11,7 @@ namespace tribos::mesh {
 namespace {
 /// A face by its sorted node ids, with the (element, side) it came from.
 struct FaceUse {
-  std::array<LO, 3> nodes;
+  std::array<LO, 4> nodes;  ///< sorted vertices; a triangle's fourth is -1
   LO element;
   int side;
 };
@@ -20,10 +20,11 @@ std::vector<FaceUse> allFaces(const Mesh& mesh) {
   std::vector<FaceUse> faces;
   faces.reserve(4 * static_cast<size_t>(mesh.numElements()));
   for (LO e = 0; e < mesh.numElements(); ++e)
-    for (int side = 0; side < 4; ++side) {
-      FaceUse f{{}, e, side};
-      for (int v = 0; v < 3; ++v) f.nodes[v] = mesh.tets[e][kTetFaceVertices[side][v]];
-      std::sort(f.nodes.begin(), f.nodes.end());
+    for (int side = 0; side < mesh.numSides(e); ++side) {
+      FaceUse f{{-1, -1, -1, -1}, e, side};
+      const FaceNodes face = mesh.faceNodes(e, side);
+      std::copy_n(face.node, face.numVertices, f.nodes.begin());
+      std::sort(f.nodes.begin(), f.nodes.begin() + face.numVertices);
       faces.push_back(f);
     }
   return faces;
@@ -31,8 +32,8 @@ std::vector<FaceUse> allFaces(const Mesh& mesh) {
 }  // namespace
 
 SideSet boundaryFaces(const Mesh& mesh) {
-  // Sorting by node triple puts the two uses of an interior face next to each other; a
-  // triple that occurs once is on the boundary. O(n log n), no hashing of triples.
+  // Sorting by the sorted vertices puts the two uses of an interior face next to each other;
+  // a face that occurs once is on the boundary. O(n log n), no hashing.
   auto faces = allFaces(mesh);
   std::sort(faces.begin(), faces.end(), [](const FaceUse& a, const FaceUse& b) { return a.nodes < b.nodes; });
   std::vector<std::pair<LO, int>> boundary;
@@ -58,9 +59,8 @@ SideSet sideSetFromNodeSet(const Mesh& mesh, const NodeSet& nodes, const std::st
   const SideSet boundary = boundaryFaces(mesh);
   SideSet out{name, id, {}, {}};
   for (size_t f = 0; f < boundary.elements.size(); ++f) {
-    const auto& tet = mesh.tets[boundary.elements[f]];
     bool all = true;
-    for (int v : kTetFaceVertices[boundary.sides[f]]) all = all && inSet[tet[v]];
+    for (LO n : mesh.faceNodes(boundary.elements[f], boundary.sides[f])) all = all && inSet[n];
     if (!all) continue;
     out.elements.push_back(boundary.elements[f]);
     out.sides.push_back(boundary.sides[f]);
@@ -82,7 +82,7 @@ int addSideSetFromNodeSet(Mesh& mesh, const std::string& nodeSet) {
   SideSet faces = sideSetFromNodeSet(mesh, mesh.nodeSet(nodeSet), nodeSet, id);
   core::requireInput(!faces.elements.empty(), "node set \"" + nodeSet +
                                                   "\" contains no boundary face (a face of one element with all "
-                                                  "three nodes in the set), so it cannot stand for a surface");
+                                                  "its nodes in the set), so it cannot stand for a surface");
   for (const std::string& name : {nodeSet, nodeSet + "_faces"}) {
     const int existing = findSideSet(mesh, name);
     if (existing < 0) {

@@ -139,7 +139,7 @@ std::vector<LO> sideSetNodes(const Mesh& mesh, const SideSet& set) {
   std::vector<LO> nodes;
   nodes.reserve(3 * set.elements.size());
   for (size_t f = 0; f < set.elements.size(); ++f)
-    for (int v : kTetFaceVertices[set.sides[f]]) nodes.push_back(mesh.tets[set.elements[f]][v]);
+    for (LO n : mesh.faceNodes(set.elements[f], set.sides[f])) nodes.push_back(n);
   std::sort(nodes.begin(), nodes.end());
   nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
   return nodes;
@@ -148,10 +148,9 @@ std::vector<LO> sideSetNodes(const Mesh& mesh, const SideSet& set) {
 std::vector<Vec3> summedFaceNormals(const Mesh& mesh, const SideSet& set) {
   std::vector<Vec3> normal(mesh.numNodes(), Vec3{0.0, 0.0, 0.0});
   for (size_t f = 0; f < set.elements.size(); ++f) {
-    const auto& tet = mesh.tets[set.elements[f]];
     const Vec3 n = mesh.faceNormal(set.elements[f], set.sides[f]);
-    for (int v : kTetFaceVertices[set.sides[f]])
-      for (int d = 0; d < 3; ++d) normal[tet[v]][d] += n[d];
+    for (LO vertex : mesh.faceNodes(set.elements[f], set.sides[f]).vertices())
+      for (int d = 0; d < 3; ++d) normal[vertex][d] += n[d];
   }
   return normal;
 }
@@ -199,7 +198,7 @@ MasterSurface::MasterSurface(const Mesh& mesh, const std::string& masterSideSet)
   faceNodes_.resize(set.elements.size());
   for (size_t f = 0; f < triangles.size(); ++f)
     for (int v = 0; v < 3; ++v) {
-      faceNodes_[f][v] = mesh.tets[set.elements[f]][kTetFaceVertices[set.sides[f]][v]];
+      faceNodes_[f][v] = mesh.faceNodes(set.elements[f], set.sides[f]).node[v];
       triangles[f][v] = mesh.coords[faceNodes_[f][v]];
     }
   tree_ = std::make_unique<Tree>(std::move(triangles));

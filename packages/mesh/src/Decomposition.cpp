@@ -46,15 +46,16 @@ Decomposition buildDecomposition(const Mesh& mesh, const std::vector<int>& eleme
       throw core::InputError("decomposition: subdomain " + std::to_string(p) + " has no elements");
     s.nodes.reserve(4 * s.elements.size());
     for (LO e : s.elements)
-      for (LO n : mesh.tets[e]) s.nodes.push_back(n);
+      for (LO n : mesh.elementNodes(e)) s.nodes.push_back(n);
     std::sort(s.nodes.begin(), s.nodes.end());
     s.nodes.erase(std::unique(s.nodes.begin(), s.nodes.end()), s.nodes.end());
-    s.tets.reserve(s.elements.size());
+    s.localElements.reserve(s.elements.size(), 4);
     for (LO e : s.elements) {
-      std::array<LO, 4> local;
-      for (int v = 0; v < 4; ++v)
-        local[v] = static_cast<LO>(std::lower_bound(s.nodes.begin(), s.nodes.end(), mesh.tets[e][v]) - s.nodes.begin());
-      s.tets.push_back(local);
+      LO local[kMaxElementNodes];
+      const ElementNodes global = mesh.elementNodes(e);
+      for (int v = 0; v < global.size(); ++v)
+        local[v] = static_cast<LO>(std::lower_bound(s.nodes.begin(), s.nodes.end(), global[v]) - s.nodes.begin());
+      s.localElements.add(mesh.elementType(e), local);
     }
   }
   return d;

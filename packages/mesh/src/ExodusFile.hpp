@@ -10,8 +10,39 @@
 #include <vector>
 
 #include "tribos/core/Errors.hpp"
+#include "tribos/mesh/Mesh.hpp"
 
 namespace tribos::mesh::exodus {
+
+/// One Exodus element block: elements of one type (Exodus has one topology per block) and of
+/// one body. A body of several element types is written as one block per type, each under
+/// the body's name; the reader joins consecutive blocks of one name back into one body.
+struct BlockPart {
+  int id;
+  int body;  ///< index into Mesh::blocks
+  ElementType type;
+  LO first, count;
+};
+
+/// The parts of every body: its runs of elements of one type. The first part of a body
+/// keeps the body's id; further parts take ids above every body's.
+inline std::vector<BlockPart> blockParts(const Mesh& mesh) {
+  int nextId = 0;
+  for (const auto& b : mesh.blocks) nextId = std::max(nextId, b.id + 1);
+  std::vector<BlockPart> parts;
+  for (int b = 0; b < mesh.numBlocks(); ++b) {
+    const ElementBlock& block = mesh.blocks[b];
+    if (block.count == 0) parts.push_back({block.id, b, ElementType::Tet4, block.first, 0});  // the reader refuses it
+    for (LO e = block.first; e < block.first + block.count; ++e) {
+      if (e > block.first && mesh.elementType(e) == mesh.elementType(e - 1)) {
+        parts.back().count++;
+        continue;
+      }
+      parts.push_back({e == block.first ? block.id : nextId++, b, mesh.elementType(e), e, 1});
+    }
+  }
+  return parts;
+}
 
 /// Names of at least this length survive a round trip; the library's default (32) would cut
 /// descriptive set names such as "contact_upper_brick_bottom_face".

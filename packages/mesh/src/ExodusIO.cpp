@@ -58,7 +58,7 @@ void checkFieldSizes(const std::vector<Field>& fields, LO expected, const char* 
   }
 }
 
-/// The writer reads mesh.tets[b.first .. b.first + b.count) per block and parallel side-set
+/// The writer reads the elements [b.first .. b.first + b.count) per block and parallel side-set
 /// arrays; check those ranges first so a malformed Mesh is an error, not a wild read.
 void checkWritableMesh(const Mesh& mesh) {
   LO next = 0;
@@ -175,17 +175,21 @@ void writeNames(int id, const std::string& path, ex_entity_type type, const std:
 }
 
 // The file uses 32-bit ids (the default), which LO = int always fits.
-void writeBlocks(int id, const std::string& path, const Mesh& mesh, int nameLength) {
+void writeBlocks(int id, const std::string& path, const Mesh& mesh, const std::vector<BlockPart>& parts,
+                 int nameLength) {
   std::vector<std::string> names;
-  for (const auto& b : mesh.blocks) {
-    // "TETRA": meshio 5 maps "TETRA4" to a cell type it does not know (KeyError 'tetra4').
-    check(ex_put_block(id, EX_ELEM_BLOCK, b.id, "TETRA", b.count, 4, 0, 0, 0), path, "writing block " + b.name);
-    std::vector<int> conn(4 * static_cast<size_t>(b.count));
-    for (LO e = 0; e < b.count; ++e)
-      for (int v = 0; v < 4; ++v) conn[4 * static_cast<size_t>(e) + v] = mesh.tets[b.first + e][v] + 1;
-    if (b.count > 0)
-      check(ex_put_conn(id, EX_ELEM_BLOCK, b.id, conn.data(), nullptr, nullptr), path, "writing block " + b.name);
-    names.push_back(b.name);
+  for (const auto& part : parts) {
+    const ElementShape& shape = elementShape(part.type);
+    const std::string& name = mesh.blocks[part.body].name;
+    check(ex_put_block(id, EX_ELEM_BLOCK, part.id, shape.exodusName, part.count, shape.numNodes, 0, 0, 0), path,
+          "writing block " + name);
+    std::vector<int> conn;
+    conn.reserve(static_cast<size_t>(part.count) * shape.numNodes);
+    for (LO e = part.first; e < part.first + part.count; ++e)
+      for (LO n : mesh.elementNodes(e)) conn.push_back(n + 1);
+    if (part.count > 0)
+      check(ex_put_conn(id, EX_ELEM_BLOCK, part.id, conn.data(), nullptr, nullptr), path, "writing block " + name);
+    names.push_back(name);
   }
   writeNames(id, path, EX_ELEM_BLOCK, names, nameLength, "block");
 }
@@ -218,7 +222,8 @@ void writeSets(int id, const std::string& path, const Mesh& mesh, int nameLength
 
 /// The variables (declared once for the file: the first step's names) and their values at
 /// every step.
-void writeSteps(int id, const std::string& path, const Mesh& mesh, const std::vector<TimeStep>& steps, int nameLength) {
+void writeSteps(int id, const std::string& path, const Mesh& mesh, const std::vector<BlockPart>& parts,
+                const std::vector<TimeStep>& steps, int nameLength) {
   if (steps.empty()) return;
   defineGlobals(id, path, steps.front().global, nameLength);
   const auto nodalNames = fieldNames(steps.front().nodal), elementNames = fieldNames(steps.front().element);
@@ -228,14 +233,15 @@ void writeSteps(int id, const std::string& path, const Mesh& mesh, const std::ve
     NameArray n(nodalNames, nameLength);
     check(ex_put_variable_names(id, EX_NODAL, numNodal, n.data()), path, "naming nodal variables");
   }
-  if (numElemVars > 0 && mesh.numBlocks() > 0) {
+  const int numParts = static_cast<int>(parts.size());
+  if (numElemVars > 0 && numParts > 0) {
     check(ex_put_variable_param(id, EX_ELEM_BLOCK, numElemVars), path, "defining element variables");
     NameArray n(elementNames, nameLength);
     check(ex_put_variable_names(id, EX_ELEM_BLOCK, numElemVars, n.data()), path, "naming element variables");
     // Every variable exists on every block. Declaring that up front defines all of them in
     // one go instead of one netCDF redefinition per (variable, block) at the first ex_put_var.
-    std::vector<int> truth(static_cast<size_t>(mesh.numBlocks()) * numElemVars, 1);
-    check(ex_put_truth_table(id, EX_ELEM_BLOCK, mesh.numBlocks(), numElemVars, truth.data()), path,
+    std::vector<int> truth(static_cast<size_t>(numParts) * numElemVars, 1);
+    check(ex_put_truth_table(id, EX_ELEM_BLOCK, numParts, numElemVars, truth.data()), path,
           "writing the element variable truth table");
   }
   for (size_t s = 0; s < steps.size(); ++s) {
@@ -247,11 +253,11 @@ void writeSteps(int id, const std::string& path, const Mesh& mesh, const std::ve
       check(ex_put_var(id, step, EX_NODAL, static_cast<int>(v) + 1, 1, mesh.numNodes(), steps[s].nodal[v].values.data()),
             path, "writing nodal variable " + steps[s].nodal[v].name);
     for (size_t v = 0; v < steps[s].element.size(); ++v)
-      for (const auto& b : mesh.blocks)
-        if (b.count > 0)
-          check(ex_put_var(id, step, EX_ELEM_BLOCK, static_cast<int>(v) + 1, b.id, b.count,
-                           steps[s].element[v].values.data() + b.first),
-                path, "writing element variable " + steps[s].element[v].name);
+      for (const auto& part : parts)
+        if (part.count > 0)
+          check(ex_put_var(id, step, EX_ELEM_BLOCK, static_cast<int>(v) + 1, part.id, part.count,
+                         steps[s].element[v].values.data() + part.first),
+              path, "writing element variable " + steps[s].element[v].name);
   }
 }
 }  // namespace
@@ -266,14 +272,15 @@ void writeExodus(const std::string& path, const Mesh& mesh, const std::vector<Ti
   const int id = file.id();
   const int nameLength = std::max(kNameLength, longestName(mesh, steps));
   check(ex_set_max_name_length(id, nameLength), path, "setting the name length");
-  check(ex_put_init(id, "Tribos", 3, mesh.numNodes(), mesh.numElements(), mesh.numBlocks(),
+  const std::vector<BlockPart> parts = blockParts(mesh);
+  check(ex_put_init(id, "Tribos", 3, mesh.numNodes(), mesh.numElements(), static_cast<int64_t>(parts.size()),
                     static_cast<int64_t>(mesh.nodeSets.size()), static_cast<int64_t>(mesh.sideSets.size())),
         path, "writing the header");
   writeCoordinates(id, path, mesh, nameLength);
   writeInfo(id, path, info);
-  writeBlocks(id, path, mesh, nameLength);
+  writeBlocks(id, path, mesh, parts, nameLength);
   writeSets(id, path, mesh, nameLength);
-  writeSteps(id, path, mesh, steps, nameLength);
+  writeSteps(id, path, mesh, parts, steps, nameLength);
   check(file.close(), path, "closing the file");
 }
 

@@ -1,7 +1,8 @@
 // Reading Exodus II meshes and results (the classic ex_* C API, Debian's exodusii 6.02):
 // checks first (a regular file, a header whose counts the file can hold), then coordinates,
-// element blocks (linear tetrahedra), node and side sets, and the variables of every time
-// step. Exodus ids are 1-based; Mesh uses 0-based nodes/elements and sides 0..3.
+// element blocks (4- and 10-node tetrahedra, 8-node hexahedra, 6-node prisms), node and side
+// sets, and the variables of every time step. Exodus ids are 1-based; Mesh uses 0-based
+// nodes, elements and sides.
 #include <exodusII.h>
 
 #include <algorithm>
@@ -85,7 +86,8 @@ class ExodusReader {
   /// The 64-bit API, the name length and the header (3D, counts the file can hold).
   void readHeader();
   void readCoordinates(Mesh& mesh) const;
-  void readBlocks(Mesh& mesh) const;
+  /// The element blocks; consecutive blocks of one name join into one body (blockParts).
+  void readBlocks(Mesh& mesh);
   void readNodeSets(Mesh& mesh) const;
   void readSideSets(Mesh& mesh) const;
   /// The nodal, element and global variables of every time step, and the info records.
@@ -94,7 +96,7 @@ class ExodusReader {
  private:
   std::vector<int64_t> readIds(ex_entity_type type, int64_t count, const char* kind) const;
   std::vector<std::string> readNames(ex_entity_type type, const std::vector<int64_t>& ids, const char* fallback) const;
-  void readBlock(int64_t blockId, const std::string& name, Mesh& mesh) const;
+  void readBlock(int64_t blockId, const std::string& name, Mesh& mesh);
   TimeStep readStep(int stepIndex, double time, const Mesh& mesh, const NameArray& nodalNames, int numNodal,
                     const NameArray& elemNames, int numElemVars, const std::vector<int>& truth) const;
 
@@ -103,7 +105,29 @@ class ExodusReader {
   int id_;
   int nameLength_ = kNameLength;
   Header h_;
+  std::vector<BlockPart> parts_;  ///< the file's element blocks, in file order
 };
+
+/// The element type of an Exodus topology name with `nodes` nodes per element; throws
+/// naming the block, with what to convert to where Tribos has no such element.
+ElementType elementTypeOf(const std::string& topology, int64_t nodes, const std::string& path,
+                          const std::string& blockText) {
+  const std::string name = upper(topology);
+  const auto is = [&](std::initializer_list<const char*> names) {
+    return std::any_of(names.begin(), names.end(), [&](const char* n) { return name == n; });
+  };
+  if (is({"TETRA", "TETRA4", "TET4", "TET"}) && nodes == 4) return ElementType::Tet4;
+  if (is({"TETRA", "TETRA10", "TET10"}) && nodes == 10) return ElementType::Tet10;
+  if (is({"HEX", "HEX8", "HEXAHEDRON"}) && nodes == 8) return ElementType::Hex8;
+  if (is({"WEDGE", "WEDGE6"}) && nodes == 6) return ElementType::Wedge6;
+  std::string advice;
+  if (is({"HEX", "HEX20", "HEX27", "HEXAHEDRON"}))
+    advice = " (for 20- or 27-node hexahedra, convert to 8-node ones, e.g. in gmsh with Mesh.ElementOrder = 1, or "
+             "mesh with 10-node tetrahedra)";
+  throw core::InputError(path + ": " + blockText + " has topology " + topology + " with " + std::to_string(nodes) +
+                         " nodes per element" + advice +
+                         "; Tribos takes TETRA (4 nodes), TETRA10, HEX8 and WEDGE6 element blocks");
+}
 
 void ExodusReader::readHeader() {
   // With the 64-bit API, one code path reads files written with 32- or 64-bit ids.
@@ -165,48 +189,50 @@ std::vector<std::string> ExodusReader::readNames(ex_entity_type type, const std:
   return out;
 }
 
-void ExodusReader::readBlocks(Mesh& mesh) const {
+void ExodusReader::readBlocks(Mesh& mesh) {
   const auto blockIds = readIds(EX_ELEM_BLOCK, h_.numBlocks, "element block");
   const auto blockNames = readNames(EX_ELEM_BLOCK, blockIds, "block");
-  for (int64_t b = 0; b < h_.numBlocks; ++b) readBlock(blockIds[b], blockNames[b], mesh);
-  if (static_cast<int64_t>(mesh.tets.size()) != h_.numElements)
-    throw core::InputError(path_ + ": the element blocks hold " + std::to_string(mesh.tets.size()) +
+  for (int64_t b = 0; b < h_.numBlocks; ++b) {
+    const bool continuesBody = b > 0 && blockNames[b] == blockNames[b - 1];
+    if (!continuesBody) mesh.blocks.push_back({blockNames[b], static_cast<int>(blockIds[b]), mesh.numElements(), 0});
+    readBlock(blockIds[b], blockNames[b], mesh);
+    parts_.back().body = mesh.numBlocks() - 1;
+    mesh.blocks.back().count += parts_.back().count;
+  }
+  if (static_cast<int64_t>(mesh.numElements()) != h_.numElements)
+    throw core::InputError(path_ + ": the element blocks hold " + std::to_string(mesh.numElements()) +
                            " elements but the header says " + std::to_string(h_.numElements));
 }
 
-void ExodusReader::readBlock(int64_t blockId, const std::string& name, Mesh& mesh) const {
+void ExodusReader::readBlock(int64_t blockId, const std::string& name, Mesh& mesh) {
   ex_block block{};
   block.id = blockId;
   block.type = EX_ELEM_BLOCK;
   check(ex_get_block_param(id_, &block), path_, "reading element block " + name);
   const std::string blockText = "element block \"" + name + "\" (id " + std::to_string(blockId) + ")";
   if (block.num_entry == 0) throw core::InputError(path_ + ": " + blockText + " has no elements");
-  const std::string topology = upper(block.topology);
-  if (!(topology == "TETRA" || topology == "TETRA4" || topology == "TET4" || topology == "TET") ||
-      block.num_nodes_per_entry != 4)
-    throw core::InputError(path_ + ": element block \"" + name + "\" (id " + std::to_string(blockId) +
-                           ") has topology " + block.topology + " with " + std::to_string(block.num_nodes_per_entry) +
-                           " nodes per element; Tribos needs linear tetrahedra (TETRA, 4 nodes)");
-  requireCount(block.num_entry, h_.numElements - static_cast<int64_t>(mesh.tets.size()), path_,
+  const ElementType type = elementTypeOf(block.topology, block.num_nodes_per_entry, path_, blockText);
+  const int perElement = elementShape(type).numNodes;
+  requireCount(block.num_entry, h_.numElements - static_cast<int64_t>(mesh.numElements()), path_,
                "elements in " + blockText, "elements the header leaves for it");
-  std::vector<int64_t> conn(4 * static_cast<size_t>(block.num_entry));
+  std::vector<int64_t> conn(perElement * static_cast<size_t>(block.num_entry));
   if (block.num_entry > 0)
     check(ex_get_conn(id_, EX_ELEM_BLOCK, blockId, conn.data(), nullptr, nullptr), path_, "reading element block " + name);
-  ElementBlock eb{name, static_cast<int>(blockId), static_cast<LO>(mesh.tets.size()), static_cast<LO>(block.num_entry)};
+  const BlockPart part{static_cast<int>(blockId), 0, type, mesh.numElements(), static_cast<LO>(block.num_entry)};
   for (int64_t e = 0; e < block.num_entry; ++e) {
-    std::array<LO, 4> tet;
-    for (int v = 0; v < 4; ++v) {
-      const int64_t node = conn[4 * e + v];
+    LO nodes[kMaxElementNodes];
+    for (int v = 0; v < perElement; ++v) {
+      const int64_t node = conn[perElement * e + v];
       if (node < 1 || node > h_.numNodes)
-        throw core::InputError(path_ + ": element " + std::to_string(eb.first + e + 1) + " of block \"" + eb.name +
+        throw core::InputError(path_ + ": element " + std::to_string(part.first + e + 1) + " of block \"" + name +
                                "\" references node " + std::to_string(node) + " out of range 1.." +
                                std::to_string(h_.numNodes) +
                                (node == 0 ? " (0 is what netCDF reads where data is missing: a truncated file?)" : ""));
-      tet[v] = static_cast<LO>(node - 1);
+      nodes[v] = static_cast<LO>(node - 1);
     }
-    mesh.tets.push_back(tet);
+    mesh.elements.add(type, nodes);
   }
-  mesh.blocks.push_back(eb);
+  parts_.push_back(part);
 }
 
 // Ids from the file are range-checked by mesh.validate, which names the bad id.
@@ -294,10 +320,11 @@ TimeStep ExodusReader::readStep(int stepIndex, double time, const Mesh& mesh, co
   for (int v = 0; v < numElemVars; ++v) {
     Field f{elemNames[v], std::vector<double>(h_.numElements, 0.0)};
     for (int64_t b = 0; b < h_.numBlocks; ++b) {
-      const auto& eb = mesh.blocks[b];
-      if (eb.count > 0 && truth[b * numElemVars + v])
-        check(ex_get_var(id_, stepIndex, EX_ELEM_BLOCK, v + 1, eb.id, eb.count, f.values.data() + eb.first), path_,
-              "reading element variable " + f.name + " on block " + eb.name + " at time step " +
+      const auto& part = parts_[b];
+      if (part.count > 0 && truth[b * numElemVars + v])
+        check(ex_get_var(id_, stepIndex, EX_ELEM_BLOCK, v + 1, part.id, part.count, f.values.data() + part.first),
+              path_,
+              "reading element variable " + f.name + " on block " + mesh.blocks[part.body].name + " at time step " +
                   std::to_string(stepIndex));
     }
     step.element.push_back(std::move(f));

@@ -22,13 +22,17 @@
 namespace tribos::mesh {
 
 namespace {
-struct Triangle {
-  std::array<long long, 3> nodes;
+/// A surface element (3- or 6-node triangle, 4-node quadrilateral): a face of a volume one.
+struct SurfaceElement {
+  std::array<long long, kMaxFaceNodes> nodes;
+  int numVertices;
   std::vector<int> physicals;  ///< every physical group of its surface (several may name it)
   long long tag;
 };
-struct Tet {
-  std::array<long long, 4> nodes;
+/// A volume element, its nodes in Exodus order (ElementTypes.hpp).
+struct VolumeElement {
+  std::array<long long, kMaxElementNodes> nodes;
+  ElementType type;
   int physical;
   long long tag;
 };
@@ -38,8 +42,8 @@ struct GmshContent {
   std::map<std::pair<int, int>, std::string> physicalName;       // (dim, tag) -> name
   std::map<std::pair<int, int>, std::vector<int>> entityPhysical;  // (dim, entity) -> physical tags
   std::unordered_map<long long, std::array<double, 3>> nodes;     // node tag -> coordinates
-  std::vector<Tet> tets;
-  std::vector<Triangle> triangles;
+  std::vector<VolumeElement> volumes;
+  std::vector<SurfaceElement> surfaces;
 };
 
 /// Whitespace-separated tokens of the file. Every read names what it expected, so that a
@@ -221,27 +225,68 @@ void readNodes(Tokens& in, GmshContent& content) {
   in.leave();
 }
 
-/// Nodes per element of the gmsh types Tribos reads: point, line, triangle, tetrahedron.
-int nodesPerElement(int type) {
+/// The gmsh element types Tribos reads (gmsh's "MSH file format" numbering).
+struct GmshType {
+  int type;
+  int dim;
+  int nodes;
+  const char* name;
+};
+constexpr GmshType kReadTypes[] = {
+    {15, 0, 1, "point"},          {1, 1, 2, "2-node line"},      {8, 1, 3, "3-node line"},
+    {2, 2, 3, "3-node triangle"}, {9, 2, 6, "6-node triangle"},  {3, 2, 4, "4-node quadrilateral"},
+    {4, 3, 4, "4-node tetrahedron"}, {11, 3, 10, "10-node tetrahedron"}, {5, 3, 8, "8-node hexahedron"},
+    {6, 3, 6, "6-node prism"}};
+
+const GmshType* gmshType(int type) {
+  for (const auto& t : kReadTypes)
+    if (t.type == type) return &t;
+  return nullptr;
+}
+
+/// What to do instead, for the volume types gmsh makes that Tribos does not take.
+std::string refusedVolumeAdvice(int type) {
   switch (type) {
-    case 15: return 1;
-    case 1: return 2;
-    case 2: return 3;
-    case 4: return 4;
-    default: return -1;
+    case 12:
+    case 17:
+      return " (a 27- or 20-node hexahedron: mesh with Mesh.ElementOrder = 1 for 8-node hexahedra, or with "
+             "tetrahedra and Mesh.ElementOrder = 2 for 10-node tetrahedra)";
+    case 13:
+    case 18: return " (a quadratic prism: mesh with Mesh.ElementOrder = 1 for 6-node prisms)";
+    case 7:
+    case 14:
+    case 19: return " (a pyramid: mesh without Mesh.Recombine3DAll, or with tetrahedra only)";
+    case 29: return " (a 20-node tetrahedron: use Mesh.ElementOrder = 2 for 10-node tetrahedra)";
+    default: return "";
   }
 }
 
 void checkElementBlockType(Tokens& in, int dim, int entity, int type) {
   const std::string where = "entity " + std::to_string(entity) + " (dimension " + std::to_string(dim) + ")";
-  if (dim == 3 && type != 4)
-    in.fail("volume " + where + " has elements of gmsh type " + std::to_string(type) +
-            "; Tribos needs 4-node tetrahedra (type 4)");
-  if (nodesPerElement(type) < 0)
+  const GmshType* known = gmshType(type);
+  if (dim == 3 && (known == nullptr || known->dim != 3))
+    in.fail("volume " + where + " has elements of gmsh type " + std::to_string(type) + refusedVolumeAdvice(type) +
+            "; Tribos takes 4-node tetrahedra (type 4), 10-node tetrahedra (11), 8-node hexahedra (5) and 6-node "
+            "prisms (6)");
+  if (known == nullptr)
     in.fail(where + " has elements of gmsh type " + std::to_string(type) +
-            ", which Tribos does not read (points, lines, 3-node triangles and 4-node tetrahedra only)");
-  if ((type == 4) != (dim == 3) || (type == 2 && dim != 2))
+            ", which Tribos does not read (points, lines, 3- and 6-node triangles, 4-node quadrilaterals and the "
+            "volume types 4, 11, 5 and 6 only)");
+  if (known->dim != dim)
     in.fail(where + " holds elements of gmsh type " + std::to_string(type) + ", which do not have its dimension");
+}
+
+/// gmsh's node order of a volume element in Exodus order: the 10-node tetrahedron's last
+/// two mid-edge nodes are (2,3), (1,3) in gmsh and (1,3), (2,3) in Exodus; the others agree.
+VolumeElement volumeElement(int gmshType, const std::array<long long, kMaxElementNodes>& v, int group, long long tag) {
+  VolumeElement e{v, ElementType::Tet4, group, tag};
+  if (gmshType == 11) {
+    e.type = ElementType::Tet10;
+    std::swap(e.nodes[8], e.nodes[9]);
+  }
+  if (gmshType == 5) e.type = ElementType::Hex8;
+  if (gmshType == 6) e.type = ElementType::Wedge6;
+  return e;
 }
 
 void readElements(Tokens& in, GmshContent& content) {
@@ -255,7 +300,8 @@ void readElements(Tokens& in, GmshContent& content) {
     const int entity = in.smallInteger("an element block's entity tag");
     const int type = in.smallInteger("an element type");
     checkElementBlockType(in, dim, entity, type);
-    const int perElement = nodesPerElement(type);
+    const GmshType& kind = *gmshType(type);
+    const int perElement = kind.nodes;
     const long long inBlock = in.count("the number of elements in a block", 1 + perElement);
     if (inBlock > total - seen)
       in.fail("the element blocks hold more elements than the section header says (" + std::to_string(total) + ")");
@@ -263,19 +309,22 @@ void readElements(Tokens& in, GmshContent& content) {
     const int group = physical == content.entityPhysical.end() || physical->second.empty() ? 0 : physical->second.front();
     for (long long e = 0; e < inBlock; ++e) {
       const long long tag = in.integer("an element tag", 1);
-      std::array<long long, 4> v{};
+      std::array<long long, kMaxElementNodes> v{};
       for (int k = 0; k < perElement; ++k) v[k] = in.integer("a node tag of element " + std::to_string(tag), 1);
-      if (type == 4) content.tets.push_back({v, group, tag});
-      if (type == 2)
-        content.triangles.push_back(
-            {{v[0], v[1], v[2]}, physical == content.entityPhysical.end() ? std::vector<int>{} : physical->second, tag});
+      if (kind.dim == 3) content.volumes.push_back(volumeElement(type, v, group, tag));
+      if (kind.dim == 2) {
+        SurfaceElement face{{}, type == 3 ? 4 : 3, {}, tag};
+        std::copy_n(v.begin(), perElement, face.nodes.begin());
+        if (physical != content.entityPhysical.end()) face.physicals = physical->second;
+        content.surfaces.push_back(std::move(face));
+      }
     }
     seen += inBlock;
   }
   if (seen != total)
     in.fail("the element blocks hold " + std::to_string(seen) + " elements but the section header says " +
             std::to_string(total));
-  if (content.tets.size() > static_cast<size_t>(INT_MAX)) in.fail("more tetrahedra than Tribos can index");
+  if (content.volumes.size() > static_cast<size_t>(INT_MAX)) in.fail("more volume elements than Tribos can index");
   in.leave();
 }
 
@@ -312,7 +361,7 @@ GmshContent readSections(std::string_view text, const std::string& source) {
   }
   if (!sawFormat) in.fail("not a gmsh mesh ($MeshFormat missing)");
   if (!sawNodes || !sawElements) in.fail(std::string("the file has no ") + (sawNodes ? "$Elements" : "$Nodes") + " section");
-  if (content.tets.empty()) in.fail("no tetrahedra (mesh in 3D with a Physical Volume)");
+  if (content.volumes.empty()) in.fail("no volume elements (mesh in 3D with a Physical Volume)");
   return content;
 }
 
@@ -326,7 +375,34 @@ std::string surfaceName(const GmshContent& content, int physical) {
   return it != content.physicalName.end() ? it->second : "surface_" + std::to_string(physical);
 }
 
-using FaceKey = std::array<long long, 3>;  // sorted gmsh node tags of a face
+/// The sorted gmsh node tags of a face's vertices; a triangle's fourth is -1.
+using FaceKey = std::array<long long, 4>;
+
+FaceKey faceKey(const long long* vertices, int numVertices) {
+  FaceKey key{-1, -1, -1, -1};
+  std::copy_n(vertices, numVertices, key.begin());
+  std::sort(key.begin(), key.begin() + numVertices);
+  return key;
+}
+
+/// Reverses the orientation of an element (a mirror of its reference element): for
+/// elements from writers with the other orientation convention.
+void reorient(ElementType type, long long* nodes) {
+  switch (type) {
+    case ElementType::Tet4: std::swap(nodes[2], nodes[3]); return;
+    case ElementType::Tet10:  // vertices 2 <-> 3 take edges (1,2) <-> (1,3) and (2,0) <-> (0,3)
+      std::swap(nodes[2], nodes[3]);
+      std::swap(nodes[5], nodes[8]);
+      std::swap(nodes[6], nodes[7]);
+      return;
+    case ElementType::Hex8:
+      for (int k = 0; k < 4; ++k) std::swap(nodes[k], nodes[k + 4]);
+      return;
+    case ElementType::Wedge6:
+      for (int k = 0; k < 3; ++k) std::swap(nodes[k], nodes[k + 3]);
+      return;
+  }
+}
 
 /// Builds the Mesh: bodies in the order of their physical tags, elements sorted by body (so
 /// blocks are contiguous), nodes numbered in order of first use, one per (node, body) when
@@ -337,9 +413,11 @@ class MeshBuilder {
       : content_(content), source_(source), split_(splitBodies) {}
 
   Mesh build() {
-    std::stable_sort(content_.tets.begin(), content_.tets.end(),
-                     [](const Tet& a, const Tet& b) { return a.physical < b.physical; });
-    for (size_t e = 0; e < content_.tets.size(); ++e) addTet(static_cast<LO>(e));
+    // By body, and within a body by type, so that each type is one Exodus block on output.
+    std::stable_sort(content_.volumes.begin(), content_.volumes.end(), [](const VolumeElement& a, const VolumeElement& b) {
+      return a.physical != b.physical ? a.physical < b.physical : a.type < b.type;
+    });
+    for (size_t e = 0; e < content_.volumes.size(); ++e) addVolume(static_cast<LO>(e));
     addSurfaces();
     mesh_.file = source_;
     mesh_.validate(source_);
@@ -359,32 +437,34 @@ class MeshBuilder {
     return pos->second;
   }
 
-  void addTet(LO e) {
-    Tet& tet = content_.tets[e];
-    const std::string name = volumeName(content_, tet.physical);
-    if (blockOfBody_.count(tet.physical) == 0) {  // tets are sorted by body: a new block
-      blockOfBody_[tet.physical] = mesh_.numBlocks();
-      mesh_.blocks.push_back({name, tet.physical > 0 ? tet.physical : mesh_.numBlocks() + 1, e, 0});
+  void addVolume(LO e) {
+    VolumeElement& volume = content_.volumes[e];
+    const std::string name = volumeName(content_, volume.physical);
+    if (blockOfBody_.count(volume.physical) == 0) {  // elements are sorted by body: a new block
+      blockOfBody_[volume.physical] = mesh_.numBlocks();
+      mesh_.blocks.push_back({name, volume.physical > 0 ? volume.physical : mesh_.numBlocks() + 1, e, 0});
     }
     mesh_.blocks.back().count++;
-    const std::string element = "element " + std::to_string(tet.tag) + " of Physical Volume \"" + name + "\"";
-    std::array<LO, 4> t;
-    for (int v = 0; v < 4; ++v) t[v] = nodeId(tet.nodes[v], tet.physical, element);
-    mesh_.tets.push_back(t);
-    mesh_.elementNumbers.push_back(tet.tag);  // messages from Mesh::validate name gmsh's tags
-    const double volume = mesh_.elementVolume(e), edge = mesh_.longestEdge(e);
-    if (!(std::abs(volume) > kDegenerateVolumeRatio * edge * edge * edge))
-      fail(element + " is degenerate (volume " + core::formatNumber(volume) + " for a longest edge of " +
+    const std::string element = "element " + std::to_string(volume.tag) + " of Physical Volume \"" + name + "\"";
+    const ElementShape& shape = elementShape(volume.type);
+    LO nodes[kMaxElementNodes];
+    for (int v = 0; v < shape.numNodes; ++v) nodes[v] = nodeId(volume.nodes[v], volume.physical, element);
+    mesh_.elements.add(volume.type, nodes);
+    mesh_.elementNumbers.push_back(volume.tag);  // messages from Mesh::validate name gmsh's tags
+    const double size = mesh_.elementVolume(e), edge = mesh_.longestEdge(e);
+    if (!(std::abs(size) > kDegenerateVolumeRatio * edge * edge * edge))
+      fail(element + " is degenerate (volume " + core::formatNumber(size) + " for a longest edge of " +
            core::formatNumber(edge) + ")");
-    if (volume < 0.0) {  // the other orientation convention: reorder
-      std::swap(mesh_.tets.back()[2], mesh_.tets.back()[3]);
-      std::swap(tet.nodes[2], tet.nodes[3]);
+    if (size < 0.0) {  // the other orientation convention: reorder
+      reorient(volume.type, volume.nodes.data());
+      LO* stored = mesh_.elements.mutableNodes(e);
+      for (int v = 0; v < shape.numNodes; ++v) stored[v] = nodeId(volume.nodes[v], volume.physical, element);
     }
-    for (int side = 0; side < 4; ++side) {
-      FaceKey key;
-      for (int k = 0; k < 3; ++k) key[k] = tet.nodes[kTetFaceVertices[side][k]];
-      std::sort(key.begin(), key.end());
-      faces_[key].push_back({e, side});
+    for (int side = 0; side < shape.numFaces; ++side) {
+      const FaceShape& face = shape.faces[side];
+      long long vertices[4];
+      for (int k = 0; k < face.numVertices; ++k) vertices[k] = volume.nodes[face.nodes[k]];
+      faces_[faceKey(vertices, face.numVertices)].push_back({e, side});
     }
   }
 
@@ -394,9 +474,9 @@ class MeshBuilder {
   /// the whole group as well, <group>.
   void addSurfaces() {
     std::map<int, std::map<int, SideSet>> sets;  // surface tag -> body -> set
-    for (const auto& tri : content_.triangles)
-      for (int group : tri.physicals)
-        if (group != 0) addTriangle(tri, group, sets);
+    for (const auto& face : content_.surfaces)
+      for (int group : face.physicals)
+        if (group != 0) addSurfaceElement(face, group, sets);
     int id = 1;
     for (auto& [surface, byBody] : sets) {
       const std::string base = surfaceName(content_, surface);
@@ -411,19 +491,18 @@ class MeshBuilder {
     }
   }
 
-  /// The faces of one triangle of physical group `group`, in the set of each body it bounds.
-  void addTriangle(const Triangle& tri, int group, std::map<int, std::map<int, SideSet>>& sets) {
-    const std::string triangle =
-        "triangle " + std::to_string(tri.tag) + " of Physical Surface \"" + surfaceName(content_, group) + "\"";
-    FaceKey key = tri.nodes;
-    for (long long n : key)
-      if (!content_.nodes.count(n))
-        fail(triangle + " references node " + std::to_string(n) + ", which $Nodes does not define");
-    std::sort(key.begin(), key.end());
-    const auto it = faces_.find(key);
-    if (it == faces_.end()) fail(triangle + " is not a face of any tetrahedron");
+  /// The faces of one surface element of physical group `group`, in the set of each body it
+  /// bounds.
+  void addSurfaceElement(const SurfaceElement& face, int group, std::map<int, std::map<int, SideSet>>& sets) {
+    const std::string text = std::string(face.numVertices == 4 ? "quadrilateral " : "triangle ") +
+                             std::to_string(face.tag) + " of Physical Surface \"" + surfaceName(content_, group) + "\"";
+    for (int k = 0; k < face.numVertices; ++k)
+      if (!content_.nodes.count(face.nodes[k]))
+        fail(text + " references node " + std::to_string(face.nodes[k]) + ", which $Nodes does not define");
+    const auto it = faces_.find(faceKey(face.nodes.data(), face.numVertices));
+    if (it == faces_.end()) fail(text + " is not a face of any volume element");
     for (const auto& [element, side] : it->second) {
-      auto& set = sets[group][content_.tets[element].physical];
+      auto& set = sets[group][content_.volumes[element].physical];
       set.elements.push_back(element);
       set.sides.push_back(side);
     }
@@ -434,7 +513,7 @@ class MeshBuilder {
     set.id = id;
     NodeSet nodes{set.name, id, {}};
     for (size_t f = 0; f < set.elements.size(); ++f)
-      for (int v : kTetFaceVertices[set.sides[f]]) nodes.nodes.push_back(mesh_.tets[set.elements[f]][v]);
+      for (LO n : mesh_.faceNodes(set.elements[f], set.sides[f])) nodes.nodes.push_back(n);
     std::sort(nodes.nodes.begin(), nodes.nodes.end());
     nodes.nodes.erase(std::unique(nodes.nodes.begin(), nodes.nodes.end()), nodes.nodes.end());
     mesh_.sideSets.push_back(std::move(set));

@@ -8,6 +8,7 @@
 #include "tribos/core/Errors.hpp"
 #include "tribos/core/Format.hpp"
 #include "tribos/mesh/MeshFaces.hpp"
+#include "tribos/mesh/ShapeFunctions.hpp"
 
 namespace tribos::mesh {
 
@@ -57,8 +58,22 @@ const SideSet& Mesh::sideSet(const std::string& name) const {
   return findByName(sideSets, name, "side set", file);
 }
 
+namespace {
+/// The coordinates of an element's nodes, as the shape functions take them.
+void elementCoordinates(const Mesh& mesh, LO element, double x[][3]) {
+  const ElementNodes nodes = mesh.elementNodes(element);
+  for (int k = 0; k < nodes.size(); ++k)
+    for (int c = 0; c < 3; ++c) x[k][c] = mesh.coords[nodes[k]][c];
+}
+}  // namespace
+
 double Mesh::elementVolume(LO element) const {
-  const auto& t = tets[element];
+  if (elementType(element) != ElementType::Tet4) {
+    double x[kMaxElementNodes][3];
+    elementCoordinates(*this, element, x);
+    return elementMeasure(elementType(element), x).volume;
+  }
+  const auto t = elementNodes(element);
   const auto& a = coords[t[0]];
   double e[3][3];
   for (int v = 0; v < 3; ++v)
@@ -77,10 +92,11 @@ std::string Mesh::elementLabel(LO element) const {
 }
 
 double Mesh::longestEdge(LO element) const {
-  const auto& t = tets[element];
+  const auto t = elementNodes(element);
+  const int vertices = elementShape(elementType(element)).numVertices;
   double longest = 0.0;
-  for (int a = 0; a < 4; ++a)
-    for (int b = a + 1; b < 4; ++b) {
+  for (int a = 0; a < vertices; ++a)
+    for (int b = a + 1; b < vertices; ++b) {
       double squared = 0.0;
       for (int c = 0; c < 3; ++c) squared += (coords[t[a]][c] - coords[t[b]][c]) * (coords[t[a]][c] - coords[t[b]][c]);
       longest = std::max(longest, squared);
@@ -89,10 +105,18 @@ double Mesh::longestEdge(LO element) const {
 }
 
 std::array<double, 3> Mesh::faceNormal(LO element, int side) const {
-  const auto& t = tets[element];
-  const auto& face = kTetFaceVertices[side];
-  const auto &a = coords[t[face[0]]], &b = coords[t[face[1]]], &c = coords[t[face[2]]];
-  const double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  const FaceNodes face = faceNodes(element, side);
+  const auto& a = coords[face.node[0]];
+  const auto& b = coords[face.node[1]];
+  const auto& c = coords[face.node[2]];
+  double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  if (face.numVertices == 4) {  // the diagonals: (c - a) x (d - b)
+    const auto& d = coords[face.node[3]];
+    for (int k = 0; k < 3; ++k) {
+      e1[k] = c[k] - a[k];
+      e2[k] = d[k] - b[k];
+    }
+  }
   return {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
 }
 
@@ -119,15 +143,24 @@ void requireFiniteCoordinates(const Mesh& mesh, const Fail& fail) {
 
 void requireValidElements(const Mesh& mesh, const Fail& fail) {
   for (LO e = 0; e < mesh.numElements(); ++e) {
-    for (LO n : mesh.tets[e])
+    for (LO n : mesh.elementNodes(e))
       if (n < 0 || n >= mesh.numNodes())
         fail(mesh.elementLabel(e) + " references node " + std::to_string(n + 1) + " out of range 1.." +
              std::to_string(mesh.numNodes()));
     const double volume = mesh.elementVolume(e), edge = mesh.longestEdge(e);
-    if (std::abs(volume) <= kDegenerateVolumeRatio * edge * edge * edge)
+    const double tiny = kDegenerateVolumeRatio * edge * edge * edge;
+    if (std::abs(volume) <= tiny)
       fail(mesh.elementLabel(e) + " is degenerate (volume " + core::formatNumber(volume) + " for a longest edge of " +
            core::formatNumber(edge) + ")");
     if (volume < 0.0) fail(mesh.elementLabel(e) + " is inverted (volume " + core::formatNumber(volume) + ")");
+    if (mesh.elementType(e) == ElementType::Tet4) continue;  // its Jacobian is constant: the volume says it all
+    double x[kMaxElementNodes][3];
+    elementCoordinates(mesh, e, x);
+    const double smallest = elementMeasure(mesh.elementType(e), x).smallestScaledJacobian;
+    if (smallest <= tiny)
+      fail(mesh.elementLabel(e) + " (a " + elementShape(mesh.elementType(e)).description +
+           ") is inverted or distorted at a corner: its Jacobian there is " + core::formatNumber(smallest) +
+           " of the reference element's (nonpositive; volume " + core::formatNumber(volume) + ")");
   }
 }
 
@@ -143,7 +176,8 @@ void requireValidSets(const Mesh& mesh, const Fail& fail) {
   for (const auto& s : mesh.sideSets) {
     if (s.elements.size() != s.sides.size()) fail("side set \"" + s.name + "\" is malformed");
     for (size_t i = 0; i < s.elements.size(); ++i)
-      if (s.elements[i] < 0 || s.elements[i] >= mesh.numElements() || s.sides[i] < 0 || s.sides[i] > 3)
+      if (s.elements[i] < 0 || s.elements[i] >= mesh.numElements() || s.sides[i] < 0 ||
+          s.sides[i] >= mesh.numSides(s.elements[i]))
         fail("side set \"" + s.name + "\" references element " + std::to_string(s.elements[i] + 1) + " side " +
              std::to_string(s.sides[i] + 1) + " out of range");
   }

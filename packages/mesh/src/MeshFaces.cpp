@@ -3,6 +3,7 @@
 #include "tribos/mesh/MeshFaces.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <numeric>
 #include <sstream>
 
@@ -11,8 +12,12 @@
 namespace tribos::mesh {
 
 namespace {
+/// A triangle's key has kNoNode as its fourth entry. Mid-edge nodes are left out: in a
+/// conforming mesh the vertices determine the face.
+constexpr LO kNoNode = std::numeric_limits<LO>::max();
+
 struct FaceRecord {
-  std::array<LO, 3> nodes;  ///< sorted
+  std::array<LO, 4> nodes;  ///< sorted vertices
   LO element;
   int side;
 };
@@ -22,16 +27,17 @@ struct FaceRecord {
 /// this is linear in practice (one std::sort of all faces took 1 s for 312 500 tets).
 std::vector<FaceRecord> sortedFaces(const Mesh& mesh) {
   std::vector<size_t> start(static_cast<size_t>(mesh.numNodes()) + 1, 0);
-  std::vector<FaceRecord> faces(4 * static_cast<size_t>(mesh.numElements()));
+  size_t numFaces = 0;
+  for (LO e = 0; e < mesh.numElements(); ++e) numFaces += mesh.numSides(e);
+  std::vector<FaceRecord> faces(numFaces);
   size_t next = 0;
   for (LO e = 0; e < mesh.numElements(); ++e)
-    for (int side = 0; side < 4; ++side) {
+    for (int side = 0; side < mesh.numSides(e); ++side) {
       FaceRecord& f = faces[next++];
-      f = {{}, e, side};
-      for (int k = 0; k < 3; ++k) f.nodes[k] = mesh.tets[e][kTetFaceVertices[side][k]];
-      if (f.nodes[0] > f.nodes[1]) std::swap(f.nodes[0], f.nodes[1]);
-      if (f.nodes[1] > f.nodes[2]) std::swap(f.nodes[1], f.nodes[2]);
-      if (f.nodes[0] > f.nodes[1]) std::swap(f.nodes[0], f.nodes[1]);
+      f = {{kNoNode, kNoNode, kNoNode, kNoNode}, e, side};
+      const FaceNodes face = mesh.faceNodes(e, side);
+      std::copy_n(face.node, face.numVertices, f.nodes.begin());
+      std::sort(f.nodes.begin(), f.nodes.begin() + face.numVertices);
       start[f.nodes[0] + 1]++;
     }
   std::partial_sum(start.begin(), start.end(), start.begin());
@@ -41,6 +47,7 @@ std::vector<FaceRecord> sortedFaces(const Mesh& mesh) {
   const auto before = [](const FaceRecord& a, const FaceRecord& b) {  // within one bucket: same nodes[0]
     if (a.nodes[1] != b.nodes[1]) return a.nodes[1] < b.nodes[1];
     if (a.nodes[2] != b.nodes[2]) return a.nodes[2] < b.nodes[2];
+    if (a.nodes[3] != b.nodes[3]) return a.nodes[3] < b.nodes[3];
     return a.element < b.element;
   };
   for (size_t n = 0; n + 1 < start.size(); ++n) std::sort(sorted.begin() + start[n], sorted.begin() + start[n + 1], before);
@@ -48,7 +55,7 @@ std::vector<FaceRecord> sortedFaces(const Mesh& mesh) {
 }
 
 bool sameFace(const FaceRecord& a, const FaceRecord& b) {
-  return a.nodes[0] == b.nodes[0] && a.nodes[1] == b.nodes[1] && a.nodes[2] == b.nodes[2];
+  return a.nodes == b.nodes;
 }
 
 /// Calls visit(first, count) for every distinct face: faces[first .. first + count).
@@ -62,8 +69,9 @@ void forEachFace(const std::vector<FaceRecord>& faces, Visit visit) {
 }
 
 std::string faceText(const FaceRecord& f) {
-  return "(nodes " + std::to_string(f.nodes[0] + 1) + ", " + std::to_string(f.nodes[1] + 1) + ", " +
-         std::to_string(f.nodes[2] + 1) + ")";
+  std::string text = "(nodes " + std::to_string(f.nodes[0] + 1);
+  for (int k = 1; k < 4 && f.nodes[k] != kNoNode; ++k) text += ", " + std::to_string(f.nodes[k] + 1);
+  return text + ")";
 }
 
 std::string elementNumber(const Mesh& mesh, LO e) {

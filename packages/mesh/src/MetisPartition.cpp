@@ -70,18 +70,25 @@ std::vector<int> metisPartition(const Mesh& mesh, int numParts) {
       offset += 1;
       continue;
     }
-    // The block's own node numbering (METIS wants 0..nn-1).
+    // The block's own numbering of the element vertices (METIS wants 0..nn-1). Mid-edge
+    // nodes are left out: two quadratic tetrahedra sharing an edge share three nodes, as
+    // face neighbours (ncommon = 3) do.
+    const auto vertices = [&](LO e) {
+      const ElementNodes all = mesh.elementNodes(e);
+      return ElementNodes{all.first, elementShape(mesh.elementType(e)).numVertices};
+    };
     std::vector<LO> nodes;
-    for (LO e = block.first; e < block.first + block.count; ++e) nodes.insert(nodes.end(), mesh.tets[e].begin(), mesh.tets[e].end());
+    for (LO e = block.first; e < block.first + block.count; ++e)
+      nodes.insert(nodes.end(), vertices(e).begin(), vertices(e).end());
     std::sort(nodes.begin(), nodes.end());
     nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
-    std::vector<idx_t> eptr(block.count + 1), eind(4 * static_cast<size_t>(block.count));
+    std::vector<idx_t> eptr(block.count + 1, 0), eind;
+    eind.reserve(4 * static_cast<size_t>(block.count));
     for (LO i = 0; i < block.count; ++i) {
-      eptr[i] = 4 * i;
-      for (int v = 0; v < 4; ++v)
-        eind[4 * i + v] = static_cast<idx_t>(std::lower_bound(nodes.begin(), nodes.end(), mesh.tets[block.first + i][v]) - nodes.begin());
+      for (LO n : vertices(block.first + i))
+        eind.push_back(static_cast<idx_t>(std::lower_bound(nodes.begin(), nodes.end(), n) - nodes.begin()));
+      eptr[i + 1] = static_cast<idx_t>(eind.size());
     }
-    eptr[block.count] = 4 * block.count;
     idx_t ne = block.count, nn = static_cast<idx_t>(nodes.size()), ncommon = 3, nparts = share[b], objval = 0;
     std::vector<idx_t> epart(block.count), npart(nodes.size());
     idx_t options[METIS_NOPTIONS];

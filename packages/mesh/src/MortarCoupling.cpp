@@ -109,7 +109,7 @@ std::vector<MortarRow> dualMortarRows(const Mesh& mesh, const std::string& slave
     std::array<Vec3, 3> x{};
     bool anyPaired = false;
     for (int v = 0; v < 3; ++v) {
-      node[v] = mesh.tets[set.elements[f]][kTetFaceVertices[set.sides[f]][v]];
+      node[v] = mesh.faceNodes(set.elements[f], set.sides[f]).node[v];
       x[v] = mesh.coords[node[v]];
       anyPaired = anyPaired || pairOf[node[v]] >= 0;
     }

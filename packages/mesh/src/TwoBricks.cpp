@@ -80,7 +80,7 @@ void checkTwoBricksSpec(const TwoBricksSpec& spec) {
 /// The tetrahedra of one brick as one element block: five per cube, the split alternating
 /// with the parity of the cube (conforming face diagonals), positively oriented.
 void addBrickElements(Mesh& mesh, const Brick& br, const char* name, int id) {
-  ElementBlock block{name, id, static_cast<LO>(mesh.tets.size()), 0};
+  ElementBlock block{name, id, mesh.numElements(), 0};
   for (int k = 0; k < br.ez; ++k)
     for (int j = 0; j < br.ey; ++j)
       for (int i = 0; i < br.ex; ++i) {
@@ -90,10 +90,10 @@ void addBrickElements(Mesh& mesh, const Brick& br, const char* name, int id) {
         for (const auto& t : split) {
           std::array<LO, 4> tet{corner[t[0]], corner[t[1]], corner[t[2]], corner[t[3]]};
           if (signedVolume(mesh, tet) < 0.0) std::swap(tet[2], tet[3]);
-          mesh.tets.push_back(tet);
+          mesh.elements.add(ElementType::Tet4, tet.data());
         }
       }
-  block.count = static_cast<LO>(mesh.tets.size()) - block.first;
+  block.count = mesh.numElements() - block.first;
   mesh.blocks.push_back(block);
 }
 
@@ -120,12 +120,13 @@ void addBoundaryPart(Mesh& mesh, const Brick (&bricks)[2], const BoundaryPart& p
   const ElementBlock& block = mesh.blocks[part.brick];
   for (LO e = block.first; e < block.first + block.count; ++e)
     for (int side = 0; side < 4; ++side) {
+      const FaceNodes face = mesh.faceNodes(e, side);
       bool all = true;
-      for (int v : kTetFaceVertices[side]) all = all && onPlane(mesh.tets[e][v]);
+      for (LO n : face) all = all && onPlane(n);
       if (!all) continue;
       ss.elements.push_back(e);
       ss.sides.push_back(side);
-      for (int v : kTetFaceVertices[side]) ns.nodes.push_back(mesh.tets[e][v]);
+      ns.nodes.insert(ns.nodes.end(), face.begin(), face.end());
     }
   std::sort(ns.nodes.begin(), ns.nodes.end());
   ns.nodes.erase(std::unique(ns.nodes.begin(), ns.nodes.end()), ns.nodes.end());

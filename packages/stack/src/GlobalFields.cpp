@@ -161,10 +161,10 @@ std::vector<double> tributaryArea(const mesh::Mesh& mesh, const std::string& sid
   std::vector<double> area(mesh.numNodes(), 0.0);
   const auto& set = mesh.sideSet(sideSet);
   for (size_t f = 0; f < set.elements.size(); ++f) {
-    const auto& tet = mesh.tets[set.elements[f]];
     const auto n = mesh.faceNormal(set.elements[f], set.sides[f]);
-    const double third = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) / 6.0;  // |n| = 2 area
-    for (int v : mesh::kTetFaceVertices[set.sides[f]]) area[tet[v]] += third;
+    const auto vertices = mesh.faceNodes(set.elements[f], set.sides[f]).vertices();
+    const double share = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) / (2.0 * vertices.size());  // |n| = 2 area
+    for (LO v : vertices) area[v] += share;
   }
   return area;
 }

@@ -17,11 +17,11 @@ void keepRankData(Scene& scene, feti::ConstraintMatrix& B, int rank, int numRank
   feti::keepRankRows(B, rank, first, end);
   for (int s = 0; s < numSubdomains; ++s) {
     release(subdomains[s].elements);
-    release(subdomains[s].tets);
+    subdomains[s].localElements.release();
     if (s < first || s >= end) release(subdomains[s].nodes);
   }
   if (rank == 0) return;  // rank 0 writes the results on the global mesh
-  release(scene.mesh.tets);
+  scene.mesh.elements.release();
   release(scene.mesh.elementNumbers);
   release(scene.mesh.sideSets);
   release(scene.decomposition.elementPart);

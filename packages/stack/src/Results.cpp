@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "tribos/fem/ElementKernels.hpp"
+#include "tribos/fem/SolidElements.hpp"
 
 namespace tribos::stack {
 
@@ -15,7 +16,7 @@ std::vector<int> nodeBody(const mesh::Mesh& mesh) {
   std::vector<int> body(mesh.numNodes(), -1);
   for (int b = 0; b < mesh.numBlocks(); ++b)
     for (LO e = mesh.blocks[b].first; e < mesh.blocks[b].first + mesh.blocks[b].count; ++e)
-      for (LO n : mesh.tets[e])
+      for (LO n : mesh.elementNodes(e))
         if (body[n] < 0) body[n] = b;
   return body;
 }
@@ -27,7 +28,7 @@ void averageToNodes(const mesh::Mesh& mesh, const std::vector<double>& volume, S
   for (auto& c : r.nodal) c.assign(mesh.numNodes(), 0.0);
   for (int b = 0; b < mesh.numBlocks(); ++b)
     for (LO e = mesh.blocks[b].first; e < mesh.blocks[b].first + mesh.blocks[b].count; ++e)
-      for (LO n : mesh.tets[e]) {
+      for (LO n : mesh.elementNodes(e)) {
         if (body[n] != b) continue;
         weight[n] += volume[e];
         for (int k = 0; k < 6; ++k) r.nodal[k][n] += volume[e] * r.element[k][e];
@@ -51,17 +52,19 @@ StressResults evaluateStresses(const Scene& scene, const std::vector<std::array<
   for (int b = 0; b < mesh.numBlocks(); ++b) {
     const auto& material = scene.materials[b];
     for (LO e = mesh.blocks[b].first; e < mesh.blocks[b].first + mesh.blocks[b].count; ++e) {
-      double x[4][3], u[12], eps[6], sigma[6];
-      for (int v = 0; v < 4; ++v)
+      double x[mesh::kMaxElementNodes][3], u[fem::kMaxElementDofs];
+      const auto nodes = mesh.elementNodes(e);
+      for (int v = 0; v < nodes.size(); ++v)
         for (int c = 0; c < 3; ++c) {
-          x[v][c] = mesh.coords[mesh.tets[e][v]][c];
-          u[3 * v + c] = displacement[mesh.tets[e][v]][c];
+          x[v][c] = mesh.coords[nodes[v]][c];
+          u[3 * v + c] = displacement[nodes[v]][c];
         }
-      volume[e] = fem::tetStress(x, u, material.lambda, material.mu, eps, sigma);
+      const fem::ElementStress stress = fem::solidStress(mesh.elementType(e), x, u, material.lambda, material.mu);
+      volume[e] = stress.volume;
       if (!(volume[e] > 0.0)) continue;  // Mesh::validate rejects these; never read garbage
-      for (int k = 0; k < 6; ++k) r.element[k][e] = sigma[k];
-      r.elementVonMises[e] = fem::vonMisesStress(sigma);
-      r.strainEnergy += volume[e] * fem::strainEnergyDensity(eps, sigma);
+      for (int k = 0; k < 6; ++k) r.element[k][e] = stress.sigma[k];
+      r.elementVonMises[e] = fem::vonMisesStress(stress.sigma);
+      r.strainEnergy += stress.strainEnergy;
     }
   }
   averageToNodes(mesh, volume, r);

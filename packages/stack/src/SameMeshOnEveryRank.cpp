@@ -39,7 +39,9 @@ class Fnv1a {
 std::uint64_t meshChecksum(const mesh::Mesh& mesh) {
   Fnv1a h;
   h.addVector(mesh.coords);
-  h.addVector(mesh.tets);
+  h.addVector(mesh.elements.types());
+  h.addVector(mesh.elements.offsets());
+  h.addVector(mesh.elements.flatNodes());
   h.addVector(mesh.elementNumbers);
   for (const auto& b : mesh.blocks) {
     h.addText(b.name);

@@ -48,8 +48,9 @@ inline mesh::Mesh structuredBox(int nx, int ny, int nz, double h, double jitter 
             ++p[o[s]];
             t[s + 1] = node(p[0], p[1], p[2]);
           }
-          m.tets.push_back(t);
-          if (m.elementVolume(m.numElements() - 1) < 0.0) std::swap(m.tets.back()[2], m.tets.back()[3]);
+          m.elements.add(mesh::ElementType::Tet4, t.data());
+          const LO last = m.numElements() - 1;
+          if (m.elementVolume(last) < 0.0) std::swap(m.elements.mutableNodes(last)[2], m.elements.mutableNodes(last)[3]);
         }
   m.blocks.push_back({"box", 1, 0, m.numElements()});
   const double extent[3] = {nx * h, ny * h, nz * h};
@@ -63,7 +64,7 @@ inline mesh::Mesh structuredBox(int nx, int ny, int nz, double h, double jitter 
       for (LO e = 0; e < m.numElements(); ++e)
         for (int side = 0; side < 4; ++side) {
           bool on = true;
-          for (int v : mesh::kTetFaceVertices[side]) on = on && m.coords[m.tets[e][v]][axis] == plane;
+          for (LO n : m.faceNodes(e, side)) on = on && m.coords[n][axis] == plane;
           if (on) {
             set.elements.push_back(e);
             set.sides.push_back(side);

@@ -68,7 +68,7 @@ TEST(SubdomainSystem, anInputErrorOnAThreadReachesTheCaller) {
   const mesh::TwoBricksSpec spec{{4, 2, 2}, 2};
   const auto mesh = mesh::generateTwoBricks(spec);
   auto d = mesh::buildDecomposition(mesh, mesh::structuredPartition(mesh, spec));
-  std::swap(d.subdomains[21].tets[0][0], d.subdomains[21].tets[0][1]);
+  std::swap(d.subdomains[21].localElements.mutableNodes(0)[0], d.subdomains[21].localElements.mutableNodes(0)[1]);
   core::setNumThreads(2);
   std::vector<fem::SubdomainSystem> systems(d.numSubdomains());
   EXPECT_THROW(core::forEachSubdomain(d.numSubdomains(),

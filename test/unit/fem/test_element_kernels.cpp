@@ -150,7 +150,7 @@ TEST(ElementKernels, constantStrainPatchTestIsExactToRoundOff) {
   std::vector<char> onBoundary(patch.numNodes(), 0);
   for (const auto& set : patch.sideSets)
     for (size_t f = 0; f < set.elements.size(); ++f)
-      for (int v : mesh::kTetFaceVertices[set.sides[f]]) onBoundary[patch.tets[set.elements[f]][v]] = 1;
+      for (LO n : patch.faceNodes(set.elements[f], set.sides[f])) onBoundary[n] = 1;
   std::vector<LO> interiorDof(n, -1), interior;
   for (LO i = 0; i < n; ++i)
     if (!onBoundary[i / 3]) {

@@ -136,7 +136,7 @@ TEST(SubdomainSystem, invertedElementIsAnInputErrorNamingItAndItsBlock) {
   const auto mesh = mesh::generateTwoBricks(spec);
   const auto d = mesh::buildDecomposition(mesh, mesh::structuredPartition(mesh, spec));
   mesh::Subdomain s = d.subdomains.back();  // a steel subdomain (brick 2)
-  std::swap(s.tets[3][1], s.tets[3][2]);
+  std::swap(s.localElements.mutableNodes(3)[1], s.localElements.mutableNodes(3)[2]);
   const std::string id = std::to_string(s.elements[3] + 1);
   try {
     fem::assembleSubdomain(mesh, s, kMaterials, {});

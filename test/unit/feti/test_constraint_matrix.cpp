@@ -84,7 +84,7 @@ std::set<LO> slaveNodes(const mesh::Mesh& mesh) {
   std::set<LO> nodes;
   const auto& set = mesh.sideSet("contact_aluminium");
   for (size_t f = 0; f < set.elements.size(); ++f)
-    for (int v : mesh::kTetFaceVertices[set.sides[f]]) nodes.insert(mesh.tets[set.elements[f]][v]);
+    for (LO n : mesh.faceNodes(set.elements[f], set.sides[f])) nodes.insert(n);
   return nodes;
 }
 
@@ -259,7 +259,7 @@ TEST(ConstraintMatrix, contactFramesAndGaps) {
   const auto& steel = lifted.mesh.blocks[lifted.mesh.blockIndex("steel")];
   std::set<LO> steelNodes;
   for (LO e = steel.first; e < steel.first + steel.count; ++e)
-    for (LO n : lifted.mesh.tets[e]) steelNodes.insert(n);
+    for (LO n : lifted.mesh.elementNodes(e)) steelNodes.insert(n);
   for (LO n : steelNodes) lifted.mesh.coords[n][2] += 0.5;
   lifted.d = mesh::buildDecomposition(lifted.mesh, mesh::structuredPartition(lifted.mesh, {{2, 1, 1}, 2}));
   auto spec = paperSpec();

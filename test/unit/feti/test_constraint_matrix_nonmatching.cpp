@@ -44,7 +44,7 @@ std::vector<int> planePartition(const mesh::Mesh& m, const double split[2]) {
   for (LO e = 0; e < m.numElements(); ++e) {
     const int b = m.blockOf(e);
     double c[3] = {0, 0, 0};
-    for (LO n : m.tets[e])
+    for (LO n : m.elementNodes(e))
       for (int d = 0; d < 3; ++d) c[d] += m.coords[n][d] / 4.0;
     part[e] = split[b] > 0.0 ? 4 * b + (c[0] >= split[b]) + 2 * (c[1] >= split[b]) : b;
   }

@@ -16,7 +16,7 @@ namespace {
 using Face = std::array<LO, 3>;
 Face sortedFace(const mesh::Mesh& m, LO e, int side) {
   Face f;
-  for (int v = 0; v < 3; ++v) f[v] = m.tets[e][mesh::kTetFaceVertices[side][v]];
+  for (int v = 0; v < 3; ++v) f[v] = m.faceNodes(e, side).node[v];
   std::sort(f.begin(), f.end());
   return f;
 }
@@ -101,7 +101,7 @@ TEST(BoxMesh, conformingPositiveAndFaceSets) {
   EXPECT_EQ(sideSetIds.size(), 12u);
   for (LO e = 0; e < b.numElements(); ++e)
     for (int v = 0; v < 4; ++v)
-      EXPECT_EQ(merged.coords[merged.tets[m.numElements() + e][v]], b.coords[b.tets[e][v]]);
+      EXPECT_EQ(merged.coords[merged.elementNodes(m.numElements() + e)[v]], b.coords[b.elementNodes(e)[v]]);
   for (LO v : merged.nodeSet("other_z1").nodes) EXPECT_EQ(merged.coords[v][2], 6.0);
   EXPECT_EQ(merged.nodeSet("other_z1").nodes.size(), 6u);
   EXPECT_EQ(merged.sideSet("other_z1").elements.size(), 4u);

@@ -84,7 +84,7 @@ void expectConsistentPair(const mesh::Mesh& m, const mesh::ContactPair& p) {
   ASSERT_GE(p.masterFace, 0);
   ASSERT_LT(static_cast<size_t>(p.masterFace), master.elements.size());
   for (int v = 0; v < 3; ++v)
-    EXPECT_EQ(p.masterNodes[v], m.tets[master.elements[p.masterFace]][mesh::kTetFaceVertices[master.sides[p.masterFace]][v]]);
+    EXPECT_EQ(p.masterNodes[v], m.faceNodes(master.elements[p.masterFace], master.sides[p.masterFace]).node[v]);
   const auto slaves = mesh::sideSetNodes(m, m.sideSet("lower_z1"));
   EXPECT_TRUE(std::binary_search(slaves.begin(), slaves.end(), p.slaveNode));
   EXPECT_EQ(p.nearestMasterNode(), p.masterNodes[std::max_element(p.weights.begin(), p.weights.end()) - p.weights.begin()]);

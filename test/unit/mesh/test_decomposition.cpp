@@ -31,14 +31,13 @@ TEST(Decomposition, subdomainsPartitionTheElementsAndKeepLocalConnectivity) {
     EXPECT_TRUE(std::adjacent_find(s.nodes.begin(), s.nodes.end()) == s.nodes.end());
     // Every local node is used by some local tet.
     std::vector<int> used(s.nodes.size(), 0);
-    for (const auto& t : s.tets)
-      for (LO v : t) used.at(v) = 1;
+    for (LO v : s.localElements.flatNodes()) used.at(v) = 1;
     EXPECT_EQ(std::accumulate(used.begin(), used.end(), 0), s.numNodes());
-    ASSERT_EQ(s.tets.size(), s.elements.size());
+    ASSERT_EQ(static_cast<size_t>(s.localElements.size()), s.elements.size());
     for (LO e : s.elements) EXPECT_EQ(d.elementPart[e], p);
     for (size_t i = 0; i < s.elements.size(); ++i) {
       seen[s.elements[i]]++;
-      for (int v = 0; v < 4; ++v) EXPECT_EQ(s.nodes[s.tets[i][v]], mesh.tets[s.elements[i]][v]);
+      for (int v = 0; v < 4; ++v) EXPECT_EQ(s.nodes[s.localElements.nodes(i)[v]], mesh.elementNodes(s.elements[i])[v]);
       EXPECT_EQ(mesh.blockOf(s.elements[i]), s.body);
     }
   }

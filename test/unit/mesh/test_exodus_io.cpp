@@ -47,9 +47,10 @@ Mesh cubeMesh() {
   Mesh m;
   // Corners in the usual HEX8 order: bottom face counter-clockwise, then the top face.
   m.coords = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
-  m.tets = {{0, 1, 2, 6}, {0, 2, 3, 6}, {0, 3, 7, 6}, {0, 7, 4, 6}, {0, 4, 5, 6}, {0, 5, 1, 6}};
+  for (const auto& tet : {std::array<LO, 4>{0, 1, 2, 6}, {0, 2, 3, 6}, {0, 3, 7, 6}, {0, 7, 4, 6}, {0, 4, 5, 6}, {0, 5, 1, 6}})
+    m.elements.add(ElementType::Tet4, tet.data());
   for (LO e = 0; e < m.numElements(); ++e)
-    if (m.elementVolume(e) < 0) std::swap(m.tets[e][1], m.tets[e][2]);  // orient positively
+    if (m.elementVolume(e) < 0) std::swap(m.elements.mutableNodes(e)[1], m.elements.mutableNodes(e)[2]);  // orient positively
   m.blocks = {{"lower", 10, 0, 3}, {"upper", 20, 3, 3}};
   NodeSet bottom{"bottom", 3, {}};
   for (LO n = 0; n < m.numNodes(); ++n)
@@ -59,7 +60,7 @@ Mesh cubeMesh() {
   for (LO e = 0; e < m.numElements(); ++e)
     for (int s = 0; s < 4; ++s) {
       bool onTop = true;
-      for (int v : kTetFaceVertices[s]) onTop = onTop && m.coords[m.tets[e][v]][2] == 1.0;
+      for (LO n : m.faceNodes(e, s)) onTop = onTop && m.coords[n][2] == 1.0;
       if (onTop) {
         top.elements.push_back(e);
         top.sides.push_back(s);
@@ -95,7 +96,7 @@ void expectSameMesh(const Mesh& back, const Mesh& mesh) {
   ASSERT_EQ(back.coords.size(), mesh.coords.size());
   EXPECT_EQ(std::memcmp(back.coords.data(), mesh.coords.data(), mesh.coords.size() * sizeof(mesh.coords[0])), 0)
       << "coordinates differ bitwise";
-  EXPECT_EQ(back.tets, mesh.tets);
+  EXPECT_TRUE(back.elements == mesh.elements);
   ASSERT_EQ(back.blocks.size(), mesh.blocks.size());
   for (size_t b = 0; b < mesh.blocks.size(); ++b) {
     EXPECT_EQ(back.blocks[b].name, mesh.blocks[b].name);
@@ -262,7 +263,7 @@ TEST(ExodusIO, idsFromZeroAndUnnamedEntitiesRead) {
   EXPECT_EQ(back.mesh.blocks[0].name, "block_0");
   EXPECT_EQ(back.mesh.blocks[0].id, 0);
   EXPECT_EQ(back.mesh.blocks[1].name, "block_1");
-  EXPECT_EQ(back.mesh.tets, mesh.tets);
+  EXPECT_TRUE(back.mesh.elements == mesh.elements);
   ASSERT_EQ(back.mesh.nodeSets.size(), 1u);
   EXPECT_EQ(back.mesh.nodeSets[0].name, "nodeset_0");
   EXPECT_EQ(back.mesh.nodeSets[0].nodes, mesh.nodeSets[0].nodes);
@@ -303,7 +304,7 @@ TEST(ExodusIO, readsForeignFileWithDefaults) {
       ASSERT_EQ(ex_put_block(id, EX_ELEM_BLOCK, b.id, b.id == 10 ? "tetra" : "TET4", b.count, 4, 0, 0, 0), 0);
       std::vector<int64_t> conn;
       for (LO e = b.first; e < b.first + b.count; ++e)
-        for (LO n : cube.tets[e]) conn.push_back(n + 1);
+        for (LO n : cube.elementNodes(e)) conn.push_back(n + 1);
       ASSERT_EQ(ex_put_conn(id, EX_ELEM_BLOCK, b.id, conn.data(), nullptr, nullptr), 0);
     }
     const std::vector<int64_t> nodes = {4, 1, 3, 1, 2, 4};  // 1-based, unsorted, repeated
@@ -332,7 +333,7 @@ TEST(ExodusIO, readsForeignFileWithDefaults) {
   ASSERT_EQ(data.mesh.blocks.size(), 2u);
   EXPECT_EQ(data.mesh.blocks[0].name, "block_10");
   EXPECT_EQ(data.mesh.blocks[1].name, "block_20");
-  EXPECT_EQ(data.mesh.tets, cube.tets);
+  EXPECT_TRUE(data.mesh.elements == cube.elements);
   ASSERT_EQ(data.mesh.nodeSets.size(), 1u);
   EXPECT_EQ(data.mesh.nodeSets[0].name, "nodeset_3");
   EXPECT_EQ(data.mesh.nodeSets[0].nodes, (std::vector<LO>{0, 1, 2, 3}));
@@ -356,21 +357,24 @@ TEST(ExodusIO, badFilesAreInputErrorsNamingTheFile) {
   std::ofstream(text) << "this is not an Exodus file\n";
   expectInputError(text, "not an Exodus");
 
-  const std::string hex = dir.file("hex.exo");
-  writeRawSingleBlock(hex, "HEX8", 8);
-  expectInputError(hex, "HEX8");
+  // Element types Tribos does not take: the message names the block, and says what to
+  // convert a 20-node hexahedron to.
+  const std::string hex = dir.file("hex20.exo");
+  writeRawSingleBlock(hex, "HEX20", 20);
+  expectInputError(hex, "HEX20");
   expectInputError(hex, "block_42");
+  expectInputError(hex, "Mesh.ElementOrder = 1");
 
-  const std::string quadratic = dir.file("tetra10.exo");
-  writeRawSingleBlock(quadratic, "TETRA10", 10);
-  expectInputError(quadratic, "TETRA10");
+  const std::string pyramid = dir.file("pyramid.exo");
+  writeRawSingleBlock(pyramid, "PYRAMID5", 5);
+  expectInputError(pyramid, "PYRAMID5");
 
   const std::string flat = dir.file("flat.exo");
   writeRawSingleBlock(flat, "TRI3", 3, 2);
   expectInputError(flat, "2D");
 
   Mesh inverted = cubeMesh();
-  std::swap(inverted.tets[4][1], inverted.tets[4][2]);
+  std::swap(inverted.elements.mutableNodes(4)[1], inverted.elements.mutableNodes(4)[2]);
   const std::string invertedPath = dir.file("inverted.exo");
   writeExodus(invertedPath, inverted);
   expectInputError(invertedPath, "element 5 of block \"upper\" is inverted");
@@ -389,7 +393,7 @@ TEST(ExodusIO, badFilesAreInputErrorsNamingTheFile) {
   expectInputError(badSidePath, "side 5 out of range");
 
   Mesh badConn = cubeMesh();
-  badConn.tets[0][3] = 8;
+  badConn.elements.mutableNodes(0)[3] = 8;
   const std::string badConnPath = dir.file("bad_conn.exo");
   writeExodus(badConnPath, badConn);
   expectInputError(badConnPath, "references node 9 out of range");
@@ -445,8 +449,8 @@ TEST(ExodusIO, corruptCountsBadGeometryAndEmptyEntitiesAreInputErrors) {
   Mesh two = cubeMesh();
   const LO offset = two.numNodes();
   for (LO n = 0; n < offset; ++n) two.coords.push_back({two.coords[n][0] + 3.0, two.coords[n][1], two.coords[n][2]});
-  for (LO e = 0; e < 6; ++e) two.tets.push_back({two.tets[e][0] + offset, two.tets[e][1] + offset,
-                                                 two.tets[e][2] + offset, two.tets[e][3] + offset});
+  for (LO e = 0; e < 6; ++e) two.elements.add(ElementType::Tet4, {two.elementNodes(e)[0] + offset, two.elementNodes(e)[1] + offset,
+                                                 two.elementNodes(e)[2] + offset, two.elementNodes(e)[3] + offset});
   two.blocks = {{"pair", 1, 0, 12}};
   two.sideSets.clear();
   expectInputError(written("two_pieces.exo", two), "element block \"pair\" is 2 separate pieces");

@@ -37,7 +37,7 @@ TwoBricksSpec specFor(int subdomains, int hOverH) {
 using Face = std::array<LO, 3>;
 Face faceOf(const Mesh& m, LO e, int side) {
   Face f;
-  for (int v = 0; v < 3; ++v) f[v] = m.tets[e][kTetFaceVertices[side][v]];
+  for (int v = 0; v < 3; ++v) f[v] = m.faceNodes(e, side).node[v];
   std::sort(f.begin(), f.end());
   return f;
 }
@@ -99,7 +99,7 @@ TEST(TwoBricks, meshIsConformingAndPositivelyOriented) {
     // The bricks have separate nodes (brick 1's first): no tet of one uses a node of the other.
     const LO nodesPerBrick = (ex + 1) * (ey + 1) * (ez + 1);
     for (LO e = 0; e < mesh.numElements(); ++e)
-      for (LO n : mesh.tets[e]) EXPECT_EQ(n / nodesPerBrick, mesh.blockOf(e));
+      for (LO n : mesh.elementNodes(e)) EXPECT_EQ(n / nodesPerBrick, mesh.blockOf(e));
     std::map<Face, int> count;
     for (LO e = 0; e < mesh.numElements(); ++e) {
       EXPECT_GT(mesh.elementVolume(e), 0.0);
@@ -146,9 +146,8 @@ TEST(TwoBricks, sideSetsLieOnTheirPlanesWithOutwardNormals) {
     const auto& set = mesh.sideSet(x.name);
     ASSERT_FALSE(set.elements.empty());
     for (size_t f = 0; f < set.elements.size(); ++f) {
-      const auto& t = mesh.tets[set.elements[f]];
-      const auto& face = kTetFaceVertices[set.sides[f]];
-      const auto &a = mesh.coords[t[face[0]]], &b = mesh.coords[t[face[1]]], &c = mesh.coords[t[face[2]]];
+      const auto face = mesh.faceNodes(set.elements[f], set.sides[f]);
+      const auto &a = mesh.coords[face.node[0]], &b = mesh.coords[face.node[1]], &c = mesh.coords[face.node[2]];
       for (const auto* p : {&a, &b, &c}) EXPECT_DOUBLE_EQ((*p)[x.axis], x.value);
       const double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
       const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
@@ -160,7 +159,7 @@ TEST(TwoBricks, sideSetsLieOnTheirPlanesWithOutwardNormals) {
     std::vector<LO> nodes;
     for (size_t f = 0; f < set.elements.size(); ++f) {
       EXPECT_EQ(mesh.blockOf(set.elements[f]), brick);
-      for (int v : kTetFaceVertices[set.sides[f]]) nodes.push_back(mesh.tets[set.elements[f]][v]);
+      for (LO n : mesh.faceNodes(set.elements[f], set.sides[f])) nodes.push_back(n);
     }
     std::sort(nodes.begin(), nodes.end());
     nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
@@ -177,7 +176,7 @@ TEST(TwoBricks, globalMeshDoesNotDependOnTheDecomposition) {
     const Mesh a = generateTwoBricks(specA);
     const Mesh b = generateTwoBricks(specB);
     EXPECT_EQ(a.coords, b.coords);
-    EXPECT_EQ(a.tets, b.tets);
+    EXPECT_TRUE(a.elements == b.elements);
     ASSERT_EQ(a.sideSets.size(), b.sideSets.size());
     for (size_t i = 0; i < a.sideSets.size(); ++i) {
       EXPECT_EQ(a.sideSets[i].elements, b.sideSets[i].elements);

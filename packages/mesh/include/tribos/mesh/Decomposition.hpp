@@ -13,7 +13,7 @@ struct Subdomain {
   int body = 0;                          ///< index of the element block it lies in
   std::vector<LO> elements;              ///< global element ids, ascending
   std::vector<LO> nodes;                 ///< global node ids, ascending: local node i <-> nodes[i]
-  std::vector<std::array<LO, 4>> tets;   ///< connectivity in local node numbering
+  Connectivity localElements;            ///< the elements in local node numbering
   LO numNodes() const { return static_cast<LO>(nodes.size()); }
   LO numDofs() const { return 3 * numNodes(); }
 };

@@ -1,24 +1,21 @@
 #pragma once
 /// \file Mesh.hpp
-/// The global (user's) mesh: nodes, linear tetrahedra grouped in element blocks (one block
-/// = one body), named node sets and side sets. Plain C++ storage, no Trilinos: every layer
+/// The global (user's) mesh: nodes, elements (ElementTypes.hpp: tetrahedra, hexahedra,
+/// prisms) grouped in element blocks (one block = one body), named node sets and side sets. Plain C++ storage, no Trilinos: every layer
 /// can include it cheaply.
 #include <array>
 #include <string>
 #include <vector>
 
 #include "tribos/core/Types.hpp"
+#include "tribos/mesh/ElementTypes.hpp"
 
 namespace tribos::mesh {
 
-/// Local vertices of tetrahedron face `side` (0-based; Exodus side = side + 1):
-/// 1:(1,2,4) 2:(2,3,4) 3:(1,4,3) 4:(1,3,2). For a positively oriented tet (det > 0) each
-/// face ordered this way has its right-hand normal pointing out of the element.
-inline constexpr int kTetFaceVertices[4][3] = {{0, 1, 3}, {1, 2, 3}, {0, 3, 2}, {0, 2, 1}};
-
-/// A tetrahedron whose volume is at most this fraction of the cube of its longest edge is
-/// degenerate (flat: its nodes are coplanar up to round-off, which is about 1e-16 of that
-/// cube): its stiffness would be singular. Slivers of real meshes stay above 1e-6.
+/// An element whose volume (or whose Jacobian at a corner or quadrature point, scaled to
+/// the reference element's volume) is at most this fraction of the cube of its longest edge
+/// is degenerate (flat: its nodes are coplanar up to round-off, which is about 1e-16 of
+/// that cube): its stiffness would be singular. Slivers of real meshes stay above 1e-6.
 inline constexpr double kDegenerateVolumeRatio = 1e-12;
 
 /// Element block = body. Elements of a block are contiguous: [first, first + count).
@@ -35,7 +32,7 @@ struct NodeSet {
   std::vector<LO> nodes;     ///< 0-based global node ids, ascending, unique
 };
 
-/// Faces given as (element, side) pairs, side 0..3 as in kTetFaceVertices.
+/// Faces given as (element, side) pairs, side 0-based as in ElementShape::faces.
 struct SideSet {
   std::string name;
   int id = 0;
@@ -45,8 +42,8 @@ struct SideSet {
 
 struct Mesh {
   std::vector<std::array<double, 3>> coords;  ///< node coordinates
-  std::vector<std::array<LO, 4>> tets;        ///< 0-based node ids, positively oriented
-  std::vector<ElementBlock> blocks;           ///< cover [0, tets.size()) in order
+  Connectivity elements;                      ///< 0-based node ids, positively oriented
+  std::vector<ElementBlock> blocks;           ///< cover [0, numElements()) in order
   std::vector<NodeSet> nodeSets;
   std::vector<SideSet> sideSets;
   std::string file;  ///< the file it was read from, named in messages; empty when generated
@@ -55,7 +52,12 @@ struct Mesh {
   std::vector<long long> elementNumbers;
 
   LO numNodes() const { return static_cast<LO>(coords.size()); }
-  LO numElements() const { return static_cast<LO>(tets.size()); }
+  LO numElements() const { return elements.size(); }
+  ElementType elementType(LO element) const { return elements.type(element); }
+  ElementNodes elementNodes(LO element) const { return elements.nodes(element); }
+  /// Face `side` of `element` (ElementShape::faces order).
+  FaceNodes faceNodes(LO element, int side) const { return mesh::faceNodes(elements, element, side); }
+  int numSides(LO element) const { return elementShape(elements.type(element)).numFaces; }
   int numBlocks() const { return static_cast<int>(blocks.size()); }
   /// Index into `blocks` of the block that holds `element`.
   int blockOf(LO element) const;
@@ -69,10 +71,11 @@ struct Mesh {
   std::string elementLabel(LO element) const;
   /// Signed volume of an element (positive for a valid element).
   double elementVolume(LO element) const;
-  /// Length of the longest edge of an element.
+  /// Length of the longest edge of an element (between any two of its vertices).
   double longestEdge(LO element) const;
-  /// Outward normal of face `side` of `element`, of length twice the face's area (the cross
-  /// product of its edges in kTetFaceVertices order).
+  /// Outward normal of face `side` of `element`, of length twice the face's area: the cross
+  /// product of a triangle's edges from its first vertex, of a quadrilateral's diagonals (its
+  /// mean normal; twice its area when flat). Mid-edge nodes are not used.
   std::array<double, 3> faceNormal(LO element, int side) const;
   /// Checks the invariants above (ids in range, finite coordinates, blocks contiguous and
   /// not empty, sets sorted, positive and not degenerate volumes) and what a solve needs of

@@ -16,7 +16,8 @@ namespace tribos::stack {
 inline constexpr const char* kStressComponents[6] = {"xx", "yy", "zz", "xy", "yz", "xz"};
 
 struct StressResults {
-  /// Cauchy stress per element (P1: constant in the element), components kStressComponents.
+  /// Cauchy stress per element (constant in a linear tetrahedron; otherwise its mean over the
+  /// element, weighted by det J at the quadrature points), components kStressComponents.
   std::array<std::vector<double>, 6> element;
   std::vector<double> elementVonMises;
   /// Per node: the volume-weighted mean of the stress of the elements around it that belong

@@ -1,0 +1,47 @@
+#pragma once
+/// \file ShapeFunctions.hpp
+/// Isoparametric shape functions and quadrature of the element types (ElementTypes.hpp) and of
+/// their faces: what the element kernels, the element checks and the face loads share.
+/// Reference elements: tetrahedra on the unit simplex (r, s, t >= 0, r + s + t <= 1),
+/// hexahedra on [-1, 1]^3, prisms on the unit triangle (r, s) times t in [-1, 1].
+#include <vector>
+
+#include "tribos/mesh/ElementTypes.hpp"
+
+namespace tribos::mesh {
+
+struct QuadraturePoint {
+  double xi[3];
+  double weight;
+};
+
+/// The rule an element's stiffness is integrated with: exact for undistorted elements
+/// (1 point for the linear tetrahedron, 4 for the quadratic, 2x2x2 Gauss for the hexahedron,
+/// 3 x 2 for the prism).
+const std::vector<QuadraturePoint>& volumeRule(ElementType type);
+
+/// N[k] and dN[k][d] = dN_k/dxi_d at the reference point xi (k < numNodes of the type).
+void shapeFunctions(ElementType type, const double xi[3], double N[], double dN[][3]);
+
+/// The Jacobian J[d][i] = dx_d/dxi_i at xi of the element with nodes x, and its
+/// determinant; dN as shapeFunctions gives it.
+double jacobian(ElementType type, const double (*x)[3], const double dN[][3], double J[3][3]);
+
+/// Volume (the sum of det J over volumeRule) and the smallest det J at the quadrature points
+/// and at the vertices, times the reference volume: a negative one marks an inverted corner.
+struct ElementMeasure {
+  double volume;
+  double smallestScaledJacobian;
+};
+ElementMeasure elementMeasure(ElementType type, const double (*x)[3]);
+
+/// Face shapes: a 3-node or 6-node triangle on the unit triangle, a 4-node quadrilateral on
+/// [-1, 1]^2 (nodes at (-1,-1), (1,-1), (1,1), (-1,1)).
+enum class FaceType { Tri3, Tri6, Quad4 };
+FaceType faceType(int numVertices, int numNodes);
+/// A rule exact for the consistent load of a constant traction on a flat face (degree 2).
+const std::vector<QuadraturePoint>& faceRule(FaceType type);
+/// N[k] and dN[k][0..1] at the reference point xi (xi[2] unused).
+void faceShapeFunctions(FaceType type, const double xi[3], double N[], double dN[][3]);
+
+}  // namespace tribos::mesh
