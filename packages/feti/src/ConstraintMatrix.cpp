@@ -351,13 +351,32 @@ void refuseSelfContact(const mesh::Mesh& mesh, const ContactInterfaceSpec& spec)
                              "surfaces of an interface must lie on different bodies");
 }
 
+/// The contact rows (search, dual mortar, node-to-surface) are built on 3-node triangles.
+/// Quadrilaterals (of hexahedra and prisms) and 6-node triangles (of 10-node tetrahedra) are
+/// refused with the face named, not coupled on part of the face.
+void refuseFacesContactCannotUse(const mesh::Mesh& mesh, const ContactInterfaceSpec& spec) {
+  for (const std::string& name : {spec.slaveSideSet, spec.masterSideSet}) {
+    const auto& set = mesh.sideSet(name);
+    for (size_t f = 0; f < set.elements.size(); ++f) {
+      const mesh::FaceNodes face = mesh.faceNodes(set.elements[f], set.sides[f]);
+      if (face.numNodes == 3) continue;
+      throw core::InputError(spec.label() + ": side set \"" + name + "\" has a " +
+                             (face.numVertices == 4 ? "4-node quadrilateral" : "6-node triangle") + " face (side " +
+                             std::to_string(set.sides[f] + 1) + " of " + mesh.elementLabel(set.elements[f]) + ", a " +
+                             mesh::elementShape(mesh.elementType(set.elements[f])).description +
+                             "); contact and bonded surfaces must be faces of 4-node tetrahedra (or the triangles of "
+                             "6-node prisms) in this version: mesh this body with 4-node tetrahedra");
+    }
+  }
+}
+
 /// Whether a face of side set `faces` has all its nodes in `nodes` (ascending).
 bool aFaceWithin(const mesh::Mesh& mesh, const std::string& faces, const std::vector<LO>& nodes) {
   const auto& set = mesh.sideSet(faces);
   for (size_t f = 0; f < set.elements.size(); ++f) {
     bool within = true;
-    for (int v : mesh::kTetFaceVertices[set.sides[f]])
-      within = within && std::binary_search(nodes.begin(), nodes.end(), mesh.tets[set.elements[f]][v]);
+    for (LO n : mesh.faceNodes(set.elements[f], set.sides[f]))
+      within = within && std::binary_search(nodes.begin(), nodes.end(), n);
     if (within) return true;
   }
   return false;
@@ -374,6 +393,7 @@ void refuseContactsModelledTwice(const mesh::Mesh& mesh, const std::vector<Conta
     core::requireInput(!spec.slaveSideSet.empty() && !spec.masterSideSet.empty(),
                        spec.label() + ": give both the slave and the master side set");
     refuseSelfContact(mesh, spec);
+    refuseFacesContactCannotUse(mesh, spec);
     slave.push_back(mesh::sideSetNodes(mesh, mesh.sideSet(spec.slaveSideSet)));
     master.push_back(mesh::sideSetNodes(mesh, mesh.sideSet(spec.masterSideSet)));
   }

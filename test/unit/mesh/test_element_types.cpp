@@ -1,0 +1,211 @@
+// Element types beyond the linear tetrahedron in the mesh layer (issue 32): gmsh's 8-node
+// hexahedra, 10-node tetrahedra (its mid-edge order mapped to Exodus'), 6-node prisms and
+// their quadrilateral and 6-node triangular surface elements; bodies of mixed types; the
+// Exodus round trip of such bodies (one Exodus block per type, joined back by name); and
+// the check that refuses a hexahedron inverted at one corner; contact on their faces refused.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+#include <string>
+
+#include "BoxMesh.hpp"
+#include "TypedBoxMesh.hpp"
+#include "tribos/core/Errors.hpp"
+#include "tribos/feti/ConstraintMatrix.hpp"
+#include "tribos/mesh/BoundaryFaces.hpp"
+#include "tribos/mesh/Decomposition.hpp"
+#include "tribos/mesh/ExodusIO.hpp"
+#include "tribos/mesh/GmshReader.hpp"
+
+using namespace tribos;
+using namespace tribos::mesh;
+
+namespace {
+struct GmshElement {
+  int type;
+  std::vector<long long> nodes;
+};
+
+/// A gmsh 4.1 file: nodes 1..n, the volume elements in Physical Volume "body" (tag 2), the
+/// surface elements in Physical Surface "face" (tag 1); one entity per dimension.
+std::string gmshText(const std::vector<std::array<double, 3>>& nodes, const std::vector<GmshElement>& volumes,
+                     const std::vector<GmshElement>& surfaces) {
+  std::ostringstream out;
+  out << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n2\n2 1 \"face\"\n3 2 \"body\"\n$EndPhysicalNames\n"
+      << "$Entities\n0 0 1 1\n1 0 0 0 1 1 1 1 1 0\n1 0 0 0 1 1 1 1 2 0\n$EndEntities\n";
+  const size_t n = nodes.size();
+  out << "$Nodes\n1 " << n << " 1 " << n << "\n3 1 0 " << n << "\n";
+  for (size_t i = 0; i < n; ++i) out << i + 1 << "\n";
+  for (const auto& x : nodes) out << x[0] << " " << x[1] << " " << x[2] << "\n";
+  out << "$EndNodes\n$Elements\n";
+  std::vector<std::pair<int, std::vector<const GmshElement*>>> blocks;  // (dim, elements) per type, in order
+  size_t total = 0, tag = 0;
+  auto group = [&](int dim, const std::vector<GmshElement>& all) {
+    for (const auto& e : all) {
+      if (blocks.empty() || blocks.back().second.front()->type != e.type || blocks.back().first != dim)
+        blocks.push_back({dim, {}});
+      blocks.back().second.push_back(&e);
+      ++total;
+    }
+  };
+  group(2, surfaces);
+  group(3, volumes);
+  out << blocks.size() << " " << total << " 1 " << total << "\n";
+  for (const auto& [dim, elements] : blocks) {
+    out << dim << " 1 " << elements.front()->type << " " << elements.size() << "\n";
+    for (const GmshElement* e : elements) {
+      out << ++tag;
+      for (long long v : e->nodes) out << " " << v;
+      out << "\n";
+    }
+  }
+  out << "$EndElements\n";
+  return out.str();
+}
+
+const std::vector<std::array<double, 3>> kCube = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                                                  {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+
+std::string tempFile(const std::string& name) {
+  return (std::filesystem::temp_directory_path() / ("tribos_types_" + std::to_string(::getpid()) + "_" + name)).string();
+}
+}  // namespace
+
+TEST(ElementTypes, gmshHexahedraWithQuadrilateralFacesInEitherOrientation) {
+  for (bool mirrored : {false, true}) {
+    SCOPED_TRACE(mirrored ? "top and bottom swapped" : "gmsh's orientation");
+    std::vector<long long> hex = {1, 2, 3, 4, 5, 6, 7, 8};
+    if (mirrored) hex = {5, 6, 7, 8, 1, 2, 3, 4};
+    const Mesh m = parseGmsh(gmshText(kCube, {{5, hex}}, {{3, {1, 4, 3, 2}}}), "hex.msh", false);
+    ASSERT_EQ(m.numElements(), 1);
+    EXPECT_EQ(m.elementType(0), ElementType::Hex8);
+    EXPECT_NEAR(m.elementVolume(0), 1.0, 1e-15);
+    const SideSet& face = m.sideSet("face");
+    ASSERT_EQ(face.elements.size(), 1u);
+    const auto normal = m.faceNormal(face.elements[0], face.sides[0]);
+    EXPECT_NEAR(normal[2], -2.0, 1e-15);  // outward (down), twice the area
+    EXPECT_EQ(m.nodeSet("face").nodes.size(), 4u);
+  }
+}
+
+TEST(ElementTypes, gmshQuadraticTetrahedraAreRenumberedToExodusOrder) {
+  // Vertices, then gmsh's mid-edge nodes (0,1) (1,2) (2,0) (0,3) (2,3) (1,3).
+  std::vector<std::array<double, 3>> nodes = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  const int gmshEdges[6][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {2, 3}, {1, 3}};
+  for (const auto& e : gmshEdges) {
+    std::array<double, 3> x;
+    for (int c = 0; c < 3; ++c) x[c] = (nodes[e[0]][c] + nodes[e[1]][c]) / 2;
+    nodes.push_back(x);
+  }
+  // The 6-node triangle of the face (0, 2, 1) at z = 0: vertices, then mid-edges (0,2) (2,1) (1,0).
+  const Mesh m = parseGmsh(gmshText(nodes, {{11, {1, 2, 3, 4, 5, 6, 7, 8, 9, 10}}}, {{9, {1, 3, 2, 7, 6, 5}}}),
+                           "tet10.msh", false);
+  ASSERT_EQ(m.elementType(0), ElementType::Tet10);
+  EXPECT_NEAR(m.elementVolume(0), 1.0 / 6, 1e-15);
+  // Exodus mid-edge k + 4 lies halfway along its edge (0,1) (1,2) (2,0) (0,3) (1,3) (2,3).
+  const int exodusEdges[6][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
+  const auto element = m.elementNodes(0);
+  for (int k = 0; k < 6; ++k)
+    for (int c = 0; c < 3; ++c)
+      EXPECT_EQ(m.coords[element[4 + k]][c],
+                (m.coords[element[exodusEdges[k][0]]][c] + m.coords[element[exodusEdges[k][1]]][c]) / 2);
+  const SideSet& face = m.sideSet("face");
+  ASSERT_EQ(face.elements.size(), 1u);
+  const FaceNodes f = m.faceNodes(face.elements[0], face.sides[0]);
+  EXPECT_EQ(f.numNodes, 6);
+  EXPECT_EQ(m.nodeSet("face").nodes.size(), 6u);  // the mid-edge nodes belong to the surface
+  for (LO n : f) EXPECT_EQ(m.coords[n][2], 0.0);
+}
+
+TEST(ElementTypes, aBodyOfHexahedraAndPrismsIsOneBlockWithEachTypeTogether) {
+  // A hexahedron and, beside it (x in [1, 2]), the two prisms of a cube split along a diagonal.
+  std::vector<std::array<double, 3>> nodes = kCube;
+  for (const auto& x : std::vector<std::array<double, 3>>{{2, 0, 0}, {2, 1, 0}, {2, 0, 1}, {2, 1, 1}}) nodes.push_back(x);
+  // nodes 9 (2,0,0) 10 (2,1,0) 11 (2,0,1) 12 (2,1,1); the cube x in [1,2] has 2 3 10 9 / 6 7 12 11.
+  const std::vector<GmshElement> volumes = {
+      {6, {2, 9, 10, 6, 11, 12}}, {5, {1, 2, 3, 4, 5, 6, 7, 8}}, {6, {2, 10, 3, 6, 12, 7}}};
+  const Mesh m = parseGmsh(gmshText(nodes, volumes, {}), "mixed.msh", false);
+  ASSERT_EQ(m.numBlocks(), 1);
+  ASSERT_EQ(m.numElements(), 3);
+  EXPECT_EQ(m.elementType(0), ElementType::Hex8);  // sorted by type within the body
+  EXPECT_EQ(m.elementType(1), ElementType::Wedge6);
+  EXPECT_EQ(m.elementType(2), ElementType::Wedge6);
+  double volume = 0.0;
+  for (LO e = 0; e < 3; ++e) volume += m.elementVolume(e);
+  EXPECT_NEAR(volume, 2.0, 1e-15);
+}
+
+TEST(ElementTypes, exodusRoundTripOfMixedAndQuadraticBodies) {
+  for (auto kind : {test::BoxElements::HexAndWedge, test::BoxElements::Tet10, test::BoxElements::Wedge6}) {
+    Mesh m = test::typedBox(kind, 2, 0.5, 0.1);
+    m.blocks[0].name = "cube";
+    const std::string path = tempFile("round.exo");
+    TimeStep step;
+    step.time = 1.0;
+    Field id{"element_id", {}};
+    for (LO e = 0; e < m.numElements(); ++e) id.values.push_back(e);
+    step.element.push_back(id);
+    writeExodus(path, m, {step});
+    const ExodusData back = readExodus(path);
+    std::filesystem::remove(path);
+    ASSERT_EQ(back.mesh.numBlocks(), 1);  // the Exodus blocks of one name are one body again
+    EXPECT_EQ(back.mesh.blocks[0].name, "cube");
+    EXPECT_TRUE(back.mesh.elements == m.elements);
+    EXPECT_EQ(back.mesh.coords, m.coords);
+    ASSERT_EQ(back.steps.size(), 1u);
+    EXPECT_EQ(back.steps[0].element[0].values, id.values);
+  }
+}
+
+TEST(ElementTypes, aHexahedronInvertedAtOneCornerIsRefused) {
+  Mesh m;
+  m.coords = kCube;
+  m.coords[6] = {0.3, 0.3, 0.3};  // the corner (1,1,1) pushed through the element: folded there
+  m.elements.add(ElementType::Hex8, {0, 1, 2, 3, 4, 5, 6, 7});
+  m.blocks.push_back({"body", 1, 0, 1});
+  ASSERT_GT(m.elementVolume(0), 0.0);  // positive in total: only the corner check sees it
+  try {
+    m.validate("folded.exo");
+    FAIL() << "no error";
+  } catch (const core::InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("8-node hexahedron"), std::string::npos) << what;
+    EXPECT_NE(what.find("inverted or distorted at a corner"), std::string::npos) << what;
+  }
+}
+
+// Contact rows are built on 3-node triangles only: an interface on hexahedral faces is an
+// input error naming the face and the element type, not rows computed on part of each face.
+TEST(ElementTypes, contactOnQuadrilateralFacesIsRefusedNamingTheFace) {
+  Mesh lower = test::typedBox(test::BoxElements::Hex8, 2, 0.5);
+  Mesh upper = test::typedBox(test::BoxElements::Hex8, 2, 0.5);
+  for (auto& x : upper.coords) x[2] += 1.0;
+  lower.blocks[0].name = "lower";
+  upper.blocks[0].name = "upper";
+  Mesh m = test::mergeMeshes(lower, upper);
+  NodeSet top{"lower_top", 1, {}}, bottom{"upper_bottom", 2, {}};
+  for (LO n = 0; n < m.numNodes(); ++n) {
+    if (m.coords[n][2] != 1.0) continue;
+    (n < lower.numNodes() ? top : bottom).nodes.push_back(n);
+  }
+  m.nodeSets = {top, bottom};
+  requireSideSet(m, "lower_top");
+  requireSideSet(m, "upper_bottom");
+  std::vector<int> part(m.numElements());
+  for (LO e = 0; e < m.numElements(); ++e) part[e] = m.blockOf(e);
+  const Decomposition d = buildDecomposition(m, part);
+  feti::ConstraintSpec spec;
+  spec.interfaces.push_back({"", "lower_top", "upper_bottom"});
+  try {
+    feti::buildConstraintMatrix(m, d, spec, 1);
+    FAIL() << "no error";
+  } catch (const core::InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("4-node quadrilateral face"), std::string::npos) << what;
+    EXPECT_NE(what.find("8-node hexahedron"), std::string::npos) << what;
+    EXPECT_NE(what.find("lower_top"), std::string::npos) << what;
+  }
+}
