@@ -340,12 +340,26 @@ std::string contactSearchLines(const feti::ConstraintMatrix& B) {
 }
 }  // namespace
 
+namespace {
+/// "1600 HEX8, 32 WEDGE6": how many elements of each type the mesh has.
+std::string elementTypeCounts(const mesh::Mesh& mesh) {
+  LO count[mesh::kNumElementTypes] = {};
+  for (mesh::ElementType t : mesh.elements.types()) count[static_cast<int>(t)]++;
+  std::string text;
+  for (int t = 0; t < mesh::kNumElementTypes; ++t)
+    if (count[t] > 0)
+      text += (text.empty() ? "" : ", ") + std::to_string(count[t]) + " " +
+              mesh::elementShape(static_cast<mesh::ElementType>(t)).exodusName;
+  return text;
+}
+}  // namespace
+
 std::string setupReport(const std::string& input, const Scene& scene, const SetupReport& report,
                         const feti::ConstraintMatrix& B, double setupSeconds, double constraintSeconds) {
   std::ostringstream out;
   out << "tribos: " << input << "\n"
-      << "  mesh: " << scene.mesh.numNodes() << " nodes, " << scene.mesh.numElements() << " tetrahedra, "
-      << scene.mesh.numBlocks() << " bodies\n"
+      << "  mesh: " << scene.mesh.numNodes() << " nodes, " << scene.mesh.numElements() << " elements ("
+      << elementTypeCounts(scene.mesh) << "), " << scene.mesh.numBlocks() << " bodies\n"
       << "  subdomains: " << report.nSubdomains << " on " << report.nRanks << " rank(s) x " << report.nThreads
       << " thread(s)\n"
       << "  n_primal = " << report.nPrimal << ", n_dual = " << B.numRows << " (removed " << B.removedRedundantRows

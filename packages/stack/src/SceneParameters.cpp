@@ -87,7 +87,7 @@ void meshParameters(ParameterList& pl) {
          "set Contact/Search Distance above it so that the contact nodes pair",
          core::closedInterval(0.0, core::kMaxMagnitude));
   pl.set("File", std::string(""),
-         "Exodus: path of the Exodus II mesh (linear tetrahedra); relative paths are relative to the scene file "
+         "Exodus: path of the Exodus II mesh (TETRA, TETRA10, HEX8 and WEDGE6 blocks); relative paths are relative to the scene file "
          "(gmsh meshes: convert with tribos-msh2exo)");
   pl.set("Subdomains", 4,
          "Exodus, or Decomposition = METIS: number of subdomains (METIS parts, split among bodies "
