@@ -35,7 +35,7 @@ int maxSetId(const std::vector<Set>& v) {
 }  // namespace
 
 mesh::Mesh boxMesh(std::array<double, 3> origin, std::array<double, 3> size, std::array<int, 3> cells,
-                   const std::string& blockName) {
+                   const std::string& blockName, CellElements fill) {
   for (int d = 0; d < 3; ++d)
     if (cells[d] < 1 || !(size[d] > 0.0)) throw std::invalid_argument("boxMesh: cells >= 1 and size > 0 needed");
   const int nx = cells[0], ny = cells[1], nz = cells[2];
@@ -50,6 +50,17 @@ mesh::Mesh boxMesh(std::array<double, 3> origin, std::array<double, 3> size, std
       for (int i = 0; i < nx; ++i) {
         LO corner[8];
         for (int v = 0; v < 8; ++v) corner[v] = node(i + (v & 1), j + ((v >> 1) & 1), k + ((v >> 2) & 1));
+        // Exodus order: the bottom face counter-clockwise, then the top one.
+        const LO hex[8] = {corner[0], corner[1], corner[3], corner[2], corner[4], corner[5], corner[7], corner[6]};
+        if (fill == CellElements::Hexahedron) {
+          m.elements.add(mesh::ElementType::Hex8, hex);
+          continue;
+        }
+        if (fill == CellElements::TwoPrisms) {
+          m.elements.add(mesh::ElementType::Wedge6, {hex[0], hex[1], hex[2], hex[4], hex[5], hex[6]});
+          m.elements.add(mesh::ElementType::Wedge6, {hex[0], hex[2], hex[3], hex[4], hex[6], hex[7]});
+          continue;
+        }
         for (const auto& order : kAxisOrders) {
           const int first = 1 << order[0], second = first | (1 << order[1]);
           std::array<LO, 4> tet{corner[0], corner[first], corner[second], corner[7]};
@@ -75,7 +86,7 @@ mesh::Mesh boxMesh(std::array<double, 3> origin, std::array<double, 3> size, std
       for (LO n = 0; n < m.numNodes(); ++n)
         if (gridIndex(n, axis) == plane) ns.nodes.push_back(n);
       for (LO e = 0; e < m.numElements(); ++e)
-        for (int side = 0; side < 4; ++side) {
+        for (int side = 0; side < m.numSides(e); ++side) {
           bool all = true;
           for (LO n : m.faceNodes(e, side)) all = all && gridIndex(n, axis) == plane;
           if (!all) continue;

@@ -12,11 +12,15 @@
 
 namespace tribos::test {
 
+/// What fills each cell: the 6 Kuhn tetrahedra, one 8-node hexahedron, or two 6-node prisms
+/// (the cell cut along the diagonal of its xy face: their triangles lie on the z faces).
+enum class CellElements { KuhnTetrahedra, Hexahedron, TwoPrisms };
+
 /// Node (i, j, k) of the grid is node i + (nx+1) (j + (ny+1) k), at origin + size * (i/nx,
-/// j/ny, k/nz) (computed as size * i / n, so binary fractions are exact). Every tet is
+/// j/ny, k/nz) (computed as size * i / n, so binary fractions are exact). Every element is
 /// positively oriented. Block id 1, set ids 1..6 in the order x0, x1, y0, y1, z0, z1.
 mesh::Mesh boxMesh(std::array<double, 3> origin, std::array<double, 3> size, std::array<int, 3> cells,
-                   const std::string& blockName);
+                   const std::string& blockName, CellElements fill = CellElements::KuhnTetrahedra);
 
 /// a followed by b: b's nodes renumbered after a's, b's elements after a's; blocks, node
 /// sets and side sets concatenated, b's ids shifted past a's so that all ids stay distinct.

@@ -351,21 +351,20 @@ void refuseSelfContact(const mesh::Mesh& mesh, const ContactInterfaceSpec& spec)
                              "surfaces of an interface must lie on different bodies");
 }
 
-/// The contact rows (search, dual mortar, node-to-surface) are built on 3-node triangles.
-/// Quadrilaterals (of hexahedra and prisms) and 6-node triangles (of 10-node tetrahedra) are
-/// refused with the face named, not coupled on part of the face.
+/// The contact rows (search, dual mortar, node-to-surface) are built on 3-node triangles and
+/// 4-node quadrilaterals. 6-node triangles (of 10-node tetrahedra) are refused with the face
+/// named, not coupled through their vertices only.
 void refuseFacesContactCannotUse(const mesh::Mesh& mesh, const ContactInterfaceSpec& spec) {
   for (const std::string& name : {spec.slaveSideSet, spec.masterSideSet}) {
     const auto& set = mesh.sideSet(name);
     for (size_t f = 0; f < set.elements.size(); ++f) {
       const mesh::FaceNodes face = mesh.faceNodes(set.elements[f], set.sides[f]);
-      if (face.numNodes == 3) continue;
-      throw core::InputError(spec.label() + ": side set \"" + name + "\" has a " +
-                             (face.numVertices == 4 ? "4-node quadrilateral" : "6-node triangle") + " face (side " +
+      if (face.numNodes == face.numVertices) continue;
+      throw core::InputError(spec.label() + ": side set \"" + name + "\" has a 6-node triangle face (side " +
                              std::to_string(set.sides[f] + 1) + " of " + mesh.elementLabel(set.elements[f]) + ", a " +
                              mesh::elementShape(mesh.elementType(set.elements[f])).description +
-                             "); contact and bonded surfaces must be faces of 4-node tetrahedra (or the triangles of "
-                             "6-node prisms) in this version: mesh this body with 4-node tetrahedra");
+                             "); contact and bonded surfaces must be 3-node triangles or 4-node quadrilaterals in this "
+                             "version: mesh this body with 4-node tetrahedra, 8-node hexahedra or 6-node prisms");
     }
   }
 }

@@ -192,15 +192,78 @@ class MasterSurface::Tree : public TriangleTreeImpl {
   using TriangleTreeImpl::TriangleTreeImpl;
 };
 
-MasterSurface::MasterSurface(const Mesh& mesh, const std::string& masterSideSet) : name_(masterSideSet) {
-  const SideSet& set = mesh.sideSet(masterSideSet);
-  std::vector<std::array<Vec3, 3>> triangles(set.elements.size());
-  faceNodes_.resize(set.elements.size());
-  for (size_t f = 0; f < triangles.size(); ++f)
-    for (int v = 0; v < 3; ++v) {
-      faceNodes_[f][v] = mesh.faceNodes(set.elements[f], set.sides[f]).node[v];
-      triangles[f][v] = mesh.coords[faceNodes_[f][v]];
+namespace {
+/// The vertices of a quadrilateral's halves: (0,1,2) and (0,2,3).
+constexpr int kQuadHalves[2][3] = {{0, 1, 2}, {0, 2, 3}};
+/// Reference corners (xi, eta) of the quadrilateral's vertices (mesh::faceShapeFunctions).
+constexpr double kQuadCorners[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+
+/// The bilinear face's point, tangents and shape functions at (xi, eta).
+void bilinear(const std::array<Vec3, 4>& x, double xi, double eta, Vec3& point, Vec3& dXi, Vec3& dEta,
+              std::array<double, 4>& N) {
+  point = dXi = dEta = Vec3{0.0, 0.0, 0.0};
+  for (int k = 0; k < 4; ++k) {
+    const double a = (1.0 + kQuadCorners[k][0] * xi) / 2, b = (1.0 + kQuadCorners[k][1] * eta) / 2;
+    N[k] = a * b;
+    for (int d = 0; d < 3; ++d) {
+      point[d] += N[k] * x[k][d];
+      dXi[d] += kQuadCorners[k][0] / 2 * b * x[k][d];
+      dEta[d] += a * kQuadCorners[k][1] / 2 * x[k][d];
     }
+  }
+}
+
+/// The point of the bilinear quadrilateral x closest to `target`, from the reference point
+/// (xi, eta) on: Gauss-Newton steps on |X(xi, eta) - target|^2 within [-1, 1]^2. A step that
+/// would leave the square along one coordinate stops at its edge, and the other coordinate
+/// takes the step of the model with the first one fixed there (the closest point of an edge
+/// is not where the free step, cut off, would put it). For a flat face this inverts the
+/// bilinear map at the point found on the face's triangles.
+void closestOnBilinear(const std::array<Vec3, 4>& x, const Vec3& target, double& xi, double& eta) {
+  Vec3 point, dXi, dEta;
+  std::array<double, 4> N;
+  for (int iteration = 0; iteration < 50; ++iteration) {
+    bilinear(x, xi, eta, point, dXi, dEta, N);
+    const Vec3 r = minus(point, target);
+    const double a = dot(dXi, dXi), b = dot(dXi, dEta), c = dot(dEta, dEta);
+    const double g0 = dot(dXi, r), g1 = dot(dEta, r), det = a * c - b * b;
+    if (!(det > 0.0)) return;
+    double step0 = -(c * g0 - b * g1) / det, step1 = -(a * g1 - b * g0) / det;
+    const bool outXi = std::abs(xi + step0) > 1.0, outEta = std::abs(eta + step1) > 1.0;
+    if (outXi && !outEta) {
+      step0 = std::clamp(xi + step0, -1.0, 1.0) - xi;
+      step1 = std::clamp(eta - (g1 + b * step0) / c, -1.0, 1.0) - eta;
+    } else if (outEta && !outXi) {
+      step1 = std::clamp(eta + step1, -1.0, 1.0) - eta;
+      step0 = std::clamp(xi - (g0 + b * step1) / a, -1.0, 1.0) - xi;
+    } else if (outXi && outEta) {
+      step0 = std::clamp(xi + step0, -1.0, 1.0) - xi;
+      step1 = std::clamp(eta + step1, -1.0, 1.0) - eta;
+    }
+    xi += step0;
+    eta += step1;
+    if (std::abs(step0) + std::abs(step1) < 1e-15) return;
+  }
+}
+}  // namespace
+
+MasterSurface::MasterSurface(const Mesh& mesh, const std::string& masterSideSet)
+    : name_(masterSideSet) {
+  const SideSet& set = mesh.sideSet(masterSideSet);
+  std::vector<std::array<Vec3, 3>> triangles;
+  faceNodes_.resize(set.elements.size());
+  corners_.resize(set.elements.size());
+  for (size_t f = 0; f < set.elements.size(); ++f) {
+    faceNodes_[f] = mesh.faceNodes(set.elements[f], set.sides[f]);
+    for (int v = 0; v < faceNodes_[f].numVertices; ++v) corners_[f][v] = mesh.coords[faceNodes_[f].node[v]];
+    const int halves = faceNodes_[f].numVertices == 4 ? 2 : 1;
+    for (int half = 0; half < halves; ++half) {
+      std::array<Vec3, 3> t;
+      for (int v = 0; v < 3; ++v) t[v] = mesh.coords[faceNodes_[f].node[halves == 2 ? kQuadHalves[half][v] : v]];
+      triangles.push_back(t);
+      searchTriangles_.push_back({static_cast<LO>(f), half});
+    }
+  }
   tree_ = std::make_unique<Tree>(std::move(triangles));
   nodalNormal_ = unitNodalNormals(mesh, set);
 }
@@ -209,33 +272,61 @@ MasterSurface::~MasterSurface() = default;
 
 MasterSurface::Projection MasterSurface::project(const Vec3& x, double radius, long long* facesTested) const {
   Projection best;
+  LO bestTriangle = -1;
+  std::array<double, 3> bestBarycentric{};
   double best2 = radius * radius;
-  tree_->query(x, best2, [&](LO face, double& bound2) {
+  tree_->query(x, best2, [&](LO triangle, double& bound2) {
     if (facesTested) ++*facesTested;
-    const auto& t = tree_->triangle(face);
+    const auto& t = tree_->triangle(triangle);
     const auto w = closestPointOnTriangle(x, t[0], t[1], t[2]);
     Vec3 p{};
     for (int d = 0; d < 3; ++d) p[d] = w[0] * t[0][d] + w[1] * t[1][d] + w[2] * t[2][d];
     const Vec3 diff = minus(p, x);
     const double d2 = dot(diff, diff);
-    if (d2 < bound2 || (d2 == bound2 && (best.face < 0 || face < best.face))) {
-      best.face = face;
-      best.weights = w;
+    if (d2 < bound2 || (d2 == bound2 && (bestTriangle < 0 || triangle < bestTriangle))) {
+      bestTriangle = triangle;
+      bestBarycentric = w;
       best.point = p;
       bound2 = d2;
     }
   });
-  if (best.face >= 0) {
-    best.nodes = faceNodes_[best.face];
+  if (bestTriangle < 0) return best;
+  const SearchTriangle& found = searchTriangles_[bestTriangle];
+  const FaceNodes& face = faceNodes_[found.face];
+  best.face = found.face;
+  for (int v = 0; v < face.numVertices; ++v) best.nodes[v] = face.node[v];
+  if (face.numVertices == 3) {
+    for (int v = 0; v < 3; ++v) best.weights[v] = bestBarycentric[v];
     best.distance = std::sqrt(best2);
+    return best;
   }
+  // A quadrilateral: its reference point from the half's barycentric weights; a vertex of
+  // the face (a weight of exactly 1: matching meshes) stays exact, as on a triangle.
+  const std::array<Vec3, 4>& corners = corners_[found.face];
+  const int* half = kQuadHalves[found.half];
+  for (int v = 0; v < 3; ++v)
+    if (bestBarycentric[v] == 1.0) {
+      best.weights[half[v]] = 1.0;
+      best.distance = std::sqrt(best2);
+      return best;
+    }
+  double xi = 0.0, eta = 0.0;
+  for (int v = 0; v < 3; ++v) {
+    xi += bestBarycentric[v] * kQuadCorners[half[v]][0];
+    eta += bestBarycentric[v] * kQuadCorners[half[v]][1];
+  }
+  closestOnBilinear(corners, x, xi, eta);
+  Vec3 dXi, dEta;
+  bilinear(corners, xi, eta, best.point, dXi, dEta, best.weights);
+  best.distance = norm(minus(best.point, x));
   return best;
 }
 
 Vec3 MasterSurface::normalAt(const Projection& p) const {
   Vec3 n{0.0, 0.0, 0.0};
-  for (int v = 0; v < 3; ++v)
-    for (int d = 0; d < 3; ++d) n[d] += p.weights[v] * nodalNormal_[p.nodes[v]][d];
+  for (int v = 0; v < kMaxMasterFaceNodes; ++v)
+    if (p.nodes[v] >= 0)
+      for (int d = 0; d < 3; ++d) n[d] += p.weights[v] * nodalNormal_[p.nodes[v]][d];
   const double length = norm(n);
   if (length > 0.0)
     for (double& c : n) c /= length;

@@ -52,6 +52,110 @@ std::vector<QuadraturePoint> compositeRule() {
   return rule;
 }
 
+/// One quadrature point on a slave face: where it is, its weight times the area element, and
+/// the slave shape functions phi_v and their duals psi_v at it (vertex order of the face).
+struct SlavePoint {
+  Vec3 x;
+  double omega;
+  std::array<double, 4> phi, psi;
+};
+
+double triangleArea(const Vec3& a, const Vec3& b, const Vec3& c);
+
+/// A 3-node triangle: the composite rule, psi_v = 4 phi_v - 1 (Wohlmuth's linear dual basis).
+std::vector<SlavePoint> trianglePoints(const std::array<Vec3, 3>& x, const std::vector<QuadraturePoint>& rule) {
+  const double area = triangleArea(x[0], x[1], x[2]);
+  std::vector<SlavePoint> points;
+  points.reserve(rule.size());
+  for (const auto& q : rule) {
+    SlavePoint s{{0.0, 0.0, 0.0}, q.weight * area, {}, {}};
+    for (int v = 0; v < 3; ++v)
+      for (int d = 0; d < 3; ++d) s.x[d] += q.lambda[v] * x[v][d];
+    for (int v = 0; v < 3; ++v) {
+      s.phi[v] = q.lambda[v];
+      s.psi[v] = 4.0 * q.lambda[v] - 1.0;
+    }
+    points.push_back(s);
+  }
+  return points;
+}
+
+/// Bilinear shape functions, the point and the area element of quadrilateral x at (xi, eta).
+void bilinearAt(const std::array<Vec3, 4>& x, double xi, double eta, std::array<double, 4>& N, Vec3& point,
+                double& areaElement) {
+  static constexpr double corner[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+  Vec3 dXi{0, 0, 0}, dEta{0, 0, 0};
+  point = {0.0, 0.0, 0.0};
+  for (int k = 0; k < 4; ++k) {
+    const double a = (1.0 + corner[k][0] * xi) / 2, b = (1.0 + corner[k][1] * eta) / 2;
+    N[k] = a * b;
+    for (int d = 0; d < 3; ++d) {
+      point[d] += N[k] * x[k][d];
+      dXi[d] += corner[k][0] / 2 * b * x[k][d];
+      dEta[d] += a * corner[k][1] / 2 * x[k][d];
+    }
+  }
+  const Vec3 n{dXi[1] * dEta[2] - dXi[2] * dEta[1], dXi[2] * dEta[0] - dXi[0] * dEta[2],
+               dXi[0] * dEta[1] - dXi[1] * dEta[0]};
+  areaElement = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+}
+
+/// The dual basis of a 4-node quadrilateral: psi = A phi with A = D M^{-1} (M the face's
+/// mass matrix, D its row sums int phi_i), so int psi_i phi_j = delta_ij int phi_i. On a
+/// parallelogram this is the bilinear dual basis psi_i = 4 phi_i - 2 (phi_{i+1} + phi_{i-1})
+/// + phi_{i+2} (ALGORITHMS.md 12); on other quadrilaterals it follows their Jacobian.
+std::array<std::array<double, 4>, 4> quadDualCoefficients(const std::array<Vec3, 4>& x) {
+  const double g = std::sqrt(3.0 / 5.0), gauss[3] = {-g, 0.0, g}, weight[3] = {5.0 / 9, 8.0 / 9, 5.0 / 9};
+  double M[4][8] = {}, D[4] = {};  // [M | I], reduced to [I | M^{-1}]
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) {
+      std::array<double, 4> N;
+      Vec3 point;
+      double dA;
+      bilinearAt(x, gauss[a], gauss[b], N, point, dA);
+      for (int i = 0; i < 4; ++i) {
+        D[i] += weight[a] * weight[b] * dA * N[i];
+        for (int j = 0; j < 4; ++j) M[i][j] += weight[a] * weight[b] * dA * N[i] * N[j];
+      }
+    }
+  for (int i = 0; i < 4; ++i) M[i][4 + i] = 1.0;
+  for (int p = 0; p < 4; ++p) {  // M is symmetric positive definite: no pivoting needed
+    const double pivot = M[p][p];
+    for (int k = 0; k < 8; ++k) M[p][k] /= pivot;
+    for (int r = 0; r < 4; ++r) {
+      if (r == p) continue;
+      const double factor = M[r][p];
+      for (int k = 0; k < 8; ++k) M[r][k] -= factor * M[p][k];
+    }
+  }
+  std::array<std::array<double, 4>, 4> A{};
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 4; ++k) A[i][k] = D[i] * M[i][4 + k];
+  return A;
+}
+
+/// A 4-node quadrilateral: kSubdivisions^2 sub-squares with 2 x 2 Gauss points each.
+std::vector<SlavePoint> quadPoints(const std::array<Vec3, 4>& x) {
+  const auto A = quadDualCoefficients(x);
+  const int n = kSubdivisions;
+  const double h = 2.0 / n, g = h / (2.0 * std::sqrt(3.0)), subWeight = h * h / 4;
+  std::vector<SlavePoint> points;
+  points.reserve(4 * n * n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (double dxi : {-g, g})
+        for (double deta : {-g, g}) {
+          SlavePoint s{};
+          double dA;
+          bilinearAt(x, -1.0 + (i + 0.5) * h + dxi, -1.0 + (j + 0.5) * h + deta, s.phi, s.x, dA);
+          s.omega = subWeight * dA;
+          for (int v = 0; v < 4; ++v)
+            for (int k = 0; k < 4; ++k) s.psi[v] += A[v][k] * s.phi[k];
+          points.push_back(s);
+        }
+  return points;
+}
+
 double triangleArea(const Vec3& a, const Vec3& b, const Vec3& c) {
   const Vec3 u{b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v{c[0] - a[0], c[1] - a[1], c[2] - a[2]};
   const Vec3 n{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
@@ -74,7 +178,7 @@ MortarRow nodeToSurfaceRow(const ContactPair& pair) {
   row.nodeToSurface = true;
   row.gap = pair.gap;
   std::map<LO, double> sorted;
-  for (int v = 0; v < 3; ++v)
+  for (int v = 0; v < kMaxMasterFaceNodes; ++v)
     if (pair.weights[v] != 0.0) sorted[pair.masterNodes[v]] += pair.weights[v];
   for (const auto& [node, w] : sorted) {
     row.masterNodes.push_back(node);
@@ -101,35 +205,31 @@ std::vector<MortarRow> dualMortarRows(const Mesh& mesh, const std::string& slave
   for (size_t p = 0; p < search.pairs.size(); ++p) pairOf[search.pairs[p].slaveNode] = static_cast<int>(p);
   std::vector<NodeIntegrals> integrals(search.pairs.size());
 
-  // (1) Quadrature over every slave triangle touching a paired node.
+  // (1) Quadrature over every slave face touching a paired node.
   const auto rule = compositeRule();
   const SideSet& set = mesh.sideSet(slaveSideSet);
   for (size_t f = 0; f < set.elements.size(); ++f) {
-    std::array<LO, 3> node{};
-    std::array<Vec3, 3> x{};
+    const FaceNodes face = mesh.faceNodes(set.elements[f], set.sides[f]);
+    const int vertices = face.numVertices;
     bool anyPaired = false;
-    for (int v = 0; v < 3; ++v) {
-      node[v] = mesh.faceNodes(set.elements[f], set.sides[f]).node[v];
-      x[v] = mesh.coords[node[v]];
-      anyPaired = anyPaired || pairOf[node[v]] >= 0;
-    }
+    for (LO n : face.vertices()) anyPaired = anyPaired || pairOf[n] >= 0;
     if (!anyPaired) continue;
-    const double area = triangleArea(x[0], x[1], x[2]);
-    for (const auto& q : rule) {
-      Vec3 xq{0.0, 0.0, 0.0};
-      for (int v = 0; v < 3; ++v)
-        for (int d = 0; d < 3; ++d) xq[d] += q.lambda[v] * x[v][d];
-      const double omega = q.weight * area;
+    std::array<Vec3, 4> x{};
+    for (int v = 0; v < vertices; ++v) x[v] = mesh.coords[face.node[v]];
+    const auto points = vertices == 4 ? quadPoints(x) : trianglePoints({x[0], x[1], x[2]}, rule);
+    for (const SlavePoint& q : points) {
+      const Vec3& xq = q.x;
+      const double omega = q.omega;
       const auto chi = master.project(xq, searchDistance);
-      for (int v = 0; v < 3; ++v) {
-        const int p = pairOf[node[v]];
+      for (int v = 0; v < vertices; ++v) {
+        const int p = pairOf[face.node[v]];
         if (p < 0) continue;
         NodeIntegrals& I = integrals[p];
-        I.D += omega * q.lambda[v];
+        I.D += omega * q.phi[v];
         if (chi.face < 0) continue;
-        const double psi = 4.0 * q.lambda[v] - 1.0;  // the dual basis function of node v
+        const double psi = q.psi[v];  // the dual basis function of node v
         I.covered += omega * psi;
-        for (int j = 0; j < 3; ++j)
+        for (int j = 0; j < kMaxMasterFaceNodes; ++j)
           if (chi.weights[j] != 0.0) I.M[chi.nodes[j]] += omega * psi * chi.weights[j];
         const Vec3 gap{chi.point[0] - xq[0], chi.point[1] - xq[1], chi.point[2] - xq[2]};
         for (int d = 0; d < 3; ++d) I.gapVector[d] += omega * psi * gap[d];

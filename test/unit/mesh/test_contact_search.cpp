@@ -51,9 +51,14 @@ double bruteForceDistance(const Vec3& x, const Vec3& a, const Vec3& b, const Vec
 // A tilted, scalene triangle (no axis or symmetry makes a wrong region look right).
 const Vec3 kA{0.1, 0.2, 0.3}, kB{2.0, 0.4, -0.1}, kC{0.5, 1.7, 0.6};
 
-void expectConvex(const std::array<double, 3>& w) {
-  for (double wi : w) EXPECT_GE(wi, 0.0);
-  EXPECT_NEAR(w[0] + w[1] + w[2], 1.0, 1e-15);
+template <size_t N>
+void expectConvex(const std::array<double, N>& w) {
+  double sum = 0.0;
+  for (double wi : w) {
+    EXPECT_GE(wi, 0.0);
+    sum += wi;
+  }
+  EXPECT_NEAR(sum, 1.0, 1e-15);
 }
 
 /// Two boxes stacked along z: "lower" (the slave body, its top lower_z1) below "upper" (the
@@ -74,7 +79,9 @@ mesh::ContactSearchResult search(const mesh::Mesh& m, double searchDistance) {
 
 /// The projection of a pair: the weighted master vertices.
 Vec3 projection(const mesh::Mesh& m, const mesh::ContactPair& p) {
-  return point(p.weights, m.coords[p.masterNodes[0]], m.coords[p.masterNodes[1]], m.coords[p.masterNodes[2]]);
+  EXPECT_EQ(p.masterNodes[3], -1);  // triangles here
+  return point({p.weights[0], p.weights[1], p.weights[2]}, m.coords[p.masterNodes[0]], m.coords[p.masterNodes[1]],
+               m.coords[p.masterNodes[2]]);
 }
 
 /// The master face of a pair really is face `masterFace` of the master side set, its

@@ -2,7 +2,8 @@
 // hexahedra, 10-node tetrahedra (its mid-edge order mapped to Exodus'), 6-node prisms and
 // their quadrilateral and 6-node triangular surface elements; bodies of mixed types; the
 // Exodus round trip of such bodies (one Exodus block per type, joined back by name); and
-// the check that refuses a hexahedron inverted at one corner; contact on their faces refused.
+// the check that refuses a hexahedron inverted at one corner; dual mortar rows on quadrilaterals;
+// contact on 6-node triangles refused.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -19,6 +20,7 @@
 #include "tribos/mesh/Decomposition.hpp"
 #include "tribos/mesh/ExodusIO.hpp"
 #include "tribos/mesh/GmshReader.hpp"
+#include "tribos/mesh/MortarCoupling.hpp"
 
 using namespace tribos;
 using namespace tribos::mesh;
@@ -177,11 +179,12 @@ TEST(ElementTypes, aHexahedronInvertedAtOneCornerIsRefused) {
   }
 }
 
-// Contact rows are built on 3-node triangles only: an interface on hexahedral faces is an
-// input error naming the face and the element type, not rows computed on part of each face.
-TEST(ElementTypes, contactOnQuadrilateralFacesIsRefusedNamingTheFace) {
-  Mesh lower = test::typedBox(test::BoxElements::Hex8, 2, 0.5);
-  Mesh upper = test::typedBox(test::BoxElements::Hex8, 2, 0.5);
+// Contact rows are built on 3-node triangles and 4-node quadrilaterals: an interface on the
+// 6-node faces of quadratic tetrahedra is an input error naming the face and the element
+// type, not rows computed through its vertices only.
+TEST(ElementTypes, contactOnSixNodeTrianglesIsRefusedNamingTheFace) {
+  Mesh lower = test::typedBox(test::BoxElements::Tet10, 2, 0.5);
+  Mesh upper = test::typedBox(test::BoxElements::Tet10, 2, 0.5);
   for (auto& x : upper.coords) x[2] += 1.0;
   lower.blocks[0].name = "lower";
   upper.blocks[0].name = "upper";
@@ -204,8 +207,91 @@ TEST(ElementTypes, contactOnQuadrilateralFacesIsRefusedNamingTheFace) {
     FAIL() << "no error";
   } catch (const core::InputError& e) {
     const std::string what = e.what();
-    EXPECT_NE(what.find("4-node quadrilateral face"), std::string::npos) << what;
-    EXPECT_NE(what.find("8-node hexahedron"), std::string::npos) << what;
+    EXPECT_NE(what.find("6-node triangle face"), std::string::npos) << what;
+    EXPECT_NE(what.find("10-node tetrahedron"), std::string::npos) << what;
     EXPECT_NE(what.find("lower_top"), std::string::npos) << what;
   }
+}
+
+// The mortar rows of a distorted quadrilateral slave surface reproduce affine functions:
+// sum_j w_ij f(x_j) = f(x_i) for the master nodes j, because the dual basis is biorthogonal
+// to the bilinear one (int psi_i f = D_i f(x_i) for every f in its span, affine ones
+// included, on any quadrilateral). Lumping instead (psi = phi) misses this on distorted
+// faces by a fraction of the mesh size.
+TEST(ElementTypes, dualMortarRowsOnDistortedQuadrilateralsReproduceAffineFunctions) {
+  Mesh lower = test::boxMesh({0, 0, 0}, {2, 2, 1}, {4, 4, 1}, "lower", test::CellElements::Hexahedron);
+  const Mesh upper = test::boxMesh({0, 0, 1}, {2, 2, 1}, {5, 5, 1}, "upper", test::CellElements::Hexahedron);
+  // Move the interior nodes of the slave surface within its plane (by up to 0.15 of h = 0.5).
+  for (int j = 1; j < 4; ++j)
+    for (int i = 1; i < 4; ++i) {
+      auto& x = lower.coords[i + 5 * (j + 5)];
+      x[0] += 0.075 * std::sin(3.0 * i + 7.0 * j);
+      x[1] += 0.075 * std::cos(5.0 * i + 2.0 * j);
+    }
+  const Mesh m = test::mergeMeshes(lower, upper);
+  m.validate("distorted.exo");
+  const auto search = searchContactPairs(m, "lower_z1", "upper_z0", 1e-6);
+  const MasterSurface master(m, "upper_z0");
+  const auto rows = dualMortarRows(m, "lower_z1", master, search, 1e-6);
+  ASSERT_EQ(rows.size(), 25u);
+  double worst = 0.0;
+  int mortarRows = 0;
+  for (size_t p = 0; p < rows.size(); ++p) {
+    if (rows[p].nodeToSurface) continue;
+    ++mortarRows;
+    for (int c = 0; c < 2; ++c) {
+      double interpolated = 0.0;
+      for (size_t k = 0; k < rows[p].masterNodes.size(); ++k)
+        interpolated += rows[p].weights[k] * m.coords[rows[p].masterNodes[k]][c];
+      worst = std::max(worst, std::abs(interpolated - m.coords[search.pairs[p].slaveNode][c]));
+    }
+  }
+  std::printf("%d mortar rows: affine functions reproduced to %.2e (h = 0.5)\n", mortarRows, worst);
+  EXPECT_EQ(mortarRows, 25);
+  EXPECT_LT(worst, 1e-3);
+}
+
+// On a warped quadrilateral master face (one vertex lifted out of the plane of the others)
+// the projection is the closest point of the bilinear face: no point of a fine grid over the
+// face is closer, the weights are its bilinear shape functions there, and a query on a
+// vertex gets exactly that vertex.
+TEST(ElementTypes, projectionOnAWarpedQuadrilateralIsTheClosestPointOfTheBilinearFace) {
+  Mesh m;
+  m.coords = kCube;
+  m.coords[6] = {1.0, 1.0, 1.3};  // the top face (4, 5, 6, 7) is warped
+  m.elements.add(ElementType::Hex8, {0, 1, 2, 3, 4, 5, 6, 7});
+  m.blocks.push_back({"body", 1, 0, 1});
+  m.sideSets.push_back({"top", 1, {0}, {5}});
+  const MasterSurface master(m, "top");
+  auto bilinearPoint = [&](double xi, double eta) {
+    const int top[4] = {4, 5, 6, 7};
+    const double corner[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+    std::array<double, 3> p{0, 0, 0};
+    for (int k = 0; k < 4; ++k)
+      for (int d = 0; d < 3; ++d)
+        p[d] += (1 + corner[k][0] * xi) * (1 + corner[k][1] * eta) / 4 * m.coords[top[k]][d];
+    return p;
+  };
+  auto distance = [](const std::array<double, 3>& a, const std::array<double, 3>& b) {
+    return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+  };
+  for (const std::array<double, 3>& x : std::vector<std::array<double, 3>>{
+           {0.3, 0.6, 1.6}, {0.9, 0.8, 1.5}, {0.1, 0.2, 1.2}, {1.4, 0.5, 1.4}, {0.7, 0.95, 2.0}}) {
+    const auto p = master.project(x, 10.0);
+    ASSERT_EQ(p.face, 0);
+    double sum = 0.0, brute = INFINITY;
+    std::array<double, 3> weighted{0, 0, 0};
+    for (int v = 0; v < 4; ++v) {
+      sum += p.weights[v];
+      for (int d = 0; d < 3; ++d) weighted[d] += p.weights[v] * m.coords[p.nodes[v]][d];
+    }
+    EXPECT_NEAR(sum, 1.0, 1e-14);
+    EXPECT_LT(distance(weighted, p.point), 1e-14);  // the point is the weights' point of the face
+    for (int i = 0; i <= 400; ++i)
+      for (int j = 0; j <= 400; ++j) brute = std::min(brute, distance(x, bilinearPoint(-1 + i / 200.0, -1 + j / 200.0)));
+    EXPECT_LE(p.distance, brute + 1e-12);
+    EXPECT_GE(p.distance, brute - 1e-4);  // the grid is within 1e-4 of the true closest point
+  }
+  const auto atVertex = master.project(m.coords[6], 1.0);
+  for (int v = 0; v < 4; ++v) EXPECT_EQ(atVertex.weights[v], atVertex.nodes[v] == 6 ? 1.0 : 0.0);
 }

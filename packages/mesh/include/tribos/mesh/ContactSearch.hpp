@@ -2,11 +2,13 @@
 /// \file ContactSearch.hpp
 /// Contact search and pairing (the paper's transfer mapping chi, DESIGN.md conventions):
 /// every node of the slave side set is projected on the master *surface* — the closest
-/// point on the triangles of the master side set within the search distance, found with a
-/// bounding-volume tree over the triangles (O(log n) per slave node, no quadratic search).
-/// The result per slave node: the master triangle, the barycentric weights of the
-/// projection (the master displacement there is interpolated with them), the contact
-/// normal nu and the signed initial gap d along it.
+/// point on the faces of the master side set within the search distance, found with a
+/// bounding-volume tree over the faces (O(log n) per slave node, no quadratic search).
+/// The result per slave node: the master face, the weights of the projection (the face's
+/// shape functions there: barycentric on a triangle, bilinear on a quadrilateral; the master
+/// displacement there is interpolated with them), the contact normal nu and the signed
+/// initial gap d along it. A quadrilateral is searched as its two triangles (0,1,2), (0,2,3),
+/// and the point found is then moved onto the bilinear face by Gauss-Newton steps.
 ///
 /// The normal is the *smoothed* master normal at the projection point: the barycentric
 /// interpolation of the master's nodal normals (area-weighted means of the outer normals of
@@ -26,12 +28,16 @@
 
 namespace tribos::mesh {
 
+/// Vertices of a master face: 3 (triangle) or 4 (quadrilateral).
+inline constexpr int kMaxMasterFaceNodes = 4;
+
 /// One slave node and its projection on the master surface.
 struct ContactPair {
   LO slaveNode = -1;
   LO masterFace = -1;                    ///< index of the face in the master side set
-  std::array<LO, 3> masterNodes{};       ///< vertices of that face (global node ids)
-  std::array<double, 3> weights{};       ///< barycentric weights of the projection (>= 0, sum 1)
+  /// Vertices of that face (global node ids); a triangle's fourth is -1 with weight 0.
+  std::array<LO, kMaxMasterFaceNodes> masterNodes{-1, -1, -1, -1};
+  std::array<double, kMaxMasterFaceNodes> weights{};  ///< shape functions at the projection (>= 0, sum 1)
   std::array<double, 3> normal{};        ///< unit nu, from the slave into the master
   double gap = 0.0;                      ///< signed distance along nu (< 0: initial overlap)
   double distance = 0.0;                 ///< |x_projection - x_slave|
@@ -60,8 +66,8 @@ class MasterSurface {
 
   struct Projection {
     LO face = -1;                      ///< -1: no face within the radius
-    std::array<LO, 3> nodes{};
-    std::array<double, 3> weights{};   ///< barycentric weights of the closest point
+    std::array<LO, kMaxMasterFaceNodes> nodes{-1, -1, -1, -1};
+    std::array<double, kMaxMasterFaceNodes> weights{};  ///< shape functions at the closest point
     std::array<double, 3> point{};
     double distance = 0.0;
   };
@@ -76,7 +82,14 @@ class MasterSurface {
   class Tree;
   std::string name_;
   std::unique_ptr<Tree> tree_;
-  std::vector<std::array<LO, 3>> faceNodes_;
+  /// The tree holds triangles: each face's own, or a quadrilateral's two halves.
+  struct SearchTriangle {
+    LO face;
+    int half;  ///< 0: a triangle face or (0,1,2) of a quadrilateral; 1: its (0,2,3)
+  };
+  std::vector<SearchTriangle> searchTriangles_;
+  std::vector<FaceNodes> faceNodes_;
+  std::vector<std::array<std::array<double, 3>, kMaxMasterFaceNodes>> corners_;  ///< per face, its vertices' coordinates
   std::vector<std::array<double, 3>> nodalNormal_;  ///< unit, per global node (zero off the set)
 };
 

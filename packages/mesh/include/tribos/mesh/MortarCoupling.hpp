@@ -13,7 +13,9 @@
 ///   D_i  = int_Gamma_s phi_i,        (the slave node's tributary area)
 ///   M_ij = int_Gamma_s psi_i (phi_j o chi),
 /// with phi_i the slave surface's P1 hat function, psi_i = 4 phi_i - 1 on each slave
-/// triangle its dual (int psi_i phi_k = delta_ik int phi_k), phi_j the master hat functions
+/// triangle its dual (int psi_i phi_k = delta_ik int phi_k), on a slave quadrilateral the
+/// bilinear phi_i and psi = D M^{-1} phi per face (D, M its lumped and consistent mass
+/// matrices: the bilinear dual basis, ALGORITHMS.md 12), phi_j the master shape functions
 /// evaluated at the projection chi of the slave point on the master surface. Since
 /// sum_j phi_j = 1, sum_j M_ij = int psi_i = D_i: the weights sum to one, as the
 /// node-to-surface weights do; some may be negative. The initial gap is weighted the same
@@ -22,8 +24,9 @@
 /// where the gap varies much within one slave element (a master curving away, a fillet of
 /// 1.5 slave elements) the weighted gap could be an overlap where the surfaces are apart.
 ///
-/// The integrals are evaluated by quadrature on the slave triangles (each cut into
-/// kSubdivisions^2 sub-triangles, 3-point rule exact for quadratics on each), projecting
+/// The integrals are evaluated by quadrature on the slave faces (a triangle cut into
+/// kSubdivisions^2 sub-triangles, 3-point rule exact for quadratics on each; a quadrilateral
+/// into kSubdivisions^2 sub-squares of its reference square, 2 x 2 Gauss points each), projecting
 /// every quadrature point on the master surface — element-based integration, without
 /// clipping the slave and master triangles against each other. Exact when a slave triangle
 /// lies inside one master triangle (matching meshes: w_ij = delta_ij to round-off, snapped to
