@@ -244,7 +244,7 @@ const GmshType* gmshType(int type) {
   return nullptr;
 }
 
-/// What to do instead, for the volume types gmsh makes that Tribos does not take.
+/// What to do instead, for the volume types (and their faces) gmsh makes that Tribos does not take.
 std::string refusedVolumeAdvice(int type) {
   switch (type) {
     case 12:
@@ -257,6 +257,10 @@ std::string refusedVolumeAdvice(int type) {
     case 14:
     case 19: return " (a pyramid: mesh without Mesh.Recombine3DAll, or with tetrahedra only)";
     case 29: return " (a 20-node tetrahedron: use Mesh.ElementOrder = 2 for 10-node tetrahedra)";
+    case 10:
+    case 16:
+      return " (the face of a 27- or 20-node hexahedron or a quadratic prism: mesh with Mesh.ElementOrder = 1 for "
+             "8-node hexahedra and 6-node prisms, or with tetrahedra and Mesh.ElementOrder = 2 for 10-node tetrahedra)";
     default: return "";
   }
 }
@@ -269,7 +273,7 @@ void checkElementBlockType(Tokens& in, int dim, int entity, int type) {
             "; Tribos takes 4-node tetrahedra (type 4), 10-node tetrahedra (11), 8-node hexahedra (5) and 6-node "
             "prisms (6)");
   if (known == nullptr)
-    in.fail(where + " has elements of gmsh type " + std::to_string(type) +
+    in.fail(where + " has elements of gmsh type " + std::to_string(type) + refusedVolumeAdvice(type) +
             ", which Tribos does not read (points, lines, 3- and 6-node triangles, 4-node quadrilaterals and the "
             "volume types 4, 11, 5 and 6 only)");
   if (known->dim != dim)

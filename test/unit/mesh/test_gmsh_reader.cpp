@@ -136,7 +136,7 @@ TEST(GmshReader, elementTypesTribosCannotUseAreErrors) {
   expectInputError(replaced(good, "3 1 4 6", "3 1 17 6"),
                    {"volume entity 1", "gmsh type 17", "20-node hexahedron", "Mesh.ElementOrder = 1", "6-node prisms"});
   expectInputError(replaced(good, "3 1 4 6", "3 1 7 6"), {"gmsh type 7", "pyramid"});
-  expectInputError(replaced(good, "2 1 2 2", "2 1 16 2"), {"gmsh type 16", "does not read"});
+  expectInputError(replaced(good, "2 1 2 2", "2 1 16 2"), {"gmsh type 16", "20-node hexahedron", "does not read"});
   expectInputError(replaced(good, "2 1 2 2", "2 1 4 2"), {"do not have its dimension"});
 }
 
