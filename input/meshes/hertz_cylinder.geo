@@ -16,6 +16,7 @@
 // contact nodes pair as before.
 // Regenerate (from input/meshes):
 //   gmsh -3 -format msh41 -setnumber hc 0.1 hertz_cylinder.geo -o hertz_cylinder_h0.1.msh
+//   (hexahedra: -setnumber Hex 1 ... -o hertz_cylinder_hex_h0.2.msh)
 //   ../../build/bin/tribos-msh2exo hertz_cylinder_h0.1.msh hertz_cylinder_h0.1.exo
 // (no --split-bodies: the bodies already have their own nodes).
 // OpenCASCADE: two volumes that are never fragmented stay separate entities, each with its own
@@ -31,7 +32,8 @@ DefineConstant[
   dmin = {1.5, Name "Parameters/dmin (radius of the uniform hc zone)"},
   dmax = {10.0, Name "Parameters/dmax (distance where hmax is reached)"},
   ratio = {1.3, Name "Parameters/ratio (block size / cylinder size at the contact)"},
-  gap = {1e-5, Name "Parameters/gap (initial gap, see above)"}
+  gap = {1e-5, Name "Parameters/gap (initial gap, see above)"},
+  Hex = {0, Name "Parameters/Hex (1: quadrilateral sections extruded into hexahedra)"}
 ];
 t = 2 * hc;        // slice thickness along y
 nlayers = 2;       // element layers through t
@@ -93,8 +95,18 @@ Mesh.MeshSizeFromPoints = 0;
 Mesh.MeshSizeFromCurvature = 0;
 
 // ---- structured extrusion along y: out[0] = face y = t, out[1] = volume ----
-cyl[] = Extrude {0, t, 0} { Surface{1}; Layers{nlayers}; };
-blk[] = Extrude {0, t, 0} { Surface{11}; Layers{nlayers}; };
+// Hex = 1: the sections are recombined into quadrilaterals (Blossom, then every remaining
+// triangle split too: all quadrilaterals) and extruded with Recombine: 8-node hexahedra.
+If (Hex)
+  Recombine Surface{1, 11};
+  Mesh.RecombinationAlgorithm = 1;
+  Mesh.SubdivisionAlgorithm = 1;
+  cyl[] = Extrude {0, t, 0} { Surface{1}; Layers{nlayers}; Recombine; };
+  blk[] = Extrude {0, t, 0} { Surface{11}; Layers{nlayers}; Recombine; };
+Else
+  cyl[] = Extrude {0, t, 0} { Surface{1}; Layers{nlayers}; };
+  blk[] = Extrude {0, t, 0} { Surface{11}; Layers{nlayers}; };
+EndIf
 
 // faces by position (eps: far below any element size)
 eps = 1e-6;

@@ -13,6 +13,7 @@
 // Regenerate (from input/meshes):
 //   gmsh -3 -format msh41 -setnumber hc 0.15 hertz_sphere.geo -o hertz_sphere_h0.15.msh
 //   ../../build/bin/tribos-msh2exo hertz_sphere_h0.15.msh hertz_sphere_h0.15.exo
+// (a hexahedral block: -setnumber HexBlock 1 ... -o hertz_sphere_hexblock_h0.15.msh)
 // (no --split-bodies: the bodies already have their own nodes).
 SetFactory("OpenCASCADE");
 
@@ -25,7 +26,10 @@ DefineConstant[
   H = {10.0, Name "Parameters/H (block height)"},
   dmin = {1.3, Name "Parameters/dmin (radius of the uniform hc zone)"},
   dmax = {8.0, Name "Parameters/dmax (distance where hmax is reached)"},
-  hrim = {0.5, Name "Parameters/hrim (element size on the rim of the loaded face)"}
+  hrim = {0.5, Name "Parameters/hrim (element size on the rim of the loaded face)"},
+  HexBlock = {0, Name "Parameters/HexBlock (1: the block in 8-node hexahedra, graded to the contact corner)"},
+  nblock = {20, Name "Parameters/nblock (HexBlock: cells per block edge)"},
+  growth = {1.088, Name "Parameters/growth (HexBlock: size ratio of neighbouring cells from the corner)"}
 ];
 
 // polar angle from -Pi/2 (south pole = contact point) to 0, azimuth 0 .. Pi/2 (x, y >= 0)
@@ -103,6 +107,27 @@ Background Field = 20;
 Mesh.MeshSizeExtendFromBoundary = 0;
 Mesh.MeshSizeFromPoints = 0;
 Mesh.MeshSizeFromCurvature = 0;
+
+// HexBlock = 1: a structured block of nblock^3 hexahedra, every edge graded by `growth` from
+// the contact corner (0, 0, 0) (first cell 10 (growth - 1) / (growth^nblock - 1): 0.20 for the
+// defaults); the sphere keeps its tetrahedra (slave quadrilaterals against master triangles).
+If (HexBlock)
+  For k In {0 : #blkCurves[] - 1}
+    c = blkCurves[k];
+    ends[] = PointsOf{ Curve{c}; };
+    p0[] = Point{ends[0]};
+    p1[] = Point{ends[1]};
+    If (Fabs(p0[0]) + Fabs(p0[1]) + Fabs(p0[2]) < Fabs(p1[0]) + Fabs(p1[1]) + Fabs(p1[2]))
+      Transfinite Curve{c} = nblock + 1 Using Progression growth;
+    Else
+      Transfinite Curve{c} = nblock + 1 Using Progression 1 / growth;
+    EndIf
+  EndFor
+  Transfinite Surface{blkAll[]};
+  Recombine Surface{blkAll[]};
+  Transfinite Volume{2};
+  Recombine Volume{2};
+EndIf
 
 Physical Volume("sphere", 1) = {1};
 Physical Volume("block", 2) = {2};
