@@ -286,3 +286,36 @@ TEST(nonmatchingPatch, mortarRowsOnQuadrilateralsAndMixedPairsPassThePatchTest) 
     EXPECT_LE(errors[1], 1e-3);
   }
 }
+
+// Bonded and Coulomb interfaces between a hexahedral body and a tetrahedral one (issue 32),
+// on 1 and 2 ranks: with one material in both bodies the bonded pair is one body under a
+// uniform pressure, and so is the frictional pair (no lateral mismatch, no tangential force):
+// the uniform solution u = (nu p/E x, nu p/E y, -p/E z), up to the mortar quadrature.
+TEST(nonmatchingPatch, bondedAndCoulombBetweenHexahedraAndTetrahedra) {
+  for (const std::string model : {"Bonded", "Coulomb"}) {
+    SCOPED_TRACE(model);
+    auto scene = with(patchScene(), {"Materials/upper/Young Modulus=70000", "Materials/upper/Poisson Ratio=0.33",
+                                     "Contact/Friction Model=" + model, "Contact/F1=0.3", "Contact/F2=0.3"});
+    const auto s = test::solveBoxScene(patchMesh({5, 5, 3}, CellElements::Hexahedron, CellElements::KuhnTetrahedra),
+                                       scene);
+    if (s.contactProblem) {
+      EXPECT_TRUE(s.contact.contact.converged) << s.contact.contact.message;
+    } else {
+      EXPECT_TRUE(s.linear.converged);
+    }
+    if (worldRank() != 0) continue;
+    EXPECT_EQ(s.B.contact.size(), 25u);
+    double error = 0.0, scale = 0.0;
+    const auto& m = s.scene.mesh;
+    for (LO n = 0; n < m.numNodes(); ++n) {
+      const auto& x = m.coords[n];
+      const std::array<double, 3> u0{kNu1 * kP / kE1 * x[0], kNu1 * kP / kE1 * x[1], -kP / kE1 * x[2]};
+      for (int c = 0; c < 3; ++c) {
+        error = std::max(error, std::abs(s.displacement()[n][c] - u0[c]));
+        scale = std::max(scale, std::abs(u0[c]));
+      }
+    }
+    std::printf("%s hex8 / tet4, one material: displacement error %.3e of max |u|\n", model.c_str(), error / scale);
+    EXPECT_LE(error / scale, 1e-3);
+  }
+}
