@@ -149,7 +149,8 @@ std::vector<Vec3> summedFaceNormals(const Mesh& mesh, const SideSet& set) {
   std::vector<Vec3> normal(mesh.numNodes(), Vec3{0.0, 0.0, 0.0});
   for (size_t f = 0; f < set.elements.size(); ++f) {
     const Vec3 n = mesh.faceNormal(set.elements[f], set.sides[f]);
-    for (LO vertex : mesh.faceNodes(set.elements[f], set.sides[f]).vertices())
+    const FaceNodes face = mesh.faceNodes(set.elements[f], set.sides[f]);
+    for (LO vertex : face.vertices())
       for (int d = 0; d < 3; ++d) normal[vertex][d] += n[d];
   }
   return normal;

@@ -162,7 +162,8 @@ std::vector<double> tributaryArea(const mesh::Mesh& mesh, const std::string& sid
   const auto& set = mesh.sideSet(sideSet);
   for (size_t f = 0; f < set.elements.size(); ++f) {
     const auto n = mesh.faceNormal(set.elements[f], set.sides[f]);
-    const auto vertices = mesh.faceNodes(set.elements[f], set.sides[f]).vertices();
+    const mesh::FaceNodes face = mesh.faceNodes(set.elements[f], set.sides[f]);
+    const auto vertices = face.vertices();
     const double share = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) / (2.0 * vertices.size());  // |n| = 2 area
     for (LO v : vertices) area[v] += share;
   }

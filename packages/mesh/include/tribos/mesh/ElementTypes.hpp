@@ -90,8 +90,10 @@ struct FaceNodes {
   int numNodes;
   const LO* begin() const { return node; }
   const LO* end() const { return node + numNodes; }
-  /// The corner nodes only.
-  ElementNodes vertices() const { return {node, numVertices}; }
+  /// The corner nodes only: a view into this object, so not of a temporary (that would
+  /// dangle in a range-for: name the FaceNodes first).
+  ElementNodes vertices() const& { return {node, numVertices}; }
+  ElementNodes vertices() const&& = delete;
 };
 
 /// Face `side` (0-based; Exodus side - 1) of element e of `elements`.
