@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
     const auto mesh = tribos::mesh::readGmsh(in, split);
     file.writeWith([&](const std::string& path) { tribos::mesh::writeExodus(path, mesh); });
     std::cout << "tribos-msh2exo: " << in << " -> " << out << ": " << mesh.numNodes() << " nodes, "
-              << mesh.numElements() << " elements, " << mesh.numBlocks() << " blocks, " << mesh.sideSets.size()
+              << mesh.numElements() << " elements, " << mesh.numBlocks() << " bodies, " << mesh.sideSets.size()
               << " side sets\n";
     for (const auto& s : mesh.sideSets) std::cout << "  side set \"" << s.name << "\": " << s.elements.size() << " faces\n";
     return 0;

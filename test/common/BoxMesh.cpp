@@ -1,6 +1,7 @@
 #include "BoxMesh.hpp"
 
 #include <algorithm>
+#include <map>
 #include <stdexcept>
 #include <utility>
 
@@ -41,6 +42,18 @@ mesh::Mesh boxMesh(std::array<double, 3> origin, std::array<double, 3> size, std
   const int nx = cells[0], ny = cells[1], nz = cells[2];
   auto node = [&](int i, int j, int k) { return static_cast<LO>(i + (nx + 1) * (j + (ny + 1) * k)); };
   mesh::Mesh m;
+  std::map<std::pair<LO, LO>, LO> midNode;  // edge (ascending ends) -> its mid-edge node
+  std::vector<std::pair<LO, LO>> midEnds;   // mid-edge node - grid nodes -> its edge's ends
+  auto middle = [&](LO a, LO b) {
+    const auto [it, inserted] = midNode.insert({std::minmax(a, b), m.numNodes()});
+    if (inserted) {
+      std::array<double, 3> x;
+      for (int c = 0; c < 3; ++c) x[c] = (m.coords[a][c] + m.coords[b][c]) / 2;
+      m.coords.push_back(x);
+      midEnds.push_back({a, b});
+    }
+    return it->second;
+  };
   for (int k = 0; k <= nz; ++k)
     for (int j = 0; j <= ny; ++j)
       for (int i = 0; i <= nx; ++i)
@@ -65,16 +78,29 @@ mesh::Mesh boxMesh(std::array<double, 3> origin, std::array<double, 3> size, std
           const int first = 1 << order[0], second = first | (1 << order[1]);
           std::array<LO, 4> tet{corner[0], corner[first], corner[second], corner[7]};
           if (signedVolume(m, tet) < 0.0) std::swap(tet[2], tet[3]);
+          if (fill == CellElements::QuadraticKuhnTetrahedra) {  // Exodus mid-edge order
+            m.elements.add(mesh::ElementType::Tet10,
+                           {tet[0], tet[1], tet[2], tet[3], middle(tet[0], tet[1]), middle(tet[1], tet[2]),
+                            middle(tet[2], tet[0]), middle(tet[0], tet[3]), middle(tet[1], tet[3]),
+                            middle(tet[2], tet[3])});
+            continue;
+          }
           m.elements.add(mesh::ElementType::Tet4, tet.data());
         }
       }
   m.blocks.push_back({blockName, 1, 0, m.numElements()});
 
   // Faces: a node is on face (axis, upper) when its grid index along axis is 0 or n
-  // (integer test, no floating-point comparison).
-  auto gridIndex = [&](LO n, int axis) {
-    const int idx[3] = {n % (nx + 1), (n / (nx + 1)) % (ny + 1), n / ((nx + 1) * (ny + 1))};
-    return idx[axis];
+  // (integer test, no floating-point comparison); a mid-edge node when both ends of its edge are.
+  const LO gridNodes = (nx + 1) * (ny + 1) * (nz + 1);
+  auto onPlane = [&](LO n, int axis, int plane) {
+    auto index = [&](LO g) {
+      const int idx[3] = {g % (nx + 1), (g / (nx + 1)) % (ny + 1), g / ((nx + 1) * (ny + 1))};
+      return idx[axis];
+    };
+    if (n < gridNodes) return index(n) == plane;
+    const auto& ends = midEnds[n - gridNodes];
+    return index(ends.first) == plane && index(ends.second) == plane;
   };
   int id = 1;
   for (int axis = 0; axis < 3; ++axis)
@@ -84,11 +110,11 @@ mesh::Mesh boxMesh(std::array<double, 3> origin, std::array<double, 3> size, std
       mesh::NodeSet ns{name, id, {}};
       mesh::SideSet ss{name, id, {}, {}};
       for (LO n = 0; n < m.numNodes(); ++n)
-        if (gridIndex(n, axis) == plane) ns.nodes.push_back(n);
+        if (onPlane(n, axis, plane)) ns.nodes.push_back(n);
       for (LO e = 0; e < m.numElements(); ++e)
         for (int side = 0; side < m.numSides(e); ++side) {
           bool all = true;
-          for (LO n : m.faceNodes(e, side)) all = all && gridIndex(n, axis) == plane;
+          for (LO n : m.faceNodes(e, side)) all = all && onPlane(n, axis, plane);
           if (!all) continue;
           ss.elements.push_back(e);
           ss.sides.push_back(side);

@@ -12,9 +12,10 @@
 
 namespace tribos::test {
 
-/// What fills each cell: the 6 Kuhn tetrahedra, one 8-node hexahedron, or two 6-node prisms
-/// (the cell cut along the diagonal of its xy face: their triangles lie on the z faces).
-enum class CellElements { KuhnTetrahedra, Hexahedron, TwoPrisms };
+/// What fills each cell: the 6 Kuhn tetrahedra (linear, or 10-node with straight mid-edge
+/// nodes, numbered after the grid's), one 8-node hexahedron, or two 6-node prisms (the cell
+/// cut along the diagonal of its xy face: their triangles lie on the z faces).
+enum class CellElements { KuhnTetrahedra, QuadraticKuhnTetrahedra, Hexahedron, TwoPrisms };
 
 /// Node (i, j, k) of the grid is node i + (nx+1) (j + (ny+1) k), at origin + size * (i/nx,
 /// j/ny, k/nz) (computed as size * i / n, so binary fractions are exact). Every element is

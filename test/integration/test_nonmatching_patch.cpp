@@ -106,9 +106,10 @@ PressureStats pressureStats(const test::SolvedBoxScene& s) {
 }
 
 /// The discrete equations node by node, with the undecomposed stiffness (independent of
-/// T-FETI): K u - f is the contact force each node receives — -F_r nu at slave node r and
-/// sum_r w_r(m) F_r nu at master vertex m, F_r the reported normal force (of the slave on
-/// the master) — and zero at every other node, except in prescribed components (reactions).
+/// T-FETI): K u - f is the contact force each node receives — -s F_r nu at slave node r (s its
+/// weight in the row, ContactNode::sides; a mid-edge node's row reaches its edge's ends too) and
+/// sum_r w_r(m) F_r nu at master node m, F_r the reported normal force (of the slave on the
+/// master) — and zero at every other node, except in prescribed components (reactions).
 /// And every slave node, all in contact, sits on the interpolated master surface:
 /// (u_s - sum_i w_i u_m_i) . nu = d = 0. Returns the largest mismatch of each, relative to
 /// p * area and to max |u|.
@@ -133,14 +134,11 @@ std::array<double, 2> nodeToSurfaceResiduals(const test::SolvedBoxScene& s) {
   for (const auto& node : s.B.contact) {
     const double F = s.contact.contactNormal[node.slaveNode];
     double jump = 0.0;
-    for (int c = 0; c < 3; ++c) {
-      expected[3 * node.slaveNode + c] -= F * node.normal[c];
-      jump += u[3 * node.slaveNode + c] * node.normal[c];
-      for (size_t v = 0; v < node.masterNodes.size(); ++v) {
-        expected[3 * node.masterNodes[v] + c] += node.masterWeights[v] * F * node.normal[c];
-        jump -= node.masterWeights[v] * u[3 * node.masterNodes[v] + c] * node.normal[c];
+    for (const auto& [n, weight] : node.sides())  // the slave node(s) +, the master nodes -
+      for (int c = 0; c < 3; ++c) {
+        expected[3 * n + c] -= weight * F * node.normal[c];
+        jump += weight * u[3 * n + c] * node.normal[c];
       }
-    }
     gapMismatch = std::max(gapMismatch, std::abs(jump - node.gap));
   }
   double forceMismatch = 0.0;
@@ -153,10 +151,11 @@ void expectConvergedWithExactResultants(const test::SolvedBoxScene& s) {
   const auto& r = s.contact.contact;
   EXPECT_TRUE(r.converged) << r.message;
   if (worldRank() != 0) return;
-  EXPECT_EQ(s.B.contact.size(), 25u);          // every slave node paired
+  const auto slaveNodes = s.scene.mesh.nodeSet("lower_z1").nodes.size();  // 25, and mid-edge nodes
+  EXPECT_EQ(s.B.contact.size(), slaveNodes);   // every slave node paired
   EXPECT_EQ(s.B.unpairedSlaveNodes(), 0);
   EXPECT_EQ(r.statusCounts[0], 0);             // all in contact
-  EXPECT_EQ(r.statusCounts[2], 25);            // frictionless: every contact node slides
+  EXPECT_EQ(r.statusCounts[2], static_cast<int>(slaveNodes));  // frictionless: every contact node slides
   // The upper body carries p over the area to the lower one: sum of the normal forces.
   EXPECT_NEAR(s.contact.totalNormalForce, kP * kArea, 1e-8 * kP * kArea);
   EXPECT_NEAR(s.contact.totalContactForce[2], kP * kArea, 1e-8 * kP * kArea);
@@ -266,8 +265,11 @@ TEST(nonmatchingPatch, matchingHexahedraReproduceTheUniformSolution) {
 }
 
 // Non-matching quadrilateral faces (bilinear dual basis on the slave, bilinear master shape
-// functions), and hexahedra against tetrahedra and prisms both ways: the mortar rows pass the
-// patch test up to the quadrature of the master's kinks, as on triangles.
+// functions), 6-node triangles (the dual of the transformed quadratic basis on the slave,
+// quadratic master shape functions), and hexahedra against linear and quadratic tetrahedra and
+// prisms: the mortar rows pass the patch test up to the quadrature of the master's kinks, as on
+// triangles. Measured (1 and 2 ranks alike): pressure within 1.2e-3 of p (1.7e-3 tet10 /
+// tet10), displacements within 6.4e-4 of max |u| (1.2e-3 in the tet10 master under hex8).
 TEST(nonmatchingPatch, mortarRowsOnQuadrilateralsAndMixedPairsPassThePatchTest) {
   struct Pair {
     const char* name;
@@ -276,14 +278,18 @@ TEST(nonmatchingPatch, mortarRowsOnQuadrilateralsAndMixedPairsPassThePatchTest) 
   for (const Pair& pair : {Pair{"hex8 / hex8", CellElements::Hexahedron, CellElements::Hexahedron},
                            Pair{"hex8 / tet4", CellElements::Hexahedron, CellElements::KuhnTetrahedra},
                            Pair{"tet4 / hex8", CellElements::KuhnTetrahedra, CellElements::Hexahedron},
-                           Pair{"wedge6 / hex8", CellElements::TwoPrisms, CellElements::Hexahedron}}) {
+                           Pair{"wedge6 / hex8", CellElements::TwoPrisms, CellElements::Hexahedron},
+                           Pair{"tet10 / tet10", CellElements::QuadraticKuhnTetrahedra,
+                                CellElements::QuadraticKuhnTetrahedra},
+                           Pair{"tet10 / hex8", CellElements::QuadraticKuhnTetrahedra, CellElements::Hexahedron},
+                           Pair{"hex8 / tet10", CellElements::Hexahedron, CellElements::QuadraticKuhnTetrahedra}}) {
     SCOPED_TRACE(pair.name);
     if (worldRank() == 0) std::printf("slave / master %s:\n", pair.name);
     const auto [st, errors] = nonMatchingPatch("Mortar", pair.lower, pair.upper);
     if (worldRank() != 0) continue;
-    EXPECT_LE(st.maxAbsDev, 2e-3);
-    EXPECT_LE(errors[0], 1e-3);
-    EXPECT_LE(errors[1], 1e-3);
+    EXPECT_LE(st.maxAbsDev, 2.5e-3);
+    EXPECT_LE(errors[0], 2e-3);
+    EXPECT_LE(errors[1], 2e-3);
   }
 }
 

@@ -22,6 +22,13 @@
 
 namespace tribos::feti {
 
+std::vector<std::pair<LO, double>> ContactNode::sides() const {
+  std::vector<std::pair<LO, double>> out{{slaveNode, slaveWeight}};
+  for (size_t k = 0; k < otherSlaveNodes.size(); ++k) out.push_back({otherSlaveNodes[k], otherSlaveWeights[k]});
+  for (size_t v = 0; v < masterNodes.size(); ++v) out.push_back({masterNodes[v], -masterWeights[v]});
+  return out;
+}
+
 GO ConstraintMatrix::count(RowKind k) const { return std::count(kind.begin(), kind.end(), k); }
 
 GO ConstraintMatrix::unpairedSlaveNodes() const {
@@ -228,6 +235,9 @@ ContactNode contactFrame(const mesh::ContactPair& pair, const mesh::MortarRow& m
   node.masterNode = pair.nearestMasterNode();
   node.masterNodes = masterSide.masterNodes;
   node.masterWeights = masterSide.weights;
+  node.slaveWeight = masterSide.slaveWeight;
+  node.otherSlaveNodes = masterSide.slaveNodes;
+  node.otherSlaveWeights = masterSide.slaveWeights;
   node.mortar = !masterSide.nodeToSurface;
   node.normal = symmetryPlaneNormal(pair.normal, prescribed, pair.slaveNode);
   node.gap = masterSide.gap;
@@ -246,7 +256,7 @@ double freeAlong(const Prescribed& prescribed, LO node, const Vec3& dir) {
 }
 
 /// The row of contact node `node` along direction d (0: nu, 1: t1, 2: t2) over its nodes
-/// `sides` (+1 on the slave, -w_i on master vertex i), its scale recorded in `node`; or
+/// `sides` (ContactNode::sides: +1 on the slave, -w_i on master node i), its scale recorded in `node`; or
 /// false when it is dropped (the entries it appended are removed): a row (almost) entirely
 /// on prescribed components, or a tangential row on a symmetry plane (both sides held along it).
 bool contactRow(int d, bool tied, ContactNode& node, const std::vector<std::pair<LO, double>>& sides,
@@ -351,24 +361,6 @@ void refuseSelfContact(const mesh::Mesh& mesh, const ContactInterfaceSpec& spec)
                              "surfaces of an interface must lie on different bodies");
 }
 
-/// The contact rows (search, dual mortar, node-to-surface) are built on 3-node triangles and
-/// 4-node quadrilaterals. 6-node triangles (of 10-node tetrahedra) are refused with the face
-/// named, not coupled through their vertices only.
-void refuseFacesContactCannotUse(const mesh::Mesh& mesh, const ContactInterfaceSpec& spec) {
-  for (const std::string& name : {spec.slaveSideSet, spec.masterSideSet}) {
-    const auto& set = mesh.sideSet(name);
-    for (size_t f = 0; f < set.elements.size(); ++f) {
-      const mesh::FaceNodes face = mesh.faceNodes(set.elements[f], set.sides[f]);
-      if (face.numNodes == face.numVertices) continue;
-      throw core::InputError(spec.label() + ": side set \"" + name + "\" has a 6-node triangle face (side " +
-                             std::to_string(set.sides[f] + 1) + " of " + mesh.elementLabel(set.elements[f]) + ", a " +
-                             mesh::elementShape(mesh.elementType(set.elements[f])).description +
-                             "); contact and bonded surfaces must be 3-node triangles or 4-node quadrilaterals in this "
-                             "version: mesh this body with 4-node tetrahedra, 8-node hexahedra or 6-node prisms");
-    }
-  }
-}
-
 /// Whether a face of side set `faces` has all its nodes in `nodes` (ascending).
 bool aFaceWithin(const mesh::Mesh& mesh, const std::string& faces, const std::vector<LO>& nodes) {
   const auto& set = mesh.sideSet(faces);
@@ -392,7 +384,6 @@ void refuseContactsModelledTwice(const mesh::Mesh& mesh, const std::vector<Conta
     core::requireInput(!spec.slaveSideSet.empty() && !spec.masterSideSet.empty(),
                        spec.label() + ": give both the slave and the master side set");
     refuseSelfContact(mesh, spec);
-    refuseFacesContactCannotUse(mesh, spec);
     slave.push_back(mesh::sideSetNodes(mesh, mesh.sideSet(spec.slaveSideSet)));
     master.push_back(mesh::sideSetNodes(mesh, mesh.sideSet(spec.masterSideSet)));
   }
@@ -521,8 +512,7 @@ void addContactRows(const mesh::Mesh& mesh, const ConstraintSpec& all, int index
   for (size_t p = 0; p < search.pairs.size(); ++p) {
     ContactNode node = contactFrame(search.pairs[p], masterSides[p], spec, ctx.prescribed);
     node.interface = index;
-    std::vector<std::pair<LO, double>> sides{{node.slaveNode, 1.0}};
-    for (size_t v = 0; v < node.masterNodes.size(); ++v) sides.push_back({node.masterNodes[v], -node.masterWeights[v]});
+    const std::vector<std::pair<LO, double>> sides = node.sides();
     // The node's rows are added together, their entries consecutive in the list.
     std::vector<Row> nodeRows;
     for (int d = 0; d < numDirections; ++d) {

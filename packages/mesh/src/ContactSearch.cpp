@@ -12,6 +12,7 @@
 
 #include "tribos/core/Errors.hpp"
 #include "tribos/core/Format.hpp"
+#include "tribos/mesh/ShapeFunctions.hpp"
 
 namespace tribos::mesh {
 
@@ -149,9 +150,10 @@ std::vector<Vec3> summedFaceNormals(const Mesh& mesh, const SideSet& set) {
   std::vector<Vec3> normal(mesh.numNodes(), Vec3{0.0, 0.0, 0.0});
   for (size_t f = 0; f < set.elements.size(); ++f) {
     const Vec3 n = mesh.faceNormal(set.elements[f], set.sides[f]);
-    const FaceNodes face = mesh.faceNodes(set.elements[f], set.sides[f]);
-    for (LO vertex : face.vertices())
-      for (int d = 0; d < 3; ++d) normal[vertex][d] += n[d];
+    // Every node of the face: a 6-node triangle's mid-edge nodes are contact nodes too, and
+    // the master normal is interpolated with its quadratic shape functions.
+    for (LO node : mesh.faceNodes(set.elements[f], set.sides[f]))
+      for (int d = 0; d < 3; ++d) normal[node][d] += n[d];
   }
   return normal;
 }
@@ -194,14 +196,89 @@ class MasterSurface::Tree : public TriangleTreeImpl {
 };
 
 namespace {
-/// The vertices of a quadrilateral's halves: (0,1,2) and (0,2,3).
-constexpr int kQuadHalves[2][3] = {{0, 1, 2}, {0, 2, 3}};
 /// Reference corners (xi, eta) of the quadrilateral's vertices (mesh::faceShapeFunctions).
 constexpr double kQuadCorners[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+/// Reference points (r, s) of a 6-node triangle's nodes: vertices, then mid-edges 01, 12, 20.
+constexpr double kTri6Nodes[6][2] = {{0, 0}, {1, 0}, {0, 1}, {0.5, 0}, {0.5, 0.5}, {0, 0.5}};
+
+/// The triangles a face is searched as (face node indices), per face type.
+struct FacePieces {
+  int count;
+  int node[4][3];
+};
+constexpr FacePieces kTri3Pieces = {1, {{0, 1, 2}}};
+constexpr FacePieces kQuad4Pieces = {2, {{0, 1, 2}, {0, 2, 3}}};
+constexpr FacePieces kTri6Pieces = {4, {{0, 3, 5}, {3, 1, 4}, {5, 4, 2}, {3, 4, 5}}};
+const FacePieces& facePieces(const FaceNodes& face) {
+  if (face.numVertices == 4) return kQuad4Pieces;
+  return face.numNodes == 6 ? kTri6Pieces : kTri3Pieces;
+}
+
+/// A bound on the distance between a face and its pieces: a quadrilateral's twist |x0 - x1 +
+/// x2 - x3| / 4 (the bilinear term at the centre), a 6-node triangle's largest bow of a
+/// mid-edge node off its edge's chord; 0 for a 3-node triangle.
+double deviationFromPieces(const FaceNodes& face, const std::array<Vec3, kMaxMasterFaceNodes>& x) {
+  if (face.numVertices == 4) {
+    Vec3 twist;
+    for (int d = 0; d < 3; ++d) twist[d] = (x[0][d] - x[1][d] + x[2][d] - x[3][d]) / 4;
+    return norm(twist);
+  }
+  double bow = 0.0;
+  for (int m = 0; face.numNodes == 6 && m < 3; ++m) {
+    Vec3 off;
+    for (int d = 0; d < 3; ++d) off[d] = x[3 + m][d] - (x[m][d] + x[(m + 1) % 3][d]) / 2;
+    bow = std::max(bow, norm(off));
+  }
+  return bow;
+}
+
+/// The point and tangents of a 6-node triangle x at (r, s), and its shape functions.
+void quadraticTriangle(const std::array<Vec3, kMaxMasterFaceNodes>& x, double r, double s, Vec3& point, Vec3& dR,
+                       Vec3& dS, std::array<double, kMaxMasterFaceNodes>& N) {
+  double n[6], dN[6][3];
+  const double xi[3] = {r, s, 0.0};
+  faceShapeFunctions(FaceType::Tri6, xi, n, dN);
+  point = dR = dS = Vec3{0.0, 0.0, 0.0};
+  for (int k = 0; k < 6; ++k) {
+    N[k] = n[k];
+    for (int d = 0; d < 3; ++d) {
+      point[d] += n[k] * x[k][d];
+      dR[d] += dN[k][0] * x[k][d];
+      dS[d] += dN[k][1] * x[k][d];
+    }
+  }
+}
+
+/// The point of the 6-node triangle x closest to `target`, from (r, s) on: Gauss-Newton steps,
+/// each point put back into the reference triangle (onto its nearest edge when it leaves).
+void closestOnQuadraticTriangle(const std::array<Vec3, kMaxMasterFaceNodes>& x, const Vec3& target, double& r,
+                                double& s) {
+  Vec3 point, dR, dS;
+  std::array<double, kMaxMasterFaceNodes> N;
+  for (int iteration = 0; iteration < 50; ++iteration) {
+    quadraticTriangle(x, r, s, point, dR, dS, N);
+    const Vec3 res = minus(point, target);
+    const double a = dot(dR, dR), b = dot(dR, dS), c = dot(dS, dS);
+    const double g0 = dot(dR, res), g1 = dot(dS, res), det = a * c - b * b;
+    if (!(det > 0.0)) return;
+    double nr = r - (c * g0 - b * g1) / det, ns = s - (a * g1 - b * g0) / det;
+    nr = std::max(nr, 0.0);
+    ns = std::max(ns, 0.0);
+    if (nr + ns > 1.0) {
+      const double excess = (nr + ns - 1.0) / 2;
+      nr = std::clamp(nr - excess, 0.0, 1.0);
+      ns = 1.0 - nr;
+    }
+    const double change = std::abs(nr - r) + std::abs(ns - s);
+    r = nr;
+    s = ns;
+    if (change < 1e-15) return;
+  }
+}
 
 /// The bilinear face's point, tangents and shape functions at (xi, eta).
-void bilinear(const std::array<Vec3, 4>& x, double xi, double eta, Vec3& point, Vec3& dXi, Vec3& dEta,
-              std::array<double, 4>& N) {
+void bilinear(const std::array<Vec3, kMaxMasterFaceNodes>& x, double xi, double eta, Vec3& point, Vec3& dXi,
+              Vec3& dEta, std::array<double, kMaxMasterFaceNodes>& N) {
   point = dXi = dEta = Vec3{0.0, 0.0, 0.0};
   for (int k = 0; k < 4; ++k) {
     const double a = (1.0 + kQuadCorners[k][0] * xi) / 2, b = (1.0 + kQuadCorners[k][1] * eta) / 2;
@@ -220,9 +297,9 @@ void bilinear(const std::array<Vec3, 4>& x, double xi, double eta, Vec3& point, 
 /// takes the step of the model with the first one fixed there (the closest point of an edge
 /// is not where the free step, cut off, would put it). For a flat face this inverts the
 /// bilinear map at the point found on the face's triangles.
-void closestOnBilinear(const std::array<Vec3, 4>& x, const Vec3& target, double& xi, double& eta) {
+void closestOnBilinear(const std::array<Vec3, kMaxMasterFaceNodes>& x, const Vec3& target, double& xi, double& eta) {
   Vec3 point, dXi, dEta;
-  std::array<double, 4> N;
+  std::array<double, kMaxMasterFaceNodes> N;
   for (int iteration = 0; iteration < 50; ++iteration) {
     bilinear(x, xi, eta, point, dXi, dEta, N);
     const Vec3 r = minus(point, target);
@@ -253,16 +330,17 @@ MasterSurface::MasterSurface(const Mesh& mesh, const std::string& masterSideSet)
   const SideSet& set = mesh.sideSet(masterSideSet);
   std::vector<std::array<Vec3, 3>> triangles;
   faceNodes_.resize(set.elements.size());
-  corners_.resize(set.elements.size());
+  faceCoords_.resize(set.elements.size());
   for (size_t f = 0; f < set.elements.size(); ++f) {
     faceNodes_[f] = mesh.faceNodes(set.elements[f], set.sides[f]);
-    for (int v = 0; v < faceNodes_[f].numVertices; ++v) corners_[f][v] = mesh.coords[faceNodes_[f].node[v]];
-    const int halves = faceNodes_[f].numVertices == 4 ? 2 : 1;
-    for (int half = 0; half < halves; ++half) {
+    for (int v = 0; v < faceNodes_[f].numNodes; ++v) faceCoords_[f][v] = mesh.coords[faceNodes_[f].node[v]];
+    pieceDeviation_ = std::max(pieceDeviation_, deviationFromPieces(faceNodes_[f], faceCoords_[f]));
+    const FacePieces& pieces = facePieces(faceNodes_[f]);
+    for (int piece = 0; piece < pieces.count; ++piece) {
       std::array<Vec3, 3> t;
-      for (int v = 0; v < 3; ++v) t[v] = mesh.coords[faceNodes_[f].node[halves == 2 ? kQuadHalves[half][v] : v]];
+      for (int v = 0; v < 3; ++v) t[v] = faceCoords_[f][pieces.node[piece][v]];
       triangles.push_back(t);
-      searchTriangles_.push_back({static_cast<LO>(f), half});
+      searchTriangles_.push_back({static_cast<LO>(f), piece});
     }
   }
   tree_ = std::make_unique<Tree>(std::move(triangles));
@@ -275,7 +353,8 @@ MasterSurface::Projection MasterSurface::project(const Vec3& x, double radius, l
   Projection best;
   LO bestTriangle = -1;
   std::array<double, 3> bestBarycentric{};
-  double best2 = radius * radius;
+  const double reach = radius + pieceDeviation_;
+  double best2 = reach * reach;
   tree_->query(x, best2, [&](LO triangle, double& bound2) {
     if (facesTested) ++*facesTested;
     const auto& t = tree_->triangle(triangle);
@@ -295,32 +374,37 @@ MasterSurface::Projection MasterSurface::project(const Vec3& x, double radius, l
   const SearchTriangle& found = searchTriangles_[bestTriangle];
   const FaceNodes& face = faceNodes_[found.face];
   best.face = found.face;
-  for (int v = 0; v < face.numVertices; ++v) best.nodes[v] = face.node[v];
-  if (face.numVertices == 3) {
+  for (int v = 0; v < face.numNodes; ++v) best.nodes[v] = face.node[v];
+  if (face.numNodes == 3) {
     for (int v = 0; v < 3; ++v) best.weights[v] = bestBarycentric[v];
     best.distance = std::sqrt(best2);
-    return best;
+    return best2 <= radius * radius ? best : Projection{};
   }
-  // A quadrilateral: its reference point from the half's barycentric weights; a vertex of
-  // the face (a weight of exactly 1: matching meshes) stays exact, as on a triangle.
-  const std::array<Vec3, 4>& corners = corners_[found.face];
-  const int* half = kQuadHalves[found.half];
+  // A quadrilateral or a 6-node triangle: its reference point from the piece's barycentric
+  // weights; a node of the face (a weight of exactly 1: matching meshes) stays exact, as on
+  // a triangle.
+  const int* piece = facePieces(face).node[found.piece];
   for (int v = 0; v < 3; ++v)
     if (bestBarycentric[v] == 1.0) {
-      best.weights[half[v]] = 1.0;
+      best.weights[piece[v]] = 1.0;
       best.distance = std::sqrt(best2);
-      return best;
+      return best2 <= radius * radius ? best : Projection{};
     }
-  double xi = 0.0, eta = 0.0;
-  for (int v = 0; v < 3; ++v) {
-    xi += bestBarycentric[v] * kQuadCorners[half[v]][0];
-    eta += bestBarycentric[v] * kQuadCorners[half[v]][1];
+  const auto& coords = faceCoords_[found.face];
+  const bool quad = face.numVertices == 4;
+  double ref[2] = {0.0, 0.0};
+  for (int v = 0; v < 3; ++v)
+    for (int i = 0; i < 2; ++i) ref[i] += bestBarycentric[v] * (quad ? kQuadCorners : kTri6Nodes)[piece[v]][i];
+  Vec3 d0, d1;
+  if (quad) {
+    closestOnBilinear(coords, x, ref[0], ref[1]);
+    bilinear(coords, ref[0], ref[1], best.point, d0, d1, best.weights);
+  } else {
+    closestOnQuadraticTriangle(coords, x, ref[0], ref[1]);
+    quadraticTriangle(coords, ref[0], ref[1], best.point, d0, d1, best.weights);
   }
-  closestOnBilinear(corners, x, xi, eta);
-  Vec3 dXi, dEta;
-  bilinear(corners, xi, eta, best.point, dXi, dEta, best.weights);
   best.distance = norm(minus(best.point, x));
-  return best;
+  return best.distance <= radius ? best : Projection{};
 }
 
 Vec3 MasterSurface::normalAt(const Projection& p) const {

@@ -262,7 +262,8 @@ void ExodusReader::readSideSets(Mesh& mesh) const {
   for (int64_t s = 0; s < h_.numSideSets; ++s) {
     int64_t count = 0, factors = 0;
     check(ex_get_set_param(id_, EX_SIDE_SET, ids[s], &count, &factors), path_, "reading side set " + names[s]);
-    requireCount(count, 4 * h_.numElements, path_, "faces in side set \"" + names[s] + "\"", "the elements have");
+    requireCount(count, 6 * h_.numElements, path_, "faces in side set \"" + names[s] + "\"",
+                 "at most 6 per element");
     std::vector<int64_t> elements(count), sides(count);
     if (count > 0)
       check(ex_get_set(id_, EX_SIDE_SET, ids[s], elements.data(), sides.data()), path_, "reading side set " + names[s]);

@@ -445,6 +445,10 @@ class MeshBuilder {
     VolumeElement& volume = content_.volumes[e];
     const std::string name = volumeName(content_, volume.physical);
     if (blockOfBody_.count(volume.physical) == 0) {  // elements are sorted by body: a new block
+      for (const auto& block : mesh_.blocks)  // Exodus joins blocks of one name into one body
+        if (block.name == name)
+          fail("Physical Volumes " + std::to_string(block.id) + " and " + std::to_string(volume.physical) +
+               " are both named \"" + name + "\"; give each body its own name");
       blockOfBody_[volume.physical] = mesh_.numBlocks();
       mesh_.blocks.push_back({name, volume.physical > 0 ? volume.physical : mesh_.numBlocks() + 1, e, 0});
     }

@@ -158,7 +158,7 @@ void requireValidElements(const Mesh& mesh, const Fail& fail) {
     elementCoordinates(mesh, e, x);
     const double smallest = elementMeasure(mesh.elementType(e), x).smallestScaledJacobian;
     if (smallest <= tiny)
-      fail(mesh.elementLabel(e) + " (a " + elementShape(mesh.elementType(e)).description +
+      fail(mesh.elementLabel(e) + " (type " + elementShape(mesh.elementType(e)).exodusName +
            ") is inverted or distorted at a corner: its Jacobian there is " + core::formatNumber(smallest) +
            " of the reference element's (nonpositive; volume " + core::formatNumber(volume) + ")");
   }

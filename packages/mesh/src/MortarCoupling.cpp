@@ -7,6 +7,8 @@
 #include <limits>
 #include <map>
 
+#include "tribos/mesh/ShapeFunctions.hpp"
+
 namespace tribos::mesh {
 
 namespace {
@@ -21,15 +23,15 @@ constexpr int kSubdivisions = 6;
 constexpr double kCoverageTolerance = 1e-9;
 constexpr double kNodeToNodeTolerance = 1e-10;
 
-struct QuadraturePoint {
+struct CompositePoint {
   std::array<double, 3> lambda;  ///< barycentric coordinates in the slave triangle
   double weight;                 ///< fraction of the triangle's area
 };
 
 /// Points and weights of the composite rule on the reference triangle: sub-triangles of a
 /// regular kSubdivisions grid, each with the 3-point rule at (2/3, 1/6, 1/6) and permutations.
-std::vector<QuadraturePoint> compositeRule() {
-  std::vector<QuadraturePoint> rule;
+std::vector<CompositePoint> compositeRule() {
+  std::vector<CompositePoint> rule;
   const int n = kSubdivisions;
   const double subWeight = 1.0 / (n * n) / 3.0;
   auto addTriangle = [&](const std::array<std::array<double, 2>, 3>& corner) {
@@ -52,18 +54,45 @@ std::vector<QuadraturePoint> compositeRule() {
   return rule;
 }
 
+/// The same sub-triangles with the 6-point rule exact for quartics (Dunavant 1985) on each:
+/// for 6-node slave triangles, whose dual basis times an affine master field is cubic.
+std::vector<CompositePoint> compositeQuarticRule() {
+  const double a = 0.445948490915965, wa = 0.223381589678011, b = 0.091576213509771, wb = 0.109951743655322;
+  const double points[6][3] = {{a, a, 1 - 2 * a}, {a, 1 - 2 * a, a}, {1 - 2 * a, a, a},
+                               {b, b, 1 - 2 * b}, {b, 1 - 2 * b, b}, {1 - 2 * b, b, b}};
+  std::vector<CompositePoint> rule;
+  const int n = kSubdivisions;
+  auto addTriangle = [&](const std::array<std::array<double, 2>, 3>& corner) {
+    for (int k = 0; k < 6; ++k) {
+      double s = 0.0, t = 0.0;
+      for (int c = 0; c < 3; ++c) {
+        s += points[k][c] * corner[c][0];
+        t += points[k][c] * corner[c][1];
+      }
+      rule.push_back({{1.0 - s - t, s, t}, (k < 3 ? wa : wb) / (n * n)});
+    }
+  };
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; i + j < n; ++j) {
+      const double x = double(i) / n, y = double(j) / n, h = 1.0 / n;
+      addTriangle({{{x, y}, {x + h, y}, {x, y + h}}});
+      if (i + j + 1 < n) addTriangle({{{x + h, y}, {x + h, y + h}, {x, y + h}}});
+    }
+  return rule;
+}
+
 /// One quadrature point on a slave face: where it is, its weight times the area element, and
 /// the slave shape functions phi_v and their duals psi_v at it (vertex order of the face).
 struct SlavePoint {
   Vec3 x;
   double omega;
-  std::array<double, 4> phi, psi;
+  std::array<double, kMaxFaceNodes> phi, psi;
 };
 
 double triangleArea(const Vec3& a, const Vec3& b, const Vec3& c);
 
 /// A 3-node triangle: the composite rule, psi_v = 4 phi_v - 1 (Wohlmuth's linear dual basis).
-std::vector<SlavePoint> trianglePoints(const std::array<Vec3, 3>& x, const std::vector<QuadraturePoint>& rule) {
+std::vector<SlavePoint> trianglePoints(const std::array<Vec3, 3>& x, const std::vector<CompositePoint>& rule) {
   const double area = triangleArea(x[0], x[1], x[2]);
   std::vector<SlavePoint> points;
   points.reserve(rule.size());
@@ -81,7 +110,7 @@ std::vector<SlavePoint> trianglePoints(const std::array<Vec3, 3>& x, const std::
 }
 
 /// Bilinear shape functions, the point and the area element of quadrilateral x at (xi, eta).
-void bilinearAt(const std::array<Vec3, 4>& x, double xi, double eta, std::array<double, 4>& N, Vec3& point,
+void bilinearAt(const std::array<Vec3, kMaxFaceNodes>& x, double xi, double eta, std::array<double, kMaxFaceNodes>& N, Vec3& point,
                 double& areaElement) {
   static constexpr double corner[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
   Vec3 dXi{0, 0, 0}, dEta{0, 0, 0};
@@ -104,12 +133,12 @@ void bilinearAt(const std::array<Vec3, 4>& x, double xi, double eta, std::array<
 /// mass matrix, D its row sums int phi_i), so int psi_i phi_j = delta_ij int phi_i. On a
 /// parallelogram this is the bilinear dual basis psi_i = 4 phi_i - 2 (phi_{i+1} + phi_{i-1})
 /// + phi_{i+2} (ALGORITHMS.md 12); on other quadrilaterals it follows their Jacobian.
-std::array<std::array<double, 4>, 4> quadDualCoefficients(const std::array<Vec3, 4>& x) {
+std::array<std::array<double, 4>, 4> quadDualCoefficients(const std::array<Vec3, kMaxFaceNodes>& x) {
   const double g = std::sqrt(3.0 / 5.0), gauss[3] = {-g, 0.0, g}, weight[3] = {5.0 / 9, 8.0 / 9, 5.0 / 9};
   double M[4][8] = {}, D[4] = {};  // [M | I], reduced to [I | M^{-1}]
   for (int a = 0; a < 3; ++a)
     for (int b = 0; b < 3; ++b) {
-      std::array<double, 4> N;
+      std::array<double, kMaxFaceNodes> N;
       Vec3 point;
       double dA;
       bilinearAt(x, gauss[a], gauss[b], N, point, dA);
@@ -134,8 +163,97 @@ std::array<std::array<double, 4>, 4> quadDualCoefficients(const std::array<Vec3,
   return A;
 }
 
+/// The basis transformation of a 6-node triangle (Popp, Wohlmuth, Gee & Wall 2012): the
+/// vertex functions take alpha of each neighbouring mid-edge function, phi~_v = phi_v + alpha
+/// (phi_m + phi_m'), phi~_m = (1 - 2 alpha) phi_m. Its integrals are positive (2 alpha / 3 and
+/// (1 - 2 alpha) / 3 of the area on a flat face, where the vertex functions' own are 0), so
+/// a dual basis biorthogonal to it exists with positive D; the span and the partition of unity
+/// are kept. The slave displacement's coefficients in this basis are u~_v = u_v and u~_m =
+/// (u_m - alpha (u_a + u_b)) / (1 - 2 alpha) (a, b the ends of m's edge): a mid-edge node's
+/// row couples it with them (MortarRow::slaveNodes).
+constexpr double kTransformAlpha = kQuadraticTransformAlpha;
+/// Mid-edge node 3 + m lies on the edge (m, m + 1 mod 3).
+void transformedQuadratic(const double N[6], std::array<double, kMaxFaceNodes>& phi) {
+  for (int v = 0; v < 3; ++v) phi[v] = N[v] + kTransformAlpha * (N[3 + v] + N[3 + (v + 2) % 3]);
+  for (int m = 0; m < 3; ++m) phi[3 + m] = (1.0 - 2.0 * kTransformAlpha) * N[3 + m];
+}
+
+/// The quadratic geometry of a 6-node triangle at (r, s): its shape functions, point and area
+/// element.
+void quadraticTriangleAt(const std::array<Vec3, kMaxFaceNodes>& x, double r, double s, double N[6], Vec3& point,
+                         double& areaElement) {
+  double dN[6][3];
+  const double xi[3] = {r, s, 0.0};
+  faceShapeFunctions(FaceType::Tri6, xi, N, dN);
+  Vec3 dR{0, 0, 0}, dS{0, 0, 0};
+  point = {0.0, 0.0, 0.0};
+  for (int k = 0; k < 6; ++k)
+    for (int d = 0; d < 3; ++d) {
+      point[d] += N[k] * x[k][d];
+      dR[d] += dN[k][0] * x[k][d];
+      dS[d] += dN[k][1] * x[k][d];
+    }
+  const Vec3 n{dR[1] * dS[2] - dR[2] * dS[1], dR[2] * dS[0] - dR[0] * dS[2], dR[0] * dS[1] - dR[1] * dS[0]};
+  areaElement = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+}
+
+/// The dual basis of a 6-node triangle, biorthogonal to the transformed basis: psi = A phi~
+/// with A = D M^{-1}, D_k = int phi~_k, M_kl = int phi~_k phi~_l, by a collapsed 4 x 4 Gauss
+/// rule (exact to degree 7 on a flat face).
+std::array<std::array<double, 6>, 6> sixNodeDualCoefficients(const std::array<Vec3, kMaxFaceNodes>& x) {
+  const double g[4] = {0.0694318442029737, 0.3300094782075719, 0.6699905217924281, 0.9305681557970263};
+  const double w[4] = {0.1739274225687269, 0.3260725774312731, 0.3260725774312731, 0.1739274225687269};
+  double M[6][12] = {}, D[6] = {};  // [M | I], reduced to [I | M^{-1}]
+  for (int a = 0; a < 4; ++a)
+    for (int b = 0; b < 4; ++b) {
+      double N[6], dA;
+      Vec3 point;
+      quadraticTriangleAt(x, g[a], g[b] * (1.0 - g[a]), N, point, dA);
+      std::array<double, kMaxFaceNodes> phi;
+      transformedQuadratic(N, phi);
+      const double weight = w[a] * w[b] * (1.0 - g[a]) * dA;
+      for (int i = 0; i < 6; ++i) {
+        D[i] += weight * phi[i];
+        for (int j = 0; j < 6; ++j) M[i][j] += weight * phi[i] * phi[j];
+      }
+    }
+  for (int i = 0; i < 6; ++i) M[i][6 + i] = 1.0;
+  for (int p = 0; p < 6; ++p) {  // symmetric positive definite: no pivoting needed
+    const double pivot = M[p][p];
+    for (int k = 0; k < 12; ++k) M[p][k] /= pivot;
+    for (int r = 0; r < 6; ++r) {
+      if (r == p) continue;
+      const double factor = M[r][p];
+      for (int k = 0; k < 12; ++k) M[r][k] -= factor * M[p][k];
+    }
+  }
+  std::array<std::array<double, 6>, 6> A{};
+  for (int i = 0; i < 6; ++i)
+    for (int k = 0; k < 6; ++k) A[i][k] = D[i] * M[i][6 + k];
+  return A;
+}
+
+/// A 6-node triangle: the composite rule on its reference triangle, mapped by the quadratic
+/// geometry; phi holds the transformed basis phi~, psi its dual.
+std::vector<SlavePoint> sixNodePoints(const std::array<Vec3, kMaxFaceNodes>& x, const std::vector<CompositePoint>& rule) {
+  const auto A = sixNodeDualCoefficients(x);
+  std::vector<SlavePoint> points;
+  points.reserve(rule.size());
+  for (const auto& q : rule) {
+    SlavePoint s{};
+    double N[6], dA;
+    quadraticTriangleAt(x, q.lambda[1], q.lambda[2], N, s.x, dA);
+    s.omega = q.weight / 2.0 * dA;  // q.weight: a fraction of the reference triangle (area 1/2)
+    transformedQuadratic(N, s.phi);
+    for (int v = 0; v < 6; ++v)
+      for (int k = 0; k < 6; ++k) s.psi[v] += A[v][k] * s.phi[k];
+    points.push_back(s);
+  }
+  return points;
+}
+
 /// A 4-node quadrilateral: kSubdivisions^2 sub-squares with 2 x 2 Gauss points each.
-std::vector<SlavePoint> quadPoints(const std::array<Vec3, 4>& x) {
+std::vector<SlavePoint> quadPoints(const std::array<Vec3, kMaxFaceNodes>& x) {
   const auto A = quadDualCoefficients(x);
   const int n = kSubdivisions;
   const double h = 2.0 / n, g = h / (2.0 * std::sqrt(3.0)), subWeight = h * h / 4;
@@ -206,22 +324,26 @@ std::vector<MortarRow> dualMortarRows(const Mesh& mesh, const std::string& slave
   std::vector<NodeIntegrals> integrals(search.pairs.size());
 
   // (1) Quadrature over every slave face touching a paired node.
-  const auto rule = compositeRule();
+  const auto rule = compositeRule(), quarticRule = compositeQuarticRule();
+  std::map<LO, std::pair<LO, LO>> edgeEnds;  // a 6-node triangle's mid-edge node -> its edge's ends
   const SideSet& set = mesh.sideSet(slaveSideSet);
   for (size_t f = 0; f < set.elements.size(); ++f) {
     const FaceNodes face = mesh.faceNodes(set.elements[f], set.sides[f]);
-    const int vertices = face.numVertices;
+    const int nodes = face.numNodes;
     bool anyPaired = false;
-    for (LO n : face.vertices()) anyPaired = anyPaired || pairOf[n] >= 0;
+    for (LO n : face) anyPaired = anyPaired || pairOf[n] >= 0;
     if (!anyPaired) continue;
-    std::array<Vec3, 4> x{};
-    for (int v = 0; v < vertices; ++v) x[v] = mesh.coords[face.node[v]];
-    const auto points = vertices == 4 ? quadPoints(x) : trianglePoints({x[0], x[1], x[2]}, rule);
+    std::array<Vec3, kMaxFaceNodes> x{};
+    for (int v = 0; v < nodes; ++v) x[v] = mesh.coords[face.node[v]];
+    for (int m = 0; nodes == 6 && m < 3; ++m) edgeEnds[face.node[3 + m]] = {face.node[m], face.node[(m + 1) % 3]};
+    const auto points = face.numVertices == 4 ? quadPoints(x)
+                        : nodes == 6          ? sixNodePoints(x, quarticRule)
+                                              : trianglePoints({x[0], x[1], x[2]}, rule);
     for (const SlavePoint& q : points) {
       const Vec3& xq = q.x;
       const double omega = q.omega;
       const auto chi = master.project(xq, searchDistance);
-      for (int v = 0; v < vertices; ++v) {
+      for (int v = 0; v < nodes; ++v) {
         const int p = pairOf[face.node[v]];
         if (p < 0) continue;
         NodeIntegrals& I = integrals[p];
@@ -282,6 +404,13 @@ std::vector<MortarRow> dualMortarRows(const Mesh& mesh, const std::string& slave
     }
     row.gap = std::clamp(weighted, I.gapMin, I.gapMax);
     row.gapLimited = std::abs(row.gap - weighted);
+    if (const auto ends = edgeEnds.find(pair.slaveNode); ends != edgeEnds.end()) {
+      // The row holds u~_m = (u_m - alpha (u_a + u_b)) / (1 - 2 alpha) (header).
+      const double keep = 1.0 - 2.0 * kTransformAlpha;
+      row.slaveWeight = 1.0 / keep;
+      row.slaveNodes = {ends->second.first, ends->second.second};
+      row.slaveWeights = {-kTransformAlpha / keep, -kTransformAlpha / keep};
+    }
     rows[p] = std::move(row);
   }
   return rows;

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "tribos/core/ReproducibleSum.hpp"
+#include "tribos/mesh/MortarCoupling.hpp"
 #include "tribos/stack/RootGather.hpp"
 
 namespace tribos::stack {
@@ -99,8 +100,7 @@ void addDroppedContactForces(const feti::ConstraintMatrix& B, const PrescribedCo
                              GO end, const std::vector<double>& ownedLambda, Records& reaction) {
   for (const auto& node : B.contact) {
     if (node.normalRow < first || node.normalRow >= end) continue;  // its rows are on another rank
-    std::vector<std::pair<LO, double>> sides{{node.slaveNode, 1.0}};
-    for (size_t j = 0; j < node.masterNodes.size(); ++j) sides.push_back({node.masterNodes[j], -node.masterWeights[j]});
+    const std::vector<std::pair<LO, double>> sides = node.sides();
     const std::array<double, 3>* directions[3] = {&node.normal, &node.t1, &node.t2};
     for (int d = 0; d < 3; ++d) {
       const GO row = d == 0 ? node.normalRow : node.tangentialRow(d - 1);
@@ -164,7 +164,13 @@ std::vector<double> tributaryArea(const mesh::Mesh& mesh, const std::string& sid
     const auto n = mesh.faceNormal(set.elements[f], set.sides[f]);
     const mesh::FaceNodes face = mesh.faceNodes(set.elements[f], set.sides[f]);
     const auto vertices = face.vertices();
-    const double share = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) / (2.0 * vertices.size());  // |n| = 2 area
+    const double twiceArea = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);  // |n| = 2 area
+    if (face.numNodes == 6) {  // int phi~ of the transformed basis (mesh/MortarCoupling.hpp), flat face
+      const double alpha = mesh::kQuadraticTransformAlpha;
+      for (int k = 0; k < 6; ++k) area[face.node[k]] += (k < 3 ? 2.0 * alpha : 1.0 - 2.0 * alpha) / 6.0 * twiceArea;
+      continue;
+    }
+    const double share = twiceArea / (2.0 * vertices.size());
     for (LO v : vertices) area[v] += share;
   }
   return area;

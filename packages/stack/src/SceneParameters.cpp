@@ -121,7 +121,7 @@ void loadParameters(ParameterList& pl) {
                                    "block");
   load.set("Side Set", std::string(""), "side set that carries the traction (Traction, Pressure)");
   load.set("Node Set", std::string(""),
-           "instead of Side Set: the traction acts on the boundary faces whose three nodes all lie in this node set "
+           "instead of Side Set: the traction acts on the boundary faces whose nodes all lie in this node set "
            "(meshes with node sets only, e.g. written by meshio)");
   load.set("Traction", Teuchos::Array<double>(3, 0.0), "{px, py, pz}: traction density [stress]",
            core::finiteArray(3, core::kMaxMagnitude));
@@ -155,7 +155,7 @@ void interfaceParameters(ParameterList& pl) {
   pl.set("Slave Side Set", std::string(""),
          "contact surface of the slave body (its nodes are projected on the master surface); empty with an "
          "empty Master Side Set: no contact (the paper's pair: contact_aluminium). Without a side set of this name, "
-         "a node set of this name stands for its boundary faces (all three nodes in the set)");
+         "a node set of this name stands for its boundary faces (all their nodes in the set)");
   pl.set("Master Side Set", std::string(""),
          "contact surface of the master body (the paper's: contact_steel); a node set of this name also serves, "
          "as for the Slave Side Set");

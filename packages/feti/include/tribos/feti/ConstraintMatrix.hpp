@@ -89,6 +89,15 @@ struct ContactNode {
   LO masterNode = -1;                      ///< the master vertex with the largest weight
   std::vector<LO> masterNodes;             ///< the master nodes of the rows (ascending)
   std::vector<double> masterWeights;       ///< their weights (sum 1; barycentric or dual mortar)
+  /// The slave node's weight in its rows (mesh::MortarRow::slaveWeight: 1 but at a 6-node
+  /// slave triangle's mid-edge node), and the other slave nodes of the rows with their weights:
+  /// the ends of that node's edge (mesh::MortarRow::slaveNodes); empty otherwise.
+  double slaveWeight = 1.0;
+  std::vector<LO> otherSlaveNodes;
+  std::vector<double> otherSlaveWeights;
+  /// (node, weight) of every node the rows couple: the slave node, the other slave nodes,
+  /// the master nodes (-w); a row is this times its direction and scale.
+  std::vector<std::pair<LO, double>> sides() const;
   bool mortar = false;                     ///< weights from the dual mortar integrals
   std::array<double, 3> normal{}, t1{}, t2{};  ///< orthonormal frame, normal from slave to master
   double gap = 0.0;                        ///< d_r: signed distance along normal (< 0: initial overlap)

@@ -8,7 +8,8 @@
 /// shape functions there: barycentric on a triangle, bilinear on a quadrilateral; the master
 /// displacement there is interpolated with them), the contact normal nu and the signed
 /// initial gap d along it. A quadrilateral is searched as its two triangles (0,1,2), (0,2,3),
-/// and the point found is then moved onto the bilinear face by Gauss-Newton steps.
+/// a 6-node triangle as the four triangles its mid-edge nodes cut it into, and the point found
+/// is then moved onto the bilinear or quadratic face by Gauss-Newton steps.
 ///
 /// The normal is the *smoothed* master normal at the projection point: the barycentric
 /// interpolation of the master's nodal normals (area-weighted means of the outer normals of
@@ -28,16 +29,18 @@
 
 namespace tribos::mesh {
 
-/// Vertices of a master face: 3 (triangle) or 4 (quadrilateral).
-inline constexpr int kMaxMasterFaceNodes = 4;
+/// Nodes of a master face: 3 (triangle), 4 (quadrilateral) or 6 (6-node triangle).
+inline constexpr int kMaxMasterFaceNodes = 6;
 
 /// One slave node and its projection on the master surface.
 struct ContactPair {
   LO slaveNode = -1;
   LO masterFace = -1;                    ///< index of the face in the master side set
-  /// Vertices of that face (global node ids); a triangle's fourth is -1 with weight 0.
-  std::array<LO, kMaxMasterFaceNodes> masterNodes{-1, -1, -1, -1};
-  std::array<double, kMaxMasterFaceNodes> weights{};  ///< shape functions at the projection (>= 0, sum 1)
+  /// Nodes of that face (global node ids); past the face's own, -1 with weight 0.
+  std::array<LO, kMaxMasterFaceNodes> masterNodes{-1, -1, -1, -1, -1, -1};
+  /// Shape functions at the projection (sum 1; >= 0 on linear faces, a 6-node triangle's
+  /// vertex functions are negative in parts).
+  std::array<double, kMaxMasterFaceNodes> weights{};
   std::array<double, 3> normal{};        ///< unit nu, from the slave into the master
   double gap = 0.0;                      ///< signed distance along nu (< 0: initial overlap)
   double distance = 0.0;                 ///< |x_projection - x_slave|
@@ -66,7 +69,7 @@ class MasterSurface {
 
   struct Projection {
     LO face = -1;                      ///< -1: no face within the radius
-    std::array<LO, kMaxMasterFaceNodes> nodes{-1, -1, -1, -1};
+    std::array<LO, kMaxMasterFaceNodes> nodes{-1, -1, -1, -1, -1, -1};
     std::array<double, kMaxMasterFaceNodes> weights{};  ///< shape functions at the closest point
     std::array<double, 3> point{};
     double distance = 0.0;
@@ -82,14 +85,19 @@ class MasterSurface {
   class Tree;
   std::string name_;
   std::unique_ptr<Tree> tree_;
-  /// The tree holds triangles: each face's own, or a quadrilateral's two halves.
+  /// The tree holds triangles: a 3-node face itself, or a piece of a quadrilateral or of a
+  /// 6-node triangle.
   struct SearchTriangle {
     LO face;
-    int half;  ///< 0: a triangle face or (0,1,2) of a quadrilateral; 1: its (0,2,3)
+    int piece;  ///< which of the face's triangles (ContactSearch.cpp: kFacePieces)
   };
   std::vector<SearchTriangle> searchTriangles_;
   std::vector<FaceNodes> faceNodes_;
-  std::vector<std::array<std::array<double, 3>, kMaxMasterFaceNodes>> corners_;  ///< per face, its vertices' coordinates
+  std::vector<std::array<std::array<double, 3>, kMaxMasterFaceNodes>> faceCoords_;  ///< per face, its nodes' coordinates
+  /// How far a face may lie from the triangles it is searched as (a warped quadrilateral's
+  /// twist, a 6-node triangle's bowed edges), over all faces: the search reaches this much
+  /// farther, and a face is then taken on its own distance. 0 on a surface of 3-node triangles.
+  double pieceDeviation_ = 0.0;
   std::vector<std::array<double, 3>> nodalNormal_;  ///< unit, per global node (zero off the set)
 };
 
@@ -109,8 +117,9 @@ std::array<double, 3> closestPointOnTriangle(const std::array<double, 3>& x, con
 /// Vertices of the faces of a side set, ascending, unique.
 std::vector<LO> sideSetNodes(const Mesh& mesh, const SideSet& set);
 
-/// Per node: the sum over the faces of `set` that contain it of their outward normals
-/// (length twice the face area, so the sum is area-weighted); zero off the set.
+/// Per node: the sum over the faces of `set` that contain it (mid-edge nodes included) of
+/// their outward normals (length twice the face area, so the sum is area-weighted); zero off
+/// the set.
 std::vector<std::array<double, 3>> summedFaceNormals(const Mesh& mesh, const SideSet& set);
 
 }  // namespace tribos::mesh

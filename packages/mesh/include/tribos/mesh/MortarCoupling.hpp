@@ -15,7 +15,9 @@
 /// with phi_i the slave surface's P1 hat function, psi_i = 4 phi_i - 1 on each slave
 /// triangle its dual (int psi_i phi_k = delta_ik int phi_k), on a slave quadrilateral the
 /// bilinear phi_i and psi = D M^{-1} phi per face (D, M its lumped and consistent mass
-/// matrices: the bilinear dual basis, ALGORITHMS.md 12), phi_j the master shape functions
+/// matrices: the bilinear dual basis, ALGORITHMS.md 12), on a 6-node slave triangle the dual
+/// of the transformed quadratic basis of Popp, Wohlmuth, Gee & Wall (2012) (alpha = 1/5; the
+/// rows of its mid-edge nodes then hold their edge's ends too), phi_j the master shape functions
 /// evaluated at the projection chi of the slave point on the master surface. Since
 /// sum_j phi_j = 1, sum_j M_ij = int psi_i = D_i: the weights sum to one, as the
 /// node-to-surface weights do; some may be negative. The initial gap is weighted the same
@@ -48,10 +50,23 @@
 
 namespace tribos::mesh {
 
-/// The master side of one slave node's rows.
+/// The transformation of the 6-node triangle's basis for its dual basis (Popp, Wohlmuth, Gee &
+/// Wall 2012): phi~_v = phi_v + alpha (phi_m + phi_m') at a vertex v (m, m' its edges' mid
+/// nodes), phi~_m = (1 - 2 alpha) phi_m at a mid-edge node.
+inline constexpr double kQuadraticTransformAlpha = 0.2;
+
+/// The master side of one slave node's rows, and on a 6-node triangle the slave side of a
+/// mid-edge node's row: s_i u_i + sum_k s_ik u_k - sum_j w_ij u_j (times the direction)
+/// against d_i. That is the slave displacement's coefficient of the transformed basis,
+/// u~_m = (u_m - alpha (u_a + u_b)) / (1 - 2 alpha), against the master's interpolation.
 struct MortarRow {
   std::vector<LO> masterNodes;   ///< ascending
   std::vector<double> weights;   ///< w_ij, sum 1
+  double slaveWeight = 1.0;      ///< s_i: 1, or 1 / (1 - 2 alpha) at a 6-node triangle's mid-edge node
+  /// A mid-edge node of a 6-node slave triangle: the ends of its edge, with s_ik = -alpha /
+  /// (1 - 2 alpha); empty otherwise. s_i + sum_k s_ik = 1.
+  std::vector<LO> slaveNodes;
+  std::vector<double> slaveWeights;
   double gap = 0.0;              ///< d_i along the pair's normal (< 0: initial overlap)
   bool nodeToSurface = false;    ///< the node kept its node-to-surface row (header)
   /// How far the weighted gap left the range of the pointwise gap over the node's support

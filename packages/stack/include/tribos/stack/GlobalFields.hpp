@@ -39,8 +39,10 @@ std::array<double, 3> totalLoad(const std::vector<fem::SubdomainSystem>& owned, 
 /// they cancel in totalLoad (opposite pressures). Collective.
 double loadMagnitude(const std::vector<fem::SubdomainSystem>& owned, MPI_Comm comm);
 
-/// Tributary area of every node of a side set (a third of each adjacent face's area); zero
-/// for nodes off the set. Length mesh.numNodes().
+/// Tributary area of every node of a side set (a third of each adjacent triangle's area, a
+/// quarter of each quadrilateral's; on a 6-node triangle the integral of the node's transformed
+/// basis function, 2/15 of its area at a vertex, 1/5 at a mid-edge node: where the dual mortar
+/// multiplier over it is the pressure); zero for nodes off the set. Length mesh.numNodes().
 std::vector<double> tributaryArea(const mesh::Mesh& mesh, const std::string& sideSet);
 
 }  // namespace tribos::stack
