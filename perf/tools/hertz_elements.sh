@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # Hertz contact per element type (issue 32, doc/elements.md): the line contact of
-# input/hertz_cylinder.xml meshed by gmsh (input/meshes/hertz_cylinder.geo) with linear
-# tetrahedra and with hexahedra (-setnumber Hex 1) at the contact element sizes hc, and the
-# point contact of input/hertz_sphere.xml (input/meshes/hertz_sphere.geo) with a tetrahedral
-# block and with a graded hexahedral block (-setnumber HexBlock 1; the sphere stays
-# tetrahedral). One Markdown row per run: nodes, elements, the peak nodal pressure against
+# input/hertz_cylinder.xml meshed by gmsh (input/meshes/hertz_cylinder.geo) with linear and
+# quadratic (-order 2) tetrahedra and with hexahedra (-setnumber Hex 1) at the contact element
+# sizes hc, and the point contact of input/hertz_sphere.xml (input/meshes/hertz_sphere.geo)
+# with linear and quadratic tetrahedra and with a graded hexahedral block (-setnumber HexBlock
+# 1; the sphere stays tetrahedral). One Markdown row per run: nodes, elements, the peak nodal pressure against
 # Hertz's p0, the edge of the contact zone (last node in contact, first node out) against b or
 # a, the rms residual of a least-squares Hertz fit (doc/tools/hertz_compare.py), F
 # applications, factor nonzeros, bytes moved per F application, tribos's total time.
@@ -55,9 +55,11 @@ echo "|---|---|---|---|---|---|---|---|---|---|"
 for hc in 0.4 0.3 0.2; do
   run cylinder hertz_cylinder "cylinder tet4 hc $hc" -setnumber hc "$hc"
   run cylinder hertz_cylinder "cylinder hex8 hc $hc" -setnumber hc "$hc" -setnumber Hex 1
+  run cylinder hertz_cylinder "cylinder tet10 hc $hc" -setnumber hc "$hc" -order 2
 done
 for hc in 0.3 0.15; do
   run sphere hertz_sphere "sphere tet4 hc $hc" -setnumber hc "$hc"
+  run sphere hertz_sphere "sphere tet10 hc $hc" -setnumber hc "$hc" -order 2
 done
 # The graded hexahedral block: first cell 10 (growth - 1) / (growth^n - 1) = 0.39 and 0.20.
 run sphere hertz_sphere "sphere hex8 block, first cell 0.39" -setnumber hc 0.3 -setnumber HexBlock 1 \

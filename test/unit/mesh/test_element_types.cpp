@@ -293,3 +293,18 @@ TEST(ElementTypes, slaveNodesOnAWarpedQuadrilateralMasterPairAtTheDefaultSearchD
   for (const auto& pair : search.pairs) largestGap = std::max(largestGap, std::abs(pair.gap));
   EXPECT_LT(largestGap, 1e-12);
 }
+
+// A side set may hold every face of its elements: 6 of a lone hexahedron (the reader once
+// capped side sets at 4 faces per element, the tetrahedron's count, and called this corrupt).
+TEST(ElementTypes, aSideSetOfEveryFaceOfAHexahedronReadsBack) {
+  Mesh m;
+  m.coords = kCube;
+  m.elements.add(ElementType::Hex8, {0, 1, 2, 3, 4, 5, 6, 7});
+  m.blocks.push_back({"body", 1, 0, 1});
+  m.sideSets.push_back({"skin", 1, {0, 0, 0, 0, 0, 0}, {0, 1, 2, 3, 4, 5}});
+  const std::string path = tempFile("skin.exo");
+  writeExodus(path, m);
+  const ExodusData back = readExodus(path);
+  std::filesystem::remove(path);
+  EXPECT_EQ(back.mesh.sideSet("skin").sides, (std::vector<int>{0, 1, 2, 3, 4, 5}));
+}
