@@ -48,18 +48,9 @@ double faceArea(const tribos::mesh::Mesh& mesh, const std::string& sideSet) {
   for (size_t f = 0; f < set.elements.size(); ++f) {
     const FaceNodes face = mesh.faceNodes(set.elements[f], set.sides[f]);
     const FaceType type = faceType(face.numVertices, face.numNodes);
-    double N[kMaxFaceNodes], dN[kMaxFaceNodes][3];
-    for (const auto& q : faceRule(type)) {
-      faceShapeFunctions(type, q.xi, N, dN);
-      double t1[3] = {0, 0, 0}, t2[3] = {0, 0, 0};
-      for (int k = 0; k < face.numNodes; ++k)
-        for (int d = 0; d < 3; ++d) {
-          t1[d] += dN[k][0] * mesh.coords[face.node[k]][d];
-          t2[d] += dN[k][1] * mesh.coords[face.node[k]][d];
-        }
-      const double n[3] = {t1[1] * t2[2] - t1[2] * t2[1], t1[2] * t2[0] - t1[0] * t2[2], t1[0] * t2[1] - t1[1] * t2[0]};
-      area += q.weight * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    }
+    std::array<double, 3> x[kMaxFaceNodes];
+    for (int k = 0; k < face.numNodes; ++k) x[k] = mesh.coords[face.node[k]];
+    for (const auto& q : faceRule(type)) area += q.weight * faceGeometry(type, x, q.xi[0], q.xi[1]).areaElement();
   }
   return area;
 }

@@ -132,23 +132,19 @@ ElementStress solidStress(ElementType type, const double (*x)[3], const double* 
 }
 
 double faceLoad(mesh::FaceType type, const double (*x)[3], const double p[3], double pressure, double* fe) {
-  const int n = type == mesh::FaceType::Quad4 ? 4 : type == mesh::FaceType::Tri6 ? 6 : 3;
-  double N[mesh::kMaxFaceNodes], dN[mesh::kMaxFaceNodes][3], area = 0.0;
+  const int n = mesh::faceNodeCount(type);
+  std::array<double, 3> nodes[mesh::kMaxFaceNodes];
+  for (int k = 0; k < n; ++k) nodes[k] = {x[k][0], x[k][1], x[k][2]};
+  double area = 0.0;
   std::fill(fe, fe + 3 * n, 0.0);
   for (const auto& q : mesh::faceRule(type)) {
-    mesh::faceShapeFunctions(type, q.xi, N, dN);
-    double t1[3] = {0, 0, 0}, t2[3] = {0, 0, 0};
-    for (int k = 0; k < n; ++k)
-      for (int c = 0; c < 3; ++c) {
-        t1[c] += x[k][c] * dN[k][0];
-        t2[c] += x[k][c] * dN[k][1];
-      }
-    // The outward normal times the area element: t1 x t2 (the face's vertex order).
-    const double a[3] = {t1[1] * t2[2] - t1[2] * t2[1], t1[2] * t2[0] - t1[0] * t2[2], t1[0] * t2[1] - t1[1] * t2[0]};
-    const double dA = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+    const mesh::FaceGeometry g = mesh::faceGeometry(type, nodes, q.xi[0], q.xi[1]);
+    // The outward normal times the area element (the face's vertex order).
+    const auto a = g.normal();
+    const double dA = g.areaElement();
     area += q.weight * dA;
     for (int k = 0; k < n; ++k)
-      for (int c = 0; c < 3; ++c) fe[3 * k + c] += q.weight * N[k] * (p[c] * dA - pressure * a[c]);
+      for (int c = 0; c < 3; ++c) fe[3 * k + c] += q.weight * g.N[k] * (p[c] * dA - pressure * a[c]);
   }
   return area;
 }

@@ -235,18 +235,11 @@ double deviationFromPieces(const FaceNodes& face, const std::array<Vec3, kMaxMas
 /// The point and tangents of a 6-node triangle x at (r, s), and its shape functions.
 void quadraticTriangle(const std::array<Vec3, kMaxMasterFaceNodes>& x, double r, double s, Vec3& point, Vec3& dR,
                        Vec3& dS, std::array<double, kMaxMasterFaceNodes>& N) {
-  double n[6], dN[6][3];
-  const double xi[3] = {r, s, 0.0};
-  faceShapeFunctions(FaceType::Tri6, xi, n, dN);
-  point = dR = dS = Vec3{0.0, 0.0, 0.0};
-  for (int k = 0; k < 6; ++k) {
-    N[k] = n[k];
-    for (int d = 0; d < 3; ++d) {
-      point[d] += n[k] * x[k][d];
-      dR[d] += dN[k][0] * x[k][d];
-      dS[d] += dN[k][1] * x[k][d];
-    }
-  }
+  const FaceGeometry g = faceGeometry(FaceType::Tri6, x.data(), r, s);
+  point = g.point;
+  dR = g.tangent0;
+  dS = g.tangent1;
+  std::copy(g.N.begin(), g.N.end(), N.begin());
 }
 
 /// The point of the 6-node triangle x closest to `target`, from (r, s) on: Gauss-Newton steps,
@@ -279,16 +272,11 @@ void closestOnQuadraticTriangle(const std::array<Vec3, kMaxMasterFaceNodes>& x, 
 /// The bilinear face's point, tangents and shape functions at (xi, eta).
 void bilinear(const std::array<Vec3, kMaxMasterFaceNodes>& x, double xi, double eta, Vec3& point, Vec3& dXi,
               Vec3& dEta, std::array<double, kMaxMasterFaceNodes>& N) {
-  point = dXi = dEta = Vec3{0.0, 0.0, 0.0};
-  for (int k = 0; k < 4; ++k) {
-    const double a = (1.0 + kQuadCorners[k][0] * xi) / 2, b = (1.0 + kQuadCorners[k][1] * eta) / 2;
-    N[k] = a * b;
-    for (int d = 0; d < 3; ++d) {
-      point[d] += N[k] * x[k][d];
-      dXi[d] += kQuadCorners[k][0] / 2 * b * x[k][d];
-      dEta[d] += a * kQuadCorners[k][1] / 2 * x[k][d];
-    }
-  }
+  const FaceGeometry g = faceGeometry(FaceType::Quad4, x.data(), xi, eta);
+  point = g.point;
+  dXi = g.tangent0;
+  dEta = g.tangent1;
+  std::copy(g.N.begin(), g.N.end(), N.begin());
 }
 
 /// The point of the bilinear quadrilateral x closest to `target`, from the reference point

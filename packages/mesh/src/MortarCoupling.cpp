@@ -109,24 +109,38 @@ std::vector<SlavePoint> trianglePoints(const std::array<Vec3, 3>& x, const std::
   return points;
 }
 
-/// Bilinear shape functions, the point and the area element of quadrilateral x at (xi, eta).
-void bilinearAt(const std::array<Vec3, kMaxFaceNodes>& x, double xi, double eta, std::array<double, kMaxFaceNodes>& N, Vec3& point,
-                double& areaElement) {
-  static constexpr double corner[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
-  Vec3 dXi{0, 0, 0}, dEta{0, 0, 0};
-  point = {0.0, 0.0, 0.0};
-  for (int k = 0; k < 4; ++k) {
-    const double a = (1.0 + corner[k][0] * xi) / 2, b = (1.0 + corner[k][1] * eta) / 2;
-    N[k] = a * b;
-    for (int d = 0; d < 3; ++d) {
-      point[d] += N[k] * x[k][d];
-      dXi[d] += corner[k][0] / 2 * b * x[k][d];
-      dEta[d] += a * corner[k][1] / 2 * x[k][d];
+/// The coefficients A = D M^{-1} of a dual basis psi = A phi from the face's moments D_k =
+/// int phi_k and M_kl = int phi_k phi_l (symmetric positive definite: Gauss-Jordan without
+/// pivoting): then int psi_i phi_j = delta_ij D_i.
+template <int n>
+std::array<std::array<double, n>, n> dualCoefficients(const double (&D)[n], const double (&moments)[n][n]) {
+  double M[n][2 * n] = {};  // [M | I], reduced to [I | M^{-1}]
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) M[i][j] = moments[i][j];
+    M[i][n + i] = 1.0;
+  }
+  for (int p = 0; p < n; ++p) {
+    const double pivot = M[p][p];
+    for (int k = 0; k < 2 * n; ++k) M[p][k] /= pivot;
+    for (int r = 0; r < n; ++r) {
+      if (r == p) continue;
+      const double factor = M[r][p];
+      for (int k = 0; k < 2 * n; ++k) M[r][k] -= factor * M[p][k];
     }
   }
-  const Vec3 n{dXi[1] * dEta[2] - dXi[2] * dEta[1], dXi[2] * dEta[0] - dXi[0] * dEta[2],
-               dXi[0] * dEta[1] - dXi[1] * dEta[0]};
-  areaElement = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  std::array<std::array<double, n>, n> A{};
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < n; ++k) A[i][k] = D[i] * M[i][n + k];
+  return A;
+}
+
+/// Bilinear shape functions, the point and the area element of quadrilateral x at (xi, eta).
+void bilinearAt(const std::array<Vec3, kMaxFaceNodes>& x, double xi, double eta, std::array<double, kMaxFaceNodes>& N,
+                Vec3& point, double& areaElement) {
+  const FaceGeometry g = faceGeometry(FaceType::Quad4, x.data(), xi, eta);
+  N = g.N;
+  point = g.point;
+  areaElement = g.areaElement();
 }
 
 /// The dual basis of a 4-node quadrilateral: psi = A phi with A = D M^{-1} (M the face's
@@ -135,7 +149,7 @@ void bilinearAt(const std::array<Vec3, kMaxFaceNodes>& x, double xi, double eta,
 /// + phi_{i+2} (ALGORITHMS.md 12); on other quadrilaterals it follows their Jacobian.
 std::array<std::array<double, 4>, 4> quadDualCoefficients(const std::array<Vec3, kMaxFaceNodes>& x) {
   const double g = std::sqrt(3.0 / 5.0), gauss[3] = {-g, 0.0, g}, weight[3] = {5.0 / 9, 8.0 / 9, 5.0 / 9};
-  double M[4][8] = {}, D[4] = {};  // [M | I], reduced to [I | M^{-1}]
+  double M[4][4] = {}, D[4] = {};
   for (int a = 0; a < 3; ++a)
     for (int b = 0; b < 3; ++b) {
       std::array<double, kMaxFaceNodes> N;
@@ -147,20 +161,7 @@ std::array<std::array<double, 4>, 4> quadDualCoefficients(const std::array<Vec3,
         for (int j = 0; j < 4; ++j) M[i][j] += weight[a] * weight[b] * dA * N[i] * N[j];
       }
     }
-  for (int i = 0; i < 4; ++i) M[i][4 + i] = 1.0;
-  for (int p = 0; p < 4; ++p) {  // M is symmetric positive definite: no pivoting needed
-    const double pivot = M[p][p];
-    for (int k = 0; k < 8; ++k) M[p][k] /= pivot;
-    for (int r = 0; r < 4; ++r) {
-      if (r == p) continue;
-      const double factor = M[r][p];
-      for (int k = 0; k < 8; ++k) M[r][k] -= factor * M[p][k];
-    }
-  }
-  std::array<std::array<double, 4>, 4> A{};
-  for (int i = 0; i < 4; ++i)
-    for (int k = 0; k < 4; ++k) A[i][k] = D[i] * M[i][4 + k];
-  return A;
+  return dualCoefficients<4>(D, M);
 }
 
 /// The basis transformation of a 6-node triangle (Popp, Wohlmuth, Gee & Wall 2012): the
@@ -182,19 +183,10 @@ void transformedQuadratic(const double N[6], std::array<double, kMaxFaceNodes>& 
 /// element.
 void quadraticTriangleAt(const std::array<Vec3, kMaxFaceNodes>& x, double r, double s, double N[6], Vec3& point,
                          double& areaElement) {
-  double dN[6][3];
-  const double xi[3] = {r, s, 0.0};
-  faceShapeFunctions(FaceType::Tri6, xi, N, dN);
-  Vec3 dR{0, 0, 0}, dS{0, 0, 0};
-  point = {0.0, 0.0, 0.0};
-  for (int k = 0; k < 6; ++k)
-    for (int d = 0; d < 3; ++d) {
-      point[d] += N[k] * x[k][d];
-      dR[d] += dN[k][0] * x[k][d];
-      dS[d] += dN[k][1] * x[k][d];
-    }
-  const Vec3 n{dR[1] * dS[2] - dR[2] * dS[1], dR[2] * dS[0] - dR[0] * dS[2], dR[0] * dS[1] - dR[1] * dS[0]};
-  areaElement = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  const FaceGeometry g = faceGeometry(FaceType::Tri6, x.data(), r, s);
+  std::copy_n(g.N.begin(), 6, N);
+  point = g.point;
+  areaElement = g.areaElement();
 }
 
 /// The dual basis of a 6-node triangle, biorthogonal to the transformed basis: psi = A phi~
@@ -203,7 +195,7 @@ void quadraticTriangleAt(const std::array<Vec3, kMaxFaceNodes>& x, double r, dou
 std::array<std::array<double, 6>, 6> sixNodeDualCoefficients(const std::array<Vec3, kMaxFaceNodes>& x) {
   const double g[4] = {0.0694318442029737, 0.3300094782075719, 0.6699905217924281, 0.9305681557970263};
   const double w[4] = {0.1739274225687269, 0.3260725774312731, 0.3260725774312731, 0.1739274225687269};
-  double M[6][12] = {}, D[6] = {};  // [M | I], reduced to [I | M^{-1}]
+  double M[6][6] = {}, D[6] = {};
   for (int a = 0; a < 4; ++a)
     for (int b = 0; b < 4; ++b) {
       double N[6], dA;
@@ -217,20 +209,7 @@ std::array<std::array<double, 6>, 6> sixNodeDualCoefficients(const std::array<Ve
         for (int j = 0; j < 6; ++j) M[i][j] += weight * phi[i] * phi[j];
       }
     }
-  for (int i = 0; i < 6; ++i) M[i][6 + i] = 1.0;
-  for (int p = 0; p < 6; ++p) {  // symmetric positive definite: no pivoting needed
-    const double pivot = M[p][p];
-    for (int k = 0; k < 12; ++k) M[p][k] /= pivot;
-    for (int r = 0; r < 6; ++r) {
-      if (r == p) continue;
-      const double factor = M[r][p];
-      for (int k = 0; k < 12; ++k) M[r][k] -= factor * M[p][k];
-    }
-  }
-  std::array<std::array<double, 6>, 6> A{};
-  for (int i = 0; i < 6; ++i)
-    for (int k = 0; k < 6; ++k) A[i][k] = D[i] * M[i][6 + k];
-  return A;
+  return dualCoefficients<6>(D, M);
 }
 
 /// A 6-node triangle: the composite rule on its reference triangle, mapped by the quadratic

@@ -201,4 +201,30 @@ void faceShapeFunctions(FaceType type, const double xi[3], double N[], double dN
   }
 }
 
+int faceNodeCount(FaceType type) { return type == FaceType::Quad4 ? 4 : type == FaceType::Tri6 ? 6 : 3; }
+
+FaceGeometry faceGeometry(FaceType type, const std::array<double, 3>* x, double xi0, double xi1) {
+  FaceGeometry g{};
+  double dN[kMaxFaceNodes][3];
+  const double xi[3] = {xi0, xi1, 0.0};
+  faceShapeFunctions(type, xi, g.N.data(), dN);
+  for (int k = 0; k < faceNodeCount(type); ++k)
+    for (int d = 0; d < 3; ++d) {
+      g.point[d] += g.N[k] * x[k][d];
+      g.tangent0[d] += dN[k][0] * x[k][d];
+      g.tangent1[d] += dN[k][1] * x[k][d];
+    }
+  return g;
+}
+
+std::array<double, 3> FaceGeometry::normal() const {
+  const auto &a = tangent0, &b = tangent1;
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
+double FaceGeometry::areaElement() const {
+  const auto n = normal();
+  return std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+}
+
 }  // namespace tribos::mesh

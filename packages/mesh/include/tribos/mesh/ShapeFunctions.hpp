@@ -4,6 +4,7 @@
 /// their faces: what the element kernels, the element checks and the face loads share.
 /// Reference elements: tetrahedra on the unit simplex (r, s, t >= 0, r + s + t <= 1),
 /// hexahedra on [-1, 1]^3, prisms on the unit triangle (r, s) times t in [-1, 1].
+#include <array>
 #include <vector>
 
 #include "tribos/mesh/ElementTypes.hpp"
@@ -43,5 +44,19 @@ FaceType faceType(int numVertices, int numNodes);
 const std::vector<QuadraturePoint>& faceRule(FaceType type);
 /// N[k] and dN[k][0..1] at the reference point xi (xi[2] unused).
 void faceShapeFunctions(FaceType type, const double xi[3], double N[], double dN[][3]);
+
+/// A face's geometry at a reference point: its shape functions there, the point X and the
+/// tangents dX/dxi_0, dX/dxi_1 (their cross product, in the face's node order, points out of
+/// the element, its length the area element).
+struct FaceGeometry {
+  std::array<double, kMaxFaceNodes> N;
+  std::array<double, 3> point, tangent0, tangent1;
+  std::array<double, 3> normal() const;
+  double areaElement() const;
+};
+/// The geometry of the face with nodes x (vertices first, as FaceNodes) at (xi0, xi1).
+FaceGeometry faceGeometry(FaceType type, const std::array<double, 3>* x, double xi0, double xi1);
+/// Nodes of a face type: 3, 6 or 4.
+int faceNodeCount(FaceType type);
 
 }  // namespace tribos::mesh
