@@ -308,3 +308,23 @@ TEST(ElementTypes, aSideSetOfEveryFaceOfAHexahedronReadsBack) {
   std::filesystem::remove(path);
   EXPECT_EQ(back.mesh.sideSet("skin").sides, (std::vector<int>{0, 1, 2, 3, 4, 5}));
 }
+
+// Two Physical Volumes of one name would be one body after an Exodus round trip (the reader
+// joins blocks of one name): the gmsh reader refuses them, naming both tags.
+TEST(ElementTypes, twoPhysicalVolumesOfOneNameAreRefused) {
+  std::ostringstream text;
+  text << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n2\n3 2 \"body\"\n3 3 \"body\"\n$EndPhysicalNames\n"
+       << "$Entities\n0 0 0 2\n1 0 0 0 1 1 1 1 2 0\n2 1 0 0 2 1 1 1 3 0\n$EndEntities\n"
+       << "$Nodes\n1 12 1 12\n3 1 0 12\n";
+  for (int n = 1; n <= 12; ++n) text << n << "\n";
+  for (const auto& x : kCube) text << x[0] << " " << x[1] << " " << x[2] << "\n";
+  text << "2 0 0\n2 1 0\n2 0 1\n2 1 1\n$EndNodes\n$Elements\n2 2 1 2\n"
+       << "3 1 5 1\n1 1 2 3 4 5 6 7 8\n3 2 5 1\n2 2 9 10 3 6 11 12 7\n$EndElements\n";
+  try {
+    parseGmsh(text.str(), "twins.msh", false);
+    FAIL() << "no error";
+  } catch (const core::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("Physical Volumes 2 and 3 are both named \"body\""), std::string::npos)
+        << e.what();
+  }
+}
