@@ -242,8 +242,11 @@ void quadraticTriangle(const std::array<Vec3, kMaxMasterFaceNodes>& x, double r,
   std::copy(g.N.begin(), g.N.end(), N.begin());
 }
 
-/// The point of the 6-node triangle x closest to `target`, from (r, s) on: Gauss-Newton steps,
-/// each point put back into the reference triangle (onto its nearest edge when it leaves).
+/// The point of the 6-node triangle x closest to `target`, from (r, s) on: Gauss-Newton steps
+/// within the reference triangle. A step that would leave it stops on the edge it crosses
+/// (r = 0, s = 0 or r + s = 1), and the position along that edge takes the step of the model
+/// restricted to it (as closestOnBilinear: the closest point of an edge is not where the free
+/// step, cut off, would put it).
 void closestOnQuadraticTriangle(const std::array<Vec3, kMaxMasterFaceNodes>& x, const Vec3& target, double& r,
                                 double& s) {
   Vec3 point, dR, dS;
@@ -255,11 +258,16 @@ void closestOnQuadraticTriangle(const std::array<Vec3, kMaxMasterFaceNodes>& x, 
     const double g0 = dot(dR, res), g1 = dot(dS, res), det = a * c - b * b;
     if (!(det > 0.0)) return;
     double nr = r - (c * g0 - b * g1) / det, ns = s - (a * g1 - b * g0) / det;
-    nr = std::max(nr, 0.0);
-    ns = std::max(ns, 0.0);
-    if (nr + ns > 1.0) {
-      const double excess = (nr + ns - 1.0) / 2;
-      nr = std::clamp(nr - excess, 0.0, 1.0);
+    if (nr < 0.0) {  // on r = 0: the model's step in s with r's step fixed at -r
+      nr = 0.0;
+      ns = std::clamp(s - (g1 - b * r) / c, 0.0, 1.0);
+    } else if (ns < 0.0) {  // on s = 0
+      ns = 0.0;
+      nr = std::clamp(r - (g0 - b * s) / a, 0.0, 1.0);
+    } else if (nr + ns > 1.0) {  // on r + s = 1: move along (1, -1) from (r, 1 - r)
+      const double k = 1.0 - r - s, curvature = a - 2.0 * b + c;
+      const double u = curvature > 0.0 ? -((g0 - g1) + k * (b - c)) / curvature : 0.0;
+      nr = std::clamp(r + u, 0.0, 1.0);
       ns = 1.0 - nr;
     }
     const double change = std::abs(nr - r) + std::abs(ns - s);
