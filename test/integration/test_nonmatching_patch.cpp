@@ -219,7 +219,7 @@ std::pair<PressureStats, std::array<double, 2>> nonMatchingPatch(const std::stri
 TEST(nonmatchingPatch, mortarRowsPassThePatchTestOnNonMatchingMeshes) {
   // The dual mortar rows (the default) transfer a uniform pressure as uniform: exact up to the
   // quadrature of the master hat functions' kinks inside the slave triangles
-  // (mesh/MortarCoupling.hpp). Measured (1 and 2 ranks alike): pressure deviation between
+  // (geometry/MortarCoupling.hpp). Measured (1 and 2 ranks alike): pressure deviation between
   // -4.0e-4 and +8.8e-4 of p, displacement error 2.5e-4 (lower) and 1.6e-4 (upper) of max |u|
   // — against 20 % and 10 % with node-to-surface rows (below).
   const auto [st, errors] = nonMatchingPatch("Mortar");

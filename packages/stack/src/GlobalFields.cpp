@@ -8,7 +8,7 @@
 #include <utility>
 
 #include "tribos/core/ReproducibleSum.hpp"
-#include "tribos/mesh/MortarCoupling.hpp"
+#include "tribos/geometry/MortarCoupling.hpp"
 #include "tribos/stack/RootGather.hpp"
 
 namespace tribos::stack {
@@ -165,8 +165,8 @@ std::vector<double> tributaryArea(const mesh::Mesh& mesh, const std::string& sid
     const mesh::FaceNodes face = mesh.faceNodes(set.elements[f], set.sides[f]);
     const auto vertices = face.vertices();
     const double twiceArea = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);  // |n| = 2 area
-    if (face.numNodes == 6) {  // int phi~ of the transformed basis (mesh/MortarCoupling.hpp), flat face
-      const double alpha = mesh::kQuadraticTransformAlpha;
+    if (face.numNodes == 6) {  // int phi~ of the transformed basis (geometry/MortarCoupling.hpp), flat face
+      const double alpha = geometry::kQuadraticTransformAlpha;
       for (int k = 0; k < 6; ++k) area[face.node[k]] += (k < 3 ? 2.0 * alpha : 1.0 - 2.0 * alpha) / 6.0 * twiceArea;
       continue;
     }

@@ -37,6 +37,32 @@ std::string linearSolveMessage(const feti::ProjectedCgResult& solve, const feti:
   if (solve.iterations >= cg.maxIterations) return capMessage("FETI/Max Iterations", cg.maxIterations, detail.str());
   return "projected CG broke down: P F P is not positive on Ker G " + detail.str();
 }
+/// KKT of the discrete problem: equilibrium per subdomain, and B u = c, into `result`.
+/// Relative to the largest force, applied or constraint (a scene without loads, driven by
+/// prescribed displacements, has only the latter). Returns B u - c (the bonded interfaces'
+/// fields read it).
+Teuchos::RCP<feti::DualVector> kktResiduals(const feti::TotalFeti& feti, const feti::DualVector& lambda,
+                                            const std::vector<std::vector<double>>& u, MPI_Comm comm,
+                                            LinearFetiResult& result) {
+  double forceScale = 0.0;
+  const double equilibrium = feti.equilibriumResidual(lambda, u, &forceScale);
+  result.equilibriumResidual = forceScale > 0.0 ? equilibrium / forceScale : equilibrium;
+  auto Bu = feti.createDualVector();
+  feti.applyB(u, *Bu);
+  {
+    auto data = Bu->getLocalViewHost(Tpetra::Access::ReadWrite);
+    const auto& c = feti.ownedC();
+    for (size_t i = 0; i < data.extent(0); ++i) data(i, 0) -= c[i];
+  }
+  double uNormLocal = 0.0;
+  for (const auto& us : u)
+    for (double v : us) uNormLocal += v * v;
+  double uNorm = 0.0;
+  MPI_Allreduce(&uNormLocal, &uNorm, 1, MPI_DOUBLE, MPI_SUM, comm);
+  uNorm = std::sqrt(uNorm);
+  result.constraintResidual = Bu->norm2() / (uNorm > 0.0 ? uNorm : 1.0);
+  return Bu;
+}
 }  // namespace
 
 LinearFetiResult solveLinearFeti(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
@@ -81,26 +107,7 @@ LinearFetiResult solveLinearFeti(const Scene& scene, std::vector<fem::SubdomainS
   result.factorNonzeros = feti.factorNonzeros();
   result.bytesPerFApplication = feti.bytesPerFApplication();
 
-  // KKT of the discrete problem: equilibrium per subdomain, and B u = c.
-  // Relative to the largest force, applied or constraint (a scene without loads, driven by
-  // prescribed displacements, has only the latter).
-  double forceScale = 0.0;
-  const double equilibrium = feti.equilibriumResidual(*lambda, u, &forceScale);
-  result.equilibriumResidual = forceScale > 0.0 ? equilibrium / forceScale : equilibrium;
-  auto Bu = feti.createDualVector();
-  feti.applyB(u, *Bu);
-  {
-    auto data = Bu->getLocalViewHost(Tpetra::Access::ReadWrite);
-    const auto& c = feti.ownedC();
-    for (size_t i = 0; i < data.extent(0); ++i) data(i, 0) -= c[i];
-  }
-  double uNormLocal = 0.0;
-  for (const auto& us : u)
-    for (double v : us) uNormLocal += v * v;
-  double uNorm = 0.0;
-  MPI_Allreduce(&uNormLocal, &uNorm, 1, MPI_DOUBLE, MPI_SUM, comm);
-  uNorm = std::sqrt(uNorm);
-  result.constraintResidual = Bu->norm2() / (uNorm > 0.0 ? uNorm : 1.0);
+  const auto Bu = kktResiduals(feti, *lambda, u, comm, result);
 
   // Global displacement = mean over the copies of a node; the spread of the copies is the
   // gluing error that a user sees.

@@ -292,7 +292,8 @@ nlohmann::json setupSummary(const Scene& scene, const SetupReport& report, const
                                    {"initial_overlaps", i.overlappingPairs},
                                    {"largest_initial_overlap", i.largestOverlap},
                                    {"limited_mortar_gaps", i.limitedMortarGaps},
-                                   {"largest_gap_limit", i.largestGapLimit}});
+                                   {"largest_gap_limit", i.largestGapLimit},
+                                   {"unsettled_projections", i.unsettledProjections}});
   }
   j["contact_nodes_paired"] = B.contact.size();
   j["contact_nodes_unpaired"] = B.unpairedSlaveNodes();
@@ -322,6 +323,19 @@ std::string limitedGapsWarning(const feti::ContactInterfaceRows& i) {
   return line.str();
 }
 
+/// A line where projections on curved master faces did not settle (geometry/FaceProjection.hpp),
+/// naming the interface and the first slave node; empty where all settled.
+std::string unsettledProjectionsWarning(const feti::ContactInterfaceRows& i) {
+  if (i.unsettledProjections == 0) return "";
+  std::ostringstream line;
+  line << "  " << i.label << ": warning: " << i.unsettledProjections
+       << " projections on curved master faces did not settle (slave nodes and mortar quadrature points; "
+       << (i.firstUnsettled.empty() ? std::string("all of them quadrature points") : "first " + i.firstUnsettled)
+       << "); their pairs and weights use the last point reached: check the master faces there (warped, "
+          "degenerate or strongly curved)\n";
+  return line.str();
+}
+
 /// One line per contact interface: its pairs, out-of-reach slave nodes and initial overlaps.
 std::string contactSearchLines(const feti::ConstraintMatrix& B) {
   if (B.interfaces.empty()) return "  contact: none (linear T-FETI)\n";
@@ -334,7 +348,7 @@ std::string contactSearchLines(const feti::ConstraintMatrix& B) {
     if (i.sharedSlaveNodes > 0)
       out << "; " << i.sharedSlaveNodes << " more paired here have the rows of another interface, where their gap "
           << "is smaller (a slave node has the rows of one interface)";
-    out << "\n" << limitedGapsWarning(i);
+    out << "\n" << limitedGapsWarning(i) << unsettledProjectionsWarning(i);
   }
   return out.str();
 }

@@ -20,10 +20,11 @@
 #include "tribos/mesh/Decomposition.hpp"
 #include "tribos/mesh/ExodusIO.hpp"
 #include "tribos/mesh/GmshReader.hpp"
-#include "tribos/mesh/MortarCoupling.hpp"
+#include "tribos/geometry/MortarCoupling.hpp"
 
 using namespace tribos;
 using namespace tribos::mesh;
+using namespace tribos::geometry;
 
 namespace {
 struct GmshElement {

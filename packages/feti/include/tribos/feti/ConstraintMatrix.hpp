@@ -9,7 +9,7 @@
 ///    c = x, y or z; "Dirichlet Node Sets" prescribe all three to 0) every copy gets a unit
 ///    row for that component with the value in c, and that component gets no gluing rows —
 ///    the paper's count, and B stays orthonormal;
-///  - contact (mesh/ContactSearch.hpp, mesh/MortarCoupling.hpp): rows N_r, T1_r, T2_r acting
+///  - contact (geometry/ContactSearch.hpp, geometry/MortarCoupling.hpp): rows N_r, T1_r, T2_r acting
 ///    on (mean of the slave copies - sum_i w_i mean of the copies of master node i)
 ///    projected on nu, t1, t2, with w the dual mortar weights of the slave node or the
 ///    barycentric weights of its projection on the master surface (the paper's transfer
@@ -46,7 +46,7 @@ struct DisplacementCondition {
   std::array<double, 3> value{0.0, 0.0, 0.0};
 };
 
-/// Contact/Discretization: dual mortar weights (mesh/MortarCoupling.hpp; node-to-node on
+/// Contact/Discretization: dual mortar weights (geometry/MortarCoupling.hpp; node-to-node on
 /// matching meshes), or the barycentric weights of the slave node's projection.
 enum class ContactDiscretization { Mortar, NodeToSurface };
 inline constexpr core::EnumNames<ContactDiscretization, 2> kContactDiscretizationNames{
@@ -89,9 +89,9 @@ struct ContactNode {
   LO masterNode = -1;                      ///< the master vertex with the largest weight
   std::vector<LO> masterNodes;             ///< the master nodes of the rows (ascending)
   std::vector<double> masterWeights;       ///< their weights (sum 1; barycentric or dual mortar)
-  /// The slave node's weight in its rows (mesh::MortarRow::slaveWeight: 1 but at a 6-node
+  /// The slave node's weight in its rows (geometry::MortarRow::slaveWeight: 1 but at a 6-node
   /// slave triangle's mid-edge node), and the other slave nodes of the rows with their weights:
-  /// the ends of that node's edge (mesh::MortarRow::slaveNodes); empty otherwise.
+  /// the ends of that node's edge (geometry::MortarRow::slaveNodes); empty otherwise.
   double slaveWeight = 1.0;
   std::vector<LO> otherSlaveNodes;
   std::vector<double> otherSlaveWeights;
@@ -135,9 +135,14 @@ struct ContactInterfaceRows {
   GO overlappingPairs = 0;           ///< contact nodes whose row has a negative initial gap (beyond round-off)
   double largestOverlap = 0.0;       ///< max(-gap) over them
   /// Mortar rows whose weighted gap was kept within the pointwise gap over the node's support
-  /// (mesh::MortarRow::gapLimited): slave elements coarse for the master's curvature.
+  /// (geometry::MortarRow::gapLimited): slave elements coarse for the master's curvature.
   GO limitedMortarGaps = 0;
   double largestGapLimit = 0.0;  ///< max |weighted gap - gap kept| over them
+  /// Projections on curved master faces that did not settle (geometry/FaceProjection.hpp):
+  /// of slave nodes in the search and of mortar quadrature points; the first slave node's
+  /// described (empty if only quadrature points failed).
+  long long unsettledProjections = 0;
+  std::string firstUnsettled;
 };
 
 /// The part of a row's c that one displacement condition's values make (a Dirichlet row's

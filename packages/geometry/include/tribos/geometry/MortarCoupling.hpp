@@ -46,9 +46,9 @@
 #include <string>
 #include <vector>
 
-#include "tribos/mesh/ContactSearch.hpp"
+#include "tribos/geometry/ContactSearch.hpp"
 
-namespace tribos::mesh {
+namespace tribos::geometry {
 
 /// The transformation of the 6-node triangle's basis for its dual basis (Popp, Wohlmuth, Gee &
 /// Wall 2012): phi~_v = phi_v + alpha (phi_m + phi_m') at a vertex v (m, m' its edges' mid
@@ -76,9 +76,12 @@ struct MortarRow {
 };
 
 /// One row per pair of `search` (same order). `master` must be built on the master set
-/// of the search; `searchDistance` as there.
-std::vector<MortarRow> dualMortarRows(const Mesh& mesh, const std::string& slaveSideSet, const MasterSurface& master,
-                                      const ContactSearchResult& search, double searchDistance);
+/// of the search; `searchDistance` as there. `unsettledProjections`, if given, is increased by
+/// the quadrature points whose projection on a curved master face did not settle
+/// (FaceProjection.hpp).
+std::vector<MortarRow> dualMortarRows(const mesh::Mesh& mesh, const std::string& slaveSideSet,
+                                      const MasterSurface& master, const ContactSearchResult& search,
+                                      double searchDistance, long long* unsettledProjections = nullptr);
 
 /// True if every pair's projection is a master vertex (weights a unit vector).
 bool projectsOnMasterVertices(const ContactSearchResult& search);
@@ -86,4 +89,4 @@ bool projectsOnMasterVertices(const ContactSearchResult& search);
 /// The node-to-surface row of a pair (its projection's vertices and weights, zeros dropped).
 MortarRow nodeToSurfaceRow(const ContactPair& pair);
 
-}  // namespace tribos::mesh
+}  // namespace tribos::geometry

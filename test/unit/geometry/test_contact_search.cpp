@@ -1,4 +1,4 @@
-// Node-to-surface contact search (mesh/ContactSearch.hpp): the closest point on a triangle
+// Node-to-surface contact search (geometry/ContactSearch.hpp): the closest point on a triangle
 // against a brute-force sample, and the pairing of two stacked boxes (test/common/BoxMesh):
 // matching meshes pair node to node, non-matching ones project every slave node onto the
 // master plane with convex weights, nodes beyond the search distance are unpaired, overlap
@@ -13,7 +13,8 @@
 
 #include "BoxMesh.hpp"
 #include "tribos/core/Errors.hpp"
-#include "tribos/mesh/ContactSearch.hpp"
+#include "tribos/geometry/ContactSearch.hpp"
+#include "tribos/geometry/SurfaceNormals.hpp"
 
 using namespace tribos;
 
@@ -73,12 +74,12 @@ mesh::Mesh stacked(std::array<double, 2> lowerSize, std::array<int, 2> lowerCell
   return m;
 }
 
-mesh::ContactSearchResult search(const mesh::Mesh& m, double searchDistance) {
-  return mesh::searchContactPairs(m, "lower_z1", "upper_z0", searchDistance);
+geometry::ContactSearchResult search(const mesh::Mesh& m, double searchDistance) {
+  return geometry::searchContactPairs(m, "lower_z1", "upper_z0", searchDistance);
 }
 
 /// The projection of a pair: the weighted master vertices.
-Vec3 projection(const mesh::Mesh& m, const mesh::ContactPair& p) {
+Vec3 projection(const mesh::Mesh& m, const geometry::ContactPair& p) {
   EXPECT_EQ(p.masterNodes[3], -1);  // triangles here
   return point({p.weights[0], p.weights[1], p.weights[2]}, m.coords[p.masterNodes[0]], m.coords[p.masterNodes[1]],
                m.coords[p.masterNodes[2]]);
@@ -86,13 +87,13 @@ Vec3 projection(const mesh::Mesh& m, const mesh::ContactPair& p) {
 
 /// The master face of a pair really is face `masterFace` of the master side set, its
 /// vertices in side-set order, and the pair's slave node is a node of the slave side set.
-void expectConsistentPair(const mesh::Mesh& m, const mesh::ContactPair& p) {
+void expectConsistentPair(const mesh::Mesh& m, const geometry::ContactPair& p) {
   const auto& master = m.sideSet("upper_z0");
   ASSERT_GE(p.masterFace, 0);
   ASSERT_LT(static_cast<size_t>(p.masterFace), master.elements.size());
   for (int v = 0; v < 3; ++v)
     EXPECT_EQ(p.masterNodes[v], m.faceNodes(master.elements[p.masterFace], master.sides[p.masterFace]).node[v]);
-  const auto slaves = mesh::sideSetNodes(m, m.sideSet("lower_z1"));
+  const auto slaves = geometry::sideSetNodes(m, m.sideSet("lower_z1"));
   EXPECT_TRUE(std::binary_search(slaves.begin(), slaves.end(), p.slaveNode));
   EXPECT_EQ(p.nearestMasterNode(), p.masterNodes[std::max_element(p.weights.begin(), p.weights.end()) - p.weights.begin()]);
 }
@@ -117,7 +118,7 @@ TEST(ContactSearch, closestPointInEveryVoronoiRegion) {
     const Vec3 beyond[3] = {add(nAB, nCA), add(nAB, nBC), add(nBC, nCA)};
     for (int v = 0; v < 3; ++v) {
       const Vec3 x = add(add(vertices[v], beyond[v], 0.3), lift);
-      const auto w = mesh::closestPointOnTriangle(x, kA, kB, kC);
+      const auto w = geometry::closestPointOnTriangle(x, kA, kB, kC);
       for (int i = 0; i < 3; ++i) EXPECT_EQ(w[i], i == v ? 1.0 : 0.0) << "vertex " << v;
       EXPECT_LE(distance(x, point(w, kA, kB, kC)), bruteForceDistance(x, kA, kB, kC, 200) + 1e-14);
     }
@@ -130,7 +131,7 @@ TEST(ContactSearch, closestPointInEveryVoronoiRegion) {
       const Vec3& q = vertices[edge[e][1]];
       const Vec3 onEdge = add(p, sub(q, p), 0.25);
       const Vec3 x = add(add(onEdge, out[e], 0.5), lift);
-      const auto w = mesh::closestPointOnTriangle(x, kA, kB, kC);
+      const auto w = geometry::closestPointOnTriangle(x, kA, kB, kC);
       EXPECT_EQ(w[edge[e][2]], 0.0) << "edge " << e;
       EXPECT_NEAR(w[edge[e][0]], 0.75, 1e-14) << "edge " << e;
       EXPECT_NEAR(w[edge[e][1]], 0.25, 1e-14) << "edge " << e;
@@ -141,7 +142,7 @@ TEST(ContactSearch, closestPointInEveryVoronoiRegion) {
     // Interior: the foot of the perpendicular, at the chosen weights.
     const std::array<double, 3> inside{0.2, 0.5, 0.3};
     const Vec3 x = add(point(inside, kA, kB, kC), lift);
-    const auto w = mesh::closestPointOnTriangle(x, kA, kB, kC);
+    const auto w = geometry::closestPointOnTriangle(x, kA, kB, kC);
     for (int i = 0; i < 3; ++i) EXPECT_NEAR(w[i], inside[i], 1e-14);
     expectConvex(w);
     EXPECT_NEAR(distance(x, point(w, kA, kB, kC)), std::abs(height), 1e-14);
@@ -158,7 +159,7 @@ TEST(ContactSearch, closestPointIsTheClosestForRandomPoints) {
   const double h = 2.0 / n;  // longest edge < 2
   for (int k = 0; k < 300; ++k) {
     const Vec3 x{coordinate(rng), coordinate(rng) - 0.5, coordinate(rng) - 0.8};
-    const auto w = mesh::closestPointOnTriangle(x, kA, kB, kC);
+    const auto w = geometry::closestPointOnTriangle(x, kA, kB, kC);
     expectConvex(w);
     const double found = distance(x, point(w, kA, kB, kC));
     const double sampled = bruteForceDistance(x, kA, kB, kC, n);
@@ -170,7 +171,7 @@ TEST(ContactSearch, closestPointIsTheClosestForRandomPoints) {
 TEST(ContactSearch, matchingMeshesPairNodeToNode) {
   const auto m = stacked({2.0, 2.0}, {4, 4}, {2.0, 2.0}, {4, 4});
   const auto r = search(m, 1e-6);
-  const auto slaves = mesh::sideSetNodes(m, m.sideSet("lower_z1"));
+  const auto slaves = geometry::sideSetNodes(m, m.sideSet("lower_z1"));
   ASSERT_EQ(slaves.size(), 25u);
   ASSERT_EQ(r.pairs.size(), 25u);
   EXPECT_TRUE(r.unpaired.empty());
@@ -267,7 +268,7 @@ TEST(ContactSearch, slaveNodesBeyondTheSearchDistanceAreUnpaired) {
   // The slave top is 3 long, the master bottom 2: slave nodes at x = 2.5 are 0.5 from the
   // master's edge x = 2, those at x = 3 are 1 from it.
   const auto m = stacked({3.0, 2.0}, {6, 4}, {2.0, 2.0}, {2, 2});
-  const auto slaves = mesh::sideSetNodes(m, m.sideSet("lower_z1"));
+  const auto slaves = geometry::sideSetNodes(m, m.sideSet("lower_z1"));
   ASSERT_EQ(slaves.size(), 35u);
   auto beyond = [&](double x0) {
     std::vector<LO> nodes;
@@ -387,7 +388,7 @@ TEST(ContactSearch, masterFacesFacingAwayCannotBeTouched) {
   // are wrong — an input error naming both sets.
   const auto m = stacked({2.0, 2.0}, {4, 4}, {2.0, 2.0}, {2, 2});
   try {
-    mesh::searchContactPairs(m, "lower_z1", "upper_z1", 5.0);
+    geometry::searchContactPairs(m, "lower_z1", "upper_z1", 5.0);
     ADD_FAILURE() << "no error";
   } catch (const core::InputError& e) {
     const std::string what = e.what();
@@ -406,7 +407,7 @@ TEST(ContactSearch, masterFacesFacingAwayCannotBeTouched) {
   both.elements.insert(both.elements.end(), side.elements.begin(), side.elements.end());
   both.sides.insert(both.sides.end(), side.sides.begin(), side.sides.end());
   m2.sideSets.push_back(both);
-  const auto r = mesh::searchContactPairs(m2, "lower_top_and_side", "upper_z0", 2.0);
+  const auto r = geometry::searchContactPairs(m2, "lower_top_and_side", "upper_z0", 2.0);
   EXPECT_EQ(r.facingAway, 5);  // x = 0, z = 0: 5 nodes along y
   EXPECT_EQ(r.unpaired.size(), 5u);
   for (LO n : r.unpaired) EXPECT_EQ(m2.coords[n][2], 0.0);

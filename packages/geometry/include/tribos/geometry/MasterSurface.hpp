@@ -1,0 +1,77 @@
+#pragma once
+/// \file MasterSurface.hpp
+/// The master surface of a contact interface with its search tree: the closest point of the
+/// surface to any point, and the smoothed normal there (the contact search and the mortar
+/// integration both ask it).
+///
+/// The tree holds triangles: a 3-node face itself, a quadrilateral as its two triangles
+/// (0,1,2), (0,2,3), a 6-node triangle as the four triangles its mid-edge nodes cut it into.
+/// The closest of these is found first; on a curved face the point is then moved onto the
+/// bilinear or quadratic face by Gauss-Newton steps (FaceProjection.hpp), and the search
+/// reaches as far as faces deviate from their search triangles.
+///
+/// The normal is the *smoothed* master normal: the interpolation of the master's nodal
+/// normals (area-weighted means of the outer normals of the faces at each master node) with
+/// the face's shape functions at the projection. It is continuous over the surface, so the
+/// directions at neighbouring slave nodes on a faceted curved surface do not jump from face to
+/// face; on a flat master it is the exact face normal.
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tribos/geometry/FaceProjection.hpp"
+#include "tribos/mesh/Mesh.hpp"
+
+namespace tribos::geometry {
+
+class TriangleTree;
+
+class MasterSurface {
+ public:
+  MasterSurface(const mesh::Mesh& mesh, const std::string& masterSideSet);
+  ~MasterSurface();
+  MasterSurface(const MasterSurface&) = delete;
+  MasterSurface& operator=(const MasterSurface&) = delete;
+
+  struct Projection {
+    LO face = -1;  ///< -1: no face within the radius
+    std::array<LO, kMaxMasterFaceNodes> nodes{-1, -1, -1, -1, -1, -1};
+    std::array<double, kMaxMasterFaceNodes> weights{};  ///< shape functions at the closest point
+    std::array<double, 3> point{};
+    double distance = 0.0;
+    /// How the Gauss-Newton steps on a curved face ended (Converged on a 3-node triangle, at a
+    /// node of the face, and where no face is within the radius).
+    FaceProjectionOutcome outcome;
+  };
+  /// The closest point within `radius` (ties: the lower face index). `facesTested` counts
+  /// the closest-point evaluations.
+  Projection project(const Vec3& x, double radius, long long* facesTested = nullptr) const;
+  /// Unit smoothed normal (outward of the master body) interpolated at a projection.
+  Vec3 normalAt(const Projection& p) const;
+  const std::string& name() const { return name_; }
+
+ private:
+  /// The closest point on the face of a search triangle, from the triangle's closest point
+  /// (barycentric weights); no face if it lies beyond `radius`.
+  Projection onFace(LO triangle, const std::array<double, 3>& barycentric, const Vec3& x, double radius) const;
+
+  std::string name_;
+  std::unique_ptr<TriangleTree> tree_;
+  /// Which face, and which of its triangles (MasterSurface.cpp: kFacePieces), each tree
+  /// triangle is.
+  struct SearchTriangle {
+    LO face;
+    int piece;
+  };
+  std::vector<SearchTriangle> searchTriangles_;
+  std::vector<mesh::FaceNodes> faceNodes_;
+  std::vector<FaceCoordinates> faceCoords_;  ///< per face, its nodes' coordinates
+  /// How far a face may lie from the triangles it is searched as (a warped quadrilateral's
+  /// twist, a 6-node triangle's bowed edges), over all faces: the search reaches this much
+  /// farther, and a face is then taken on its own distance. 0 on a surface of 3-node triangles.
+  double pieceDeviation_ = 0.0;
+  std::vector<Vec3> nodalNormal_;  ///< unit, per global node (zero off the set)
+};
+
+}  // namespace tribos::geometry
