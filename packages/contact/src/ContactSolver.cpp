@@ -106,6 +106,10 @@ bool FrictionSettings::uses(FrictionModel model) const {
   return std::any_of(laws.begin(), laws.end(), [model](const FrictionLaw& law) { return law.model == model; });
 }
 
+bool FrictionSettings::successiveApproximations() const {
+  return std::any_of(laws.begin(), laws.end(), [](const FrictionLaw& law) { return law.boundFollowsNormalForce(); });
+}
+
 ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMatrix& B,
                            const FrictionSettings& friction, const qp::SmalseSettings& smalseSettings,
                            feti::DualPreconditioner preconditioner, const WarmStart& warm) {

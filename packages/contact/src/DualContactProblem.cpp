@@ -134,12 +134,12 @@ void DualContactProblem::buildOmega(const FrictionSettings& friction) {
     const FrictionLaw& law = friction.laws[B_.contact[lc_.node[k]].interface];
     lc_.model.push_back(law.model);
     lc_.F.push_back({law.F1, law.F2});
-    if (law.model == FrictionModel::Bonded) continue;
+    if (law.tiesSurfaces()) continue;
     const LO r = lc_.normalRow[k];
     omega_.addBound(r, -lIm(r, 0));
     const auto& t = lc_.tangentialRow[k];
-    if (law.model == FrictionModel::None || (t[0] < 0 && t[1] < 0)) continue;
-    if (law.model == FrictionModel::Tresca) slip_[k] = law.slipBound / B_.contact[lc_.node[k]].rowScale;
+    if (!law.hasTangentialRows() || (t[0] < 0 && t[1] < 0)) continue;
+    if (law.boundIsGiven()) slip_[k] = law.slipBound / B_.contact[lc_.node[k]].rowScale;
     lc_.ellipse[k] = omega_.numEllipses();
     omega_.addEllipse(t, {t[0] >= 0 ? -lIm(t[0], 0) : 0.0, t[1] >= 0 ? -lIm(t[1], 0) : 0.0}, semiAxes(k, slip_[k]));
   }

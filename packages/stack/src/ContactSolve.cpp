@@ -50,7 +50,7 @@ std::string describeContactChain(const Teuchos::ParameterList& tribos) {
     const auto& law = friction.laws[i];
     chain << (i > 0 ? "; " : "") << (interfaces.size() > 1 ? interfaces[i].rows.list() + ": " : std::string())
           << core::nameOf(contact::kFrictionModelNames, law.model);
-    if (law.model == contact::FrictionModel::Coulomb)
+    if (law.boundFollowsNormalForce())
       chain << " (" << core::nameOf(contact::kFixedPointNames, friction.fixedPoint) << " successive approximations, F1 "
             << law.F1 << ", F2 " << law.F2
             << (friction.fixedPoint == contact::FixedPoint::Inexact
@@ -58,7 +58,7 @@ std::string describeContactChain(const Teuchos::ParameterList& tribos) {
                           core::nameOf(contact::kSlipBoundTestNames, friction.slipBoundTest)
                     : std::string())
             << ")";
-    if (law.model == contact::FrictionModel::Tresca)
+    if (law.boundIsGiven())
       chain << " (g = " << law.slipBound << ", F1 " << law.F1 << ", F2 " << law.F2 << ")";
   }
   return chain.str();
@@ -144,7 +144,7 @@ std::string relativeResiduals(const qp::SmalseCounters& c, double eps) {
 void nameTheLimit(const WallClockBudget& budget, const RunRecord& runs, const qp::SmalseSettings& smalse,
                   const contact::FrictionSettings& friction, contact::ContactResult& result) {
   if (result.converged || result.counters.nonFinite) return;
-  const bool exact = friction.uses(contact::FrictionModel::Coulomb) && friction.fixedPoint == contact::FixedPoint::Exact;
+  const bool exact = friction.successiveApproximations() && friction.fixedPoint == contact::FixedPoint::Exact;
   std::string message;
   if (budget.ranOut()) {
     message = budget.message();
@@ -174,7 +174,7 @@ std::string overloadNote(const InterfaceResult& i, const contact::FrictionSettin
                          const std::array<double, 3>& normal, const std::array<double, 3>& f) {
   std::ostringstream note;
   const std::string interface = i.surfaces;
-  if (i.law.model == contact::FrictionModel::Tresca) {
+  if (i.law.boundIsGiven()) {
     // Tresca's bound is the given slip bound per node, not F lambda_nu: no capacity to quote.
     note << "no equilibrium within the contact constraints at " << interface
          << ": the loads may exceed what contact and the given slip bounds (Tresca) can carry";
@@ -183,7 +183,7 @@ std::string overloadNote(const InterfaceResult& i, const contact::FrictionSettin
   const double length = std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
   const double along = length > 0.0 ? (f[0] * normal[0] + f[1] * normal[1] + f[2] * normal[2]) / length : 0.0;
   const double tangential = std::sqrt(std::max(f[0] * f[0] + f[1] * f[1] + f[2] * f[2] - along * along, 0.0));
-  const double F = i.law.model == contact::FrictionModel::None ? 0.0 : std::max(i.law.F1, i.law.F2);
+  const double F = i.law.capacityCoefficient();
   const double N = i.normalForce;
   const bool beyond = F * N < tangential;
   note << (beyond ? "the loads may exceed what contact and friction can carry at "
@@ -193,7 +193,7 @@ std::string overloadNote(const InterfaceResult& i, const contact::FrictionSettin
   if (beyond)
     note << " (where contact and friction alone hold the loaded body, reduce that load or raise the friction "
             "coefficient)";
-  else if (i.law.model == contact::FrictionModel::Coulomb && friction.fixedPoint == contact::FixedPoint::Exact)
+  else if (i.law.boundFollowsNormalForce() && friction.fixedPoint == contact::FixedPoint::Exact)
     note << " (Contact/Fixed Point = Exact starts frictionless, where a body held by friction alone has no "
             "equilibrium: use Inexact)";
   return note.str();
@@ -220,7 +220,7 @@ void addOverloadNote(const feti::ConstraintMatrix& B, const contact::FrictionSet
   std::string notes;
   for (size_t i = 0; i < n; ++i) {
     InterfaceResult interface = out.interfaces[i];
-    if (interface.law.model == contact::FrictionModel::Bonded) continue;  // tied: no capacity to exceed
+    if (interface.law.tiesSurfaces()) continue;  // tied: no capacity to exceed
     interface.normalForce = normalForce[i];
     const std::array<double, 3> normal{normals[3 * i], normals[3 * i + 1], normals[3 * i + 2]};
     if (!(std::abs(normal[0]) + std::abs(normal[1]) + std::abs(normal[2]) > 0.0)) continue;

@@ -310,7 +310,7 @@ Scene buildScene(const ParameterList& tribos, const std::string& source, MPI_Com
   scene.contacts = readContactInterfaces(tribos.sublist("Contact"), source);
   // A linear scene (no contact, or Bonded interfaces only) does not depend on the path.
   const bool linear = std::all_of(scene.contacts.begin(), scene.contacts.end(), [](const ContactInterface& one) {
-    return one.law.model == contact::FrictionModel::Bonded;
+    return one.law.tiesSurfaces();
   });
   core::requireInput(!scene.loadHistory || !linear,
                      source + ": Load Steps: the scene is linear (no contact, or only Bonded interfaces), so its "

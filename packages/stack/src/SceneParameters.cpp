@@ -373,8 +373,8 @@ std::vector<ContactInterface> readContactInterfaces(const ParameterList& contact
     named.push_back(flat);
   }
   for (auto& one : named) {
-    one.rows.tangentialRows = one.law.model != contact::FrictionModel::None;
-    one.rows.tied = one.law.model == contact::FrictionModel::Bonded;
+    one.rows.tangentialRows = one.law.hasTangentialRows();
+    one.rows.tied = one.law.tiesSurfaces();
   }
   return named;
 }

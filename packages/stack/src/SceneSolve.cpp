@@ -6,7 +6,7 @@ namespace tribos::stack {
 
 bool isContactProblem(const Scene& scene) {
   for (const auto& one : scene.contacts)
-    if (one.law.model != contact::FrictionModel::Bonded) return true;
+    if (!one.law.tiesSurfaces()) return true;
   return false;
 }
 

@@ -29,6 +29,9 @@ struct FrictionSettings {
   std::vector<FrictionLaw> laws{FrictionLaw{}};
   /// True when some interface's law is `model`.
   bool uses(FrictionModel model) const;
+  /// True when some interface's bound follows its normal force (Coulomb): the solve then runs
+  /// successive approximations of the slip bound.
+  bool successiveApproximations() const;
   FixedPoint fixedPoint = FixedPoint::Inexact;
   /// Coulomb, Inexact: Epsilon stops only once an update moved g by at most eps (relative);
   /// Paper on SMALSE-M's criteria alone, as the paper's Section 5 (its Table 1 counts).
