@@ -35,7 +35,9 @@ function(tribos_add_test)
   else()
     set(cmd ${T_COMMAND} ${T_ARGS})
   endif()
-  set(procs 1)
+  # The processors a test occupies: ranks x threads (a 2-thread test without MPI takes 2, so
+  # ctest -j2 does not run a second test beside it).
+  set(procs ${T_THREADS})
   if(T_NP)
     # OMP_WAIT_POLICY=PASSIVE: idle OpenMP threads sleep instead of spinning, which matters
     # when ranks x threads exceed the cores (CI has 2): spinning threads starve the ranks.

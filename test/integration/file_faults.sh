@@ -117,16 +117,26 @@ aResultThatCannotBeWritten)
   no_partial ;;
 aBudgetSpentInTheFactorisation)
   # 32 subdomains of H/h = 14: the set-up takes about 0.65 s, the factorisation 3.7 s on two
-  # ranks (more on one), so a budget of 3 s lands in the factorisation unless a load slows
-  # everything more than fourfold (H/h = 10 with 2 s missed it, once: that factorisation takes
-  # 2.3 s on two ranks). It stops between two subdomains (0.23 s each, idle): within 1.5 s.
-  run budget --input "$scene" --set "Mesh/Subdomains Per Brick=4x2x2" --set "Mesh/H Over h=14" \
-    --set "Solver/Max Seconds=3" --summary s.json --output r.exo
-  expect_status 3 "Max Seconds = 3"
-  expect_text budget "stopped: Solver/Max Seconds = 3 reached after"
+  # ranks (more on one), so a budget of 3 s lands in the factorisation. What is asserted is the
+  # phase, not the clock: where a loaded machine spent the budget before the factorisation
+  # began (the set-up more than 4x slower), the case runs again with twice the budget (the
+  # factorisation is then slower by as much), up to three times. It stops between two
+  # subdomains (0.23 s each, idle): within 1.5 s of the budget.
+  budget=3
+  for attempt in 1 2 3; do
+    run budget --input "$scene" --set "Mesh/Subdomains Per Brick=4x2x2" --set "Mesh/H Over h=14" \
+      --set "Solver/Max Seconds=$budget" --summary s.json --output r.exo
+    grep -q -F "during the factorisation" budget.log && break
+    echo "file_faults.sh: attempt $attempt: Max Seconds = $budget ran out outside the factorisation (a loaded" \
+      "machine); again with $((2 * budget))"
+    budget=$((2 * budget))
+  done
+  expect_status 3 "Max Seconds = $budget"
+  expect_text budget "stopped: Solver/Max Seconds = $budget reached after"
   expect_text budget "during the factorisation"
   after=$(grep -o "reached after [0-9.]*" budget.log | head -1 | awk '{print $3}')
-  [ -n "$after" ] && at_most "$after" 4.5 || fail "stopped after $after s, not within 1.5 s of 3 s"
+  [ -n "$after" ] && at_most "$after" "$(awk -v b="$budget" 'BEGIN { print b + 1.5 }')" ||
+    fail "stopped after $after s, not within 1.5 s of $budget s"
   grep -q '"converged": false' s.json || fail "the summary does not say it stopped"
   [ -e r.exo ] && fail "results written for a solve that never started"
   no_partial ;;
