@@ -24,17 +24,17 @@
 
 namespace tribos::stack {
 
-contact::FrictionSettings frictionSettings(const Teuchos::ParameterList& tribos) {
-  return readFrictionParameters(tribos.sublist("Contact"));
+contact::FrictionSettings frictionSettings(const Scene& scene, const Teuchos::ParameterList& tribos) {
+  return readFrictionParameters(scene.contacts, tribos.sublist("Contact"));
 }
 
 qp::SmalseSettings smalseSettings(const Teuchos::ParameterList& tribos) {
   return qp::readSolverParameters(tribos.sublist("Solver"));
 }
 
-std::string describeContactChain(const Teuchos::ParameterList& tribos) {
+std::string describeContactChain(const Scene& scene, const Teuchos::ParameterList& tribos) {
   const auto& fetiList = tribos.sublist("FETI");
-  const auto friction = frictionSettings(tribos);
+  const auto friction = frictionSettings(scene, tribos);
   const auto smalse = smalseSettings(tribos);
   std::ostringstream chain;
   chain << "T-FETI (" << fetiList.get<std::string>("Factorization") << " K_reg, "
@@ -45,7 +45,7 @@ std::string describeContactChain(const Teuchos::ParameterList& tribos) {
         << smalse.mpgp.stepScale << "/||A||, Gamma " << smalse.mpgp.gamma << ", preconditioned in face: "
         << fetiList.get<std::string>("Preconditioner") << (smalse.mpgp.choppedProportioning ? ", chopped proportioning" : "")
         << ") -> ";
-  const auto interfaces = readContactInterfaces(tribos.sublist("Contact"), "Contact");
+  const auto& interfaces = scene.contacts;
   for (size_t i = 0; i < friction.laws.size(); ++i) {
     const auto& law = friction.laws[i];
     chain << (i > 0 ? "; " : "") << (interfaces.size() > 1 ? interfaces[i].rows.list() + ": " : std::string())
@@ -371,7 +371,7 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
   MPI_Comm_rank(comm, &rank);
   const auto& fetiList = tribos.sublist("FETI");
   feti::TotalFetiSettings settings = totalFetiSettings(fetiList, false);
-  ContactChain chain{frictionSettings(tribos), smalseSettings(tribos), dualPreconditioner(fetiList)};
+  ContactChain chain{frictionSettings(scene, tribos), smalseSettings(tribos), dualPreconditioner(fetiList)};
   const core::Deadline deadline(tribos.sublist("Solver").get<double>("Max Seconds"), runStart);
   settings.deadline = &deadline;
   WallClockBudget budget(deadline, comm);
@@ -379,7 +379,7 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
   if (rank == 0) attachProgress(tribos.sublist("Solver"), chain.friction, chain.smalse, out.history);
   auto runs = std::make_shared<RunRecord>();
   attachRunRecord(runs, chain.smalse.mpgp.maxIterations, chain.friction);
-  out.chain = describeContactChain(tribos);
+  out.chain = describeContactChain(scene, tribos);
 
   out.appliedLoad = totalLoad(owned, comm);
   out.appliedLoadMagnitude = loadMagnitude(owned, comm);

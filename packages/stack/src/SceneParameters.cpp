@@ -379,10 +379,10 @@ std::vector<ContactInterface> readContactInterfaces(const ParameterList& contact
   return named;
 }
 
-contact::FrictionSettings readFrictionParameters(const Teuchos::ParameterList& contactList) {
+contact::FrictionSettings readFrictionParameters(const std::vector<ContactInterface>& interfaces,
+                                                 const Teuchos::ParameterList& contactList) {
   contact::FrictionSettings friction;
   fixedPointTable().read(contactList, friction);
-  const auto interfaces = readContactInterfaces(contactList, "Contact");
   friction.laws.clear();
   for (const auto& one : interfaces) friction.laws.push_back(one.law);
   if (friction.laws.empty()) frictionLawTable().read(contactList, friction.laws.emplace_back());

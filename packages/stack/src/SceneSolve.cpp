@@ -11,7 +11,7 @@ bool isContactProblem(const Scene& scene) {
 }
 
 std::string describeSolverChain(const Scene& scene, const Teuchos::ParameterList& tribos) {
-  if (isContactProblem(scene)) return describeContactChain(tribos);
+  if (isContactProblem(scene)) return describeContactChain(scene, tribos);
   return "linear T-FETI (projected CG, preconditioner " + tribos.sublist("FETI").get<std::string>("Preconditioner") +
          ")";
 }

@@ -78,12 +78,13 @@ struct ContactSolveResult : StepResults {
   std::vector<OuterIterationRecord> history;  ///< one per outer iteration (rank 0)
 };
 
-/// Solver settings from the validated "Tribos" list (exposed for tests and perf tools).
-contact::FrictionSettings frictionSettings(const Teuchos::ParameterList& tribos);
+/// Solver settings from the validated "Tribos" list and the scene's interfaces (exposed for
+/// tests and perf tools).
+contact::FrictionSettings frictionSettings(const Scene& scene, const Teuchos::ParameterList& tribos);
 qp::SmalseSettings smalseSettings(const Teuchos::ParameterList& tribos);
 
 /// The chain solveContactScene builds, in words (printed at the start of a run).
-std::string describeContactChain(const Teuchos::ParameterList& tribos);
+std::string describeContactChain(const Scene& scene, const Teuchos::ParameterList& tribos);
 
 /// Solves a contact scene (Friction Model None, Tresca or Coulomb). `owned`: this rank's
 /// assembled systems, consumed. Solver/Max Seconds counts from `runStart` (the start of the

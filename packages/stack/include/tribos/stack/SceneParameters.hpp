@@ -31,9 +31,10 @@ Teuchos::RCP<const Teuchos::ParameterList> sceneValidParameters();
 std::vector<ContactInterface> readContactInterfaces(const Teuchos::ParameterList& contactList,
                                                     const std::string& source);
 
-/// The friction settings of a validated "Contact" list: the fixed point's, and the law of each
-/// interface of readContactInterfaces (the flat law when there is none); the progress
-/// callback left empty.
-contact::FrictionSettings readFrictionParameters(const Teuchos::ParameterList& contactList);
+/// The friction settings of a validated "Contact" list: the fixed point's from the list, and
+/// the law of each of `interfaces` (readContactInterfaces's, read once per run into the
+/// scene; the flat law when there is none); the progress callback left empty.
+contact::FrictionSettings readFrictionParameters(const std::vector<ContactInterface>& interfaces,
+                                                 const Teuchos::ParameterList& contactList);
 
 }  // namespace tribos::stack
