@@ -12,6 +12,9 @@ packages=(build-essential cmake ninja-build ccache
   libtrilinos-thyra-dev libtrilinos-rtop-dev libtrilinos-xpetra-dev libtrilinos-aztecoo-dev
   libptscotch-dev libmetis-dev libopenmpi-dev openmpi-bin libexodusii-dev libsuitesparse-dev
   libopenblas0-serial netcdf-bin nlohmann-json3-dev libgtest-dev)
+# The element catalogue's reference tables in a unit test (mesh.ElementCatalogue.*); Intrepid2's
+# headers include Sacado's.
+packages+=(libtrilinos-shards-dev libtrilinos-intrepid2-dev libtrilinos-sacado-dev)
 # meshio and its Exodus backend (only recommended by python3-meshio): the interoperability
 # tests integration.meshio.* (skipped without them).
 packages+=(python3-meshio python3-netcdf4)
