@@ -12,22 +12,10 @@
 namespace tribos::geometry {
 
 namespace {
-/// Reference corners (xi, eta) of the quadrilateral's vertices (mesh::faceShapeFunctions).
-constexpr double kQuadCorners[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
-/// Reference points (r, s) of a 6-node triangle's nodes: vertices, then mid-edges 01, 12, 20.
-constexpr double kTri6Nodes[6][2] = {{0, 0}, {1, 0}, {0, 1}, {0.5, 0}, {0.5, 0.5}, {0, 0.5}};
-
-/// The triangles a face is searched as (face node indices), per face type.
-struct FacePieces {
-  int count;
-  int node[4][3];
-};
-constexpr FacePieces kTri3Pieces = {1, {{0, 1, 2}}};
-constexpr FacePieces kQuad4Pieces = {2, {{0, 1, 2}, {0, 2, 3}}};
-constexpr FacePieces kTri6Pieces = {4, {{0, 3, 5}, {3, 1, 4}, {5, 4, 2}, {3, 4, 5}}};
-const FacePieces& facePieces(const mesh::FaceNodes& face) {
-  if (face.numVertices == 4) return kQuad4Pieces;
-  return face.numNodes == 6 ? kTri6Pieces : kTri3Pieces;
+/// The face catalogue's entry of a face (mesh/ShapeFunctions.hpp: its search triangles and
+/// reference nodes).
+const mesh::FaceTypeShape& shapeOf(const mesh::FaceNodes& face) {
+  return mesh::faceTypeShape(mesh::faceType(face.numVertices, face.numNodes));
 }
 
 /// A bound on the distance between a face and its pieces: a quadrilateral's twist |x0 - x1 +
@@ -58,10 +46,10 @@ MasterSurface::MasterSurface(const mesh::Mesh& mesh, const std::string& masterSi
     faceNodes_[f] = mesh.faceNodes(set.elements[f], set.sides[f]);
     for (int v = 0; v < faceNodes_[f].numNodes; ++v) faceCoords_[f][v] = mesh.coords[faceNodes_[f].node[v]];
     pieceDeviation_ = std::max(pieceDeviation_, deviationFromPieces(faceNodes_[f], faceCoords_[f]));
-    const FacePieces& pieces = facePieces(faceNodes_[f]);
-    for (int piece = 0; piece < pieces.count; ++piece) {
+    const mesh::FaceTypeShape& shape = shapeOf(faceNodes_[f]);
+    for (int piece = 0; piece < shape.numSearchTriangles; ++piece) {
       std::array<Vec3, 3> t;
-      for (int v = 0; v < 3; ++v) t[v] = faceCoords_[f][pieces.node[piece][v]];
+      for (int v = 0; v < 3; ++v) t[v] = faceCoords_[f][shape.searchTriangles[piece][v]];
       triangles.push_back(t);
       searchTriangles_.push_back({static_cast<LO>(f), piece});
     }
@@ -109,24 +97,24 @@ MasterSurface::Projection MasterSurface::onFace(LO triangle, const std::array<do
   const Vec3 diff = minus(best.point, x);
   const double distance2 = dot(diff, diff);
   best.distance = std::sqrt(distance2);
-  if (face.numNodes == 3) {
+  const mesh::FaceTypeShape& shape = shapeOf(face);
+  if (!shape.curved) {  // a 3-node triangle is its own search triangle: the point is exact
     for (int v = 0; v < 3; ++v) best.weights[v] = barycentric[v];
     return distance2 <= radius * radius ? best : none;
   }
   // A quadrilateral or a 6-node triangle: its reference point from the piece's barycentric
   // weights; a node of the face (a weight of exactly 1: matching meshes) stays exact, as on
   // a triangle.
-  const int* piece = facePieces(face).node[found.piece];
+  const int* piece = shape.searchTriangles[found.piece];
   for (int v = 0; v < 3; ++v)
     if (barycentric[v] == 1.0) {
       best.weights[piece[v]] = 1.0;
       return distance2 <= radius * radius ? best : none;
     }
-  const bool quad = face.numVertices == 4;
   double ref[2] = {0.0, 0.0};
   for (int v = 0; v < 3; ++v)
-    for (int i = 0; i < 2; ++i) ref[i] += barycentric[v] * (quad ? kQuadCorners : kTri6Nodes)[piece[v]][i];
-  const mesh::FaceType type = quad ? mesh::FaceType::Quad4 : mesh::FaceType::Tri6;
+    for (int i = 0; i < 2; ++i) ref[i] += barycentric[v] * shape.referenceNodes[piece[v]][i];
+  const mesh::FaceType type = mesh::faceType(face.numVertices, face.numNodes);
   const auto& coords = faceCoords_[found.face];
   best.outcome = closestPointOnCurvedFace(type, coords, x, ref[0], ref[1]);
   const mesh::FaceGeometry g = mesh::faceGeometry(type, coords.data(), ref[0], ref[1]);

@@ -113,13 +113,11 @@ class ExodusReader {
 ElementType elementTypeOf(const std::string& topology, int64_t nodes, const std::string& path,
                           const std::string& blockText) {
   const std::string name = upper(topology);
+  ElementType type;
+  if (elementTypeOfExodus(name, nodes, type)) return type;
   const auto is = [&](std::initializer_list<const char*> names) {
     return std::any_of(names.begin(), names.end(), [&](const char* n) { return name == n; });
   };
-  if (is({"TETRA", "TETRA4", "TET4", "TET"}) && nodes == 4) return ElementType::Tet4;
-  if (is({"TETRA", "TETRA10", "TET10"}) && nodes == 10) return ElementType::Tet10;
-  if (is({"HEX", "HEX8", "HEXAHEDRON"}) && nodes == 8) return ElementType::Hex8;
-  if (is({"WEDGE", "WEDGE6"}) && nodes == 6) return ElementType::Wedge6;
   std::string advice;
   if (is({"HEX", "HEX20", "HEX27", "HEXAHEDRON"}))
     advice = " (for 20- or 27-node hexahedra, convert to 8-node ones, e.g. in gmsh with Mesh.ElementOrder = 1, or "

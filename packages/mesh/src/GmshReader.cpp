@@ -232,13 +232,20 @@ struct GmshType {
   int nodes;
   const char* name;
 };
-constexpr GmshType kReadTypes[] = {
-    {15, 0, 1, "point"},          {1, 1, 2, "2-node line"},      {8, 1, 3, "3-node line"},
-    {2, 2, 3, "3-node triangle"}, {9, 2, 6, "6-node triangle"},  {3, 2, 4, "4-node quadrilateral"},
-    {4, 3, 4, "4-node tetrahedron"}, {11, 3, 10, "10-node tetrahedron"}, {5, 3, 8, "8-node hexahedron"},
-    {6, 3, 6, "6-node prism"}};
+/// Points, lines and faces; the volume types are the element catalogue's (ElementShape::gmshType).
+constexpr GmshType kLowerDimensionTypes[] = {
+    {15, 0, 1, "point"},          {1, 1, 2, "2-node line"},     {8, 1, 3, "3-node line"},
+    {2, 2, 3, "3-node triangle"}, {9, 2, 6, "6-node triangle"}, {3, 2, 4, "4-node quadrilateral"}};
 
 const GmshType* gmshType(int type) {
+  static const std::vector<GmshType> kReadTypes = [] {
+    std::vector<GmshType> all(std::begin(kLowerDimensionTypes), std::end(kLowerDimensionTypes));
+    for (int t = 0; t < kNumElementTypes; ++t) {
+      const ElementShape& shape = elementShape(static_cast<ElementType>(t));
+      all.push_back({shape.gmshType, 3, shape.numNodes, shape.description});
+    }
+    return all;
+  }();
   for (const auto& t : kReadTypes)
     if (t.type == type) return &t;
   return nullptr;
@@ -280,16 +287,13 @@ void checkElementBlockType(Tokens& in, int dim, int entity, int type) {
     in.fail(where + " holds elements of gmsh type " + std::to_string(type) + ", which do not have its dimension");
 }
 
-/// gmsh's node order of a volume element in Exodus order: the 10-node tetrahedron's last
-/// two mid-edge nodes are (2,3), (1,3) in gmsh and (1,3), (2,3) in Exodus; the others agree.
+/// A volume element of gmsh type `gmshType` (one the catalogue has: checked by the caller) with
+/// its nodes in Exodus order (ElementShape::gmshNode).
 VolumeElement volumeElement(int gmshType, const std::array<long long, kMaxElementNodes>& v, int group, long long tag) {
   VolumeElement e{v, ElementType::Tet4, group, tag};
-  if (gmshType == 11) {
-    e.type = ElementType::Tet10;
-    std::swap(e.nodes[8], e.nodes[9]);
-  }
-  if (gmshType == 5) e.type = ElementType::Hex8;
-  if (gmshType == 6) e.type = ElementType::Wedge6;
+  elementTypeOfGmsh(gmshType, e.type);
+  const ElementShape& shape = elementShape(e.type);
+  for (int k = 0; k < shape.numNodes; ++k) e.nodes[k] = v[shape.gmshNode[k]];
   return e;
 }
 
@@ -389,23 +393,13 @@ FaceKey faceKey(const long long* vertices, int numVertices) {
   return key;
 }
 
-/// Reverses the orientation of an element (a mirror of its reference element): for
+/// Reverses the orientation of an element (its mirror image, ElementShape::mirrorNode): for
 /// elements from writers with the other orientation convention.
 void reorient(ElementType type, long long* nodes) {
-  switch (type) {
-    case ElementType::Tet4: std::swap(nodes[2], nodes[3]); return;
-    case ElementType::Tet10:  // vertices 2 <-> 3 take edges (1,2) <-> (1,3) and (2,0) <-> (0,3)
-      std::swap(nodes[2], nodes[3]);
-      std::swap(nodes[5], nodes[8]);
-      std::swap(nodes[6], nodes[7]);
-      return;
-    case ElementType::Hex8:
-      for (int k = 0; k < 4; ++k) std::swap(nodes[k], nodes[k + 4]);
-      return;
-    case ElementType::Wedge6:
-      for (int k = 0; k < 3; ++k) std::swap(nodes[k], nodes[k + 3]);
-      return;
-  }
+  const ElementShape& shape = elementShape(type);
+  long long original[kMaxElementNodes];
+  std::copy_n(nodes, shape.numNodes, original);
+  for (int k = 0; k < shape.numNodes; ++k) nodes[k] = original[shape.mirrorNode[k]];
 }
 
 /// Builds the Mesh: bodies in the order of their physical tags, elements sorted by body (so

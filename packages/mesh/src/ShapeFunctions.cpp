@@ -201,7 +201,19 @@ void faceShapeFunctions(FaceType type, const double xi[3], double N[], double dN
   }
 }
 
-int faceNodeCount(FaceType type) { return type == FaceType::Quad4 ? 4 : type == FaceType::Tri6 ? 6 : 3; }
+const FaceTypeShape& faceTypeShape(FaceType type) {
+  // A quadrilateral is searched as its triangles (0,1,2), (0,2,3), a 6-node triangle as the four
+  // its mid-edge nodes cut it into. Indexed by FaceType.
+  static constexpr FaceTypeShape kFaceShapes[3] = {
+      {"3-node triangle", 3, 3, {{0, 0}, {1, 0}, {0, 1}}, 1, {{0, 1, 2}}, false},
+      {"6-node triangle", 3, 6, {{0, 0}, {1, 0}, {0, 1}, {0.5, 0}, {0.5, 0.5}, {0, 0.5}}, 4,
+       {{0, 3, 5}, {3, 1, 4}, {5, 4, 2}, {3, 4, 5}}, true},
+      {"4-node quadrilateral", 4, 4, {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}, 2, {{0, 1, 2}, {0, 2, 3}}, true},
+  };
+  return kFaceShapes[static_cast<int>(type)];
+}
+
+int faceNodeCount(FaceType type) { return faceTypeShape(type).numNodes; }
 
 FaceGeometry faceGeometry(FaceType type, const std::array<double, 3>* x, double xi0, double xi1) {
   FaceGeometry g{};

@@ -16,6 +16,7 @@
 #include <Shards_BasicTopologies.hpp>
 #include <Teuchos_RCP.hpp>  // the definitions of the RCP conversions Intrepid2's getHostBasis uses
 
+#include <algorithm>
 #include <random>
 
 #include "tribos/mesh/ElementTypes.hpp"
@@ -127,4 +128,98 @@ TEST(ElementCatalogue, faceShapeFunctionsAreIntrepid2Bases) {
   expectSameFace(Intrepid2::Basis_HGRAD_TRI_C1_FEM<Device>(), FaceType::Tri3, 2);
   expectSameFace(Intrepid2::Basis_HGRAD_TRI_C2_FEM<Device>(), FaceType::Tri6, 2);
   expectSameFace(Intrepid2::Basis_HGRAD_QUAD_C1_FEM<Device>(), FaceType::Quad4, 0);
+}
+
+namespace {
+/// The reference nodes of a basis (Intrepid2's degree-of-freedom coordinates), `dimension` each.
+template <class Basis>
+std::vector<std::array<double, 3>> referenceNodes(const Basis& basis, int dimension) {
+  View coords("coords", basis.getCardinality(), dimension);
+  basis.getDofCoords(coords);
+  std::vector<std::array<double, 3>> nodes(basis.getCardinality(), {0.0, 0.0, 0.0});
+  for (int k = 0; k < basis.getCardinality(); ++k)
+    for (int d = 0; d < dimension; ++d) nodes[k][d] = coords(k, d);
+  return nodes;
+}
+
+/// det J of an element of `type` with nodes x at the reference point xi.
+double jacobianDeterminant(ElementType type, const std::vector<std::array<double, 3>>& x, const double xi[3]) {
+  double N[mesh::kMaxElementNodes], dN[mesh::kMaxElementNodes][3], J[3][3], coords[mesh::kMaxElementNodes][3];
+  for (size_t k = 0; k < x.size(); ++k)
+    for (int d = 0; d < 3; ++d) coords[k][d] = x[k][d];
+  mesh::shapeFunctions(type, xi, N, dN);
+  return mesh::jacobian(type, coords, dN, J);
+}
+
+template <class Basis>
+void expectMirrorReverses(const Basis& basis, ElementType type) {
+  const mesh::ElementShape& shape = mesh::elementShape(type);
+  SCOPED_TRACE(shape.description);
+  const auto x = referenceNodes(basis, 3);  // the reference element itself: det J = 1
+  const double xi[3] = {0.2, 0.25, 0.1};
+  EXPECT_NEAR(jacobianDeterminant(type, x, xi), 1.0, 1e-14);
+  std::vector<std::array<double, 3>> mirrored(x.size()), fromGmsh(x.size());
+  std::vector<int> seen(x.size(), 0), seenGmsh(x.size(), 0);
+  for (int k = 0; k < shape.numNodes; ++k) {
+    mirrored[k] = x[shape.mirrorNode[k]];
+    ++seen[shape.mirrorNode[k]];
+    ++seenGmsh[shape.gmshNode[k]];
+  }
+  EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), shape.numNodes) << "mirrorNode is not a permutation";
+  EXPECT_EQ(std::count(seenGmsh.begin(), seenGmsh.end(), 1), shape.numNodes) << "gmshNode is not a permutation";
+  EXPECT_LT(jacobianDeterminant(type, mirrored, xi), 0.0);
+  // A mirror of a mirror is the element itself.
+  for (int k = 0; k < shape.numNodes; ++k) EXPECT_EQ(shape.mirrorNode[shape.mirrorNode[k]], k);
+}
+
+template <class Basis>
+void expectFaceCatalogue(const Basis& basis, FaceType type, double referenceArea) {
+  const mesh::FaceTypeShape& shape = mesh::faceTypeShape(type);
+  SCOPED_TRACE(shape.description);
+  const auto nodes = referenceNodes(basis, 2);
+  ASSERT_EQ(static_cast<int>(nodes.size()), shape.numNodes);
+  for (int k = 0; k < shape.numNodes; ++k)
+    for (int d = 0; d < 2; ++d) EXPECT_EQ(shape.referenceNodes[k][d], nodes[k][d]) << "node " << k;
+  // The search triangles tile the reference face, each positively oriented.
+  double area = 0.0;
+  for (int t = 0; t < shape.numSearchTriangles; ++t) {
+    const double* a = shape.referenceNodes[shape.searchTriangles[t][0]];
+    const double* b = shape.referenceNodes[shape.searchTriangles[t][1]];
+    const double* c = shape.referenceNodes[shape.searchTriangles[t][2]];
+    const double twice = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+    EXPECT_GT(twice, 0.0) << "search triangle " << t;
+    area += twice / 2;
+  }
+  EXPECT_NEAR(area, referenceArea, 1e-15);
+  EXPECT_EQ(shape.curved, type != FaceType::Tri3);
+}
+}  // namespace
+
+TEST(ElementCatalogue, mirrorsReverseElementsAndGmshOrdersArePermutations) {
+  expectMirrorReverses(Intrepid2::Basis_HGRAD_TET_C1_FEM<Device>(), ElementType::Tet4);
+  expectMirrorReverses(Intrepid2::Basis_HGRAD_TET_C2_FEM<Device>(), ElementType::Tet10);
+  expectMirrorReverses(Intrepid2::Basis_HGRAD_HEX_C1_FEM<Device>(), ElementType::Hex8);
+  expectMirrorReverses(Intrepid2::Basis_HGRAD_WEDGE_C1_FEM<Device>(), ElementType::Wedge6);
+}
+
+TEST(ElementCatalogue, faceReferenceNodesAreIntrepid2sAndSearchTrianglesTileTheFace) {
+  expectFaceCatalogue(Intrepid2::Basis_HGRAD_TRI_C1_FEM<Device>(), FaceType::Tri3, 0.5);
+  expectFaceCatalogue(Intrepid2::Basis_HGRAD_TRI_C2_FEM<Device>(), FaceType::Tri6, 0.5);
+  expectFaceCatalogue(Intrepid2::Basis_HGRAD_QUAD_C1_FEM<Device>(), FaceType::Quad4, 4.0);
+}
+
+TEST(ElementCatalogue, readersFindEveryTypeByItsNames) {
+  for (int t = 0; t < mesh::kNumElementTypes; ++t) {
+    const auto type = static_cast<ElementType>(t);
+    const mesh::ElementShape& shape = mesh::elementShape(type);
+    ElementType found;
+    ASSERT_TRUE(mesh::elementTypeOfGmsh(shape.gmshType, found)) << shape.description;
+    EXPECT_EQ(found, type);
+    ASSERT_TRUE(mesh::elementTypeOfExodus(shape.exodusName, shape.numNodes, found)) << shape.description;
+    EXPECT_EQ(found, type);
+    EXPECT_FALSE(mesh::elementTypeOfExodus(shape.exodusName, shape.numNodes + 1, found)) << shape.description;
+  }
+  ElementType found;
+  EXPECT_FALSE(mesh::elementTypeOfGmsh(7, found));  // a pyramid
+  EXPECT_FALSE(mesh::elementTypeOfExodus("HEX20", 20, found));
 }

@@ -58,8 +58,7 @@ class MasterSurface {
 
   std::string name_;
   std::unique_ptr<TriangleTree> tree_;
-  /// Which face, and which of its triangles (MasterSurface.cpp: kFacePieces), each tree
-  /// triangle is.
+  /// Which face, and which of its search triangles (mesh::FaceTypeShape), each tree triangle is.
   struct SearchTriangle {
     LO face;
     int piece;

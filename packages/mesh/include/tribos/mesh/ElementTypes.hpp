@@ -29,6 +29,8 @@ struct FaceShape {
   int nodes[kMaxFaceNodes];
 };
 
+/// One entry of the element catalogue: everything the readers, writers, checks and faces ask
+/// of a type (its shape functions and rules: ShapeFunctions.hpp, by the same ElementType).
 struct ElementShape {
   const char* exodusName;  ///< the topology written to Exodus files
   const char* description;  ///< in messages: "8-node hexahedron"
@@ -36,10 +38,25 @@ struct ElementShape {
   int numVertices;  ///< corner nodes; the rest are mid-edge nodes
   int numFaces;
   FaceShape faces[6];  ///< Exodus side s + 1 = faces[s]
+  /// The Exodus topology names read as this type (with numNodes nodes per element), upper case.
+  const char* exodusNames[4];
+  int gmshType;  ///< gmsh's element type number
+  /// gmsh's node order: Exodus node k is gmsh's node gmshNode[k] (they differ on 10-node
+  /// tetrahedra, whose last two mid-edge nodes gmsh swaps).
+  int gmshNode[kMaxElementNodes];
+  /// The mirror image: node k of the reversed element is node mirrorNode[k] (for writers with
+  /// the other orientation convention).
+  int mirrorNode[kMaxElementNodes];
 };
 
 /// The shape of every type, indexed by ElementType.
 const ElementShape& elementShape(ElementType type);
+
+/// The type whose exodusNames holds `upperCaseTopology` with `nodesPerElement` nodes; false if
+/// none does.
+bool elementTypeOfExodus(const std::string& upperCaseTopology, long long nodesPerElement, ElementType& type);
+/// The type of gmsh element type number `gmshType`; false for other numbers.
+bool elementTypeOfGmsh(int gmshType, ElementType& type);
 
 /// The nodes of one element: a view into a Connectivity, valid while that is unchanged.
 struct ElementNodes {

@@ -59,4 +59,17 @@ FaceGeometry faceGeometry(FaceType type, const std::array<double, 3>* x, double 
 /// Nodes of a face type: 3, 6 or 4.
 int faceNodeCount(FaceType type);
 
+/// The face catalogue: a face type's nodes on its reference cell and how the closest point of
+/// a face to a point is found (geometry/MasterSurface.hpp): among the triangles the face is
+/// searched as, then, on a curved face, by Gauss-Newton steps on the face itself.
+struct FaceTypeShape {
+  const char* description;        ///< in messages: "4-node quadrilateral"
+  int numVertices, numNodes;
+  double referenceNodes[kMaxFaceNodes][2];  ///< (xi0, xi1) of each node, vertices first
+  int numSearchTriangles;
+  int searchTriangles[4][3];      ///< face node indices of each search triangle
+  bool curved;                    ///< not flat in general: Gauss-Newton steps follow the triangle search
+};
+const FaceTypeShape& faceTypeShape(FaceType type);
+
 }  // namespace tribos::mesh
