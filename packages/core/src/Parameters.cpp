@@ -99,7 +99,10 @@ void validateLevel(Teuchos::ParameterList& user, const Teuchos::ParameterList& v
         validateLevel(user.sublist(name, false, entry.docString()), valid.sublist(name), where,
                       path.empty() ? name : path + "/" + name, depth - 1);
     } else if (!user.isParameter(name)) {
+      // Marked as a default (ParameterEntry::isDefault): a reader can tell a value the user
+      // gave from one filled in here (Contact/F2 follows F1 unless given).
       user.setEntry(name, entry);
+      user.getEntry(name).setAnyValue(entry.getAny(false), /*isDefault=*/true);
     }
   }
 }
@@ -156,6 +159,10 @@ void describeLevel(const Teuchos::ParameterList& valid, const std::string& prefi
 void validateAndSetDefaults(Teuchos::ParameterList& user, const Teuchos::ParameterList& valid,
                             const std::string& where, int depth) {
   validateLevel(user, valid, where, "", depth);
+}
+
+bool givenByUser(const Teuchos::ParameterList& list, const std::string& name) {
+  return list.isParameter(name) && !list.getEntry(name).isDefault();
 }
 
 std::string describeParameters(const Teuchos::ParameterList& valid, const std::string& prefix) {

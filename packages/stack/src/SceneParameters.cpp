@@ -7,6 +7,7 @@
 
 #include "tribos/contact/ContactSolver.hpp"
 #include "tribos/core/Errors.hpp"
+#include "tribos/core/Parameters.hpp"
 #include "tribos/core/ParameterTable.hpp"
 #include "tribos/core/Validators.hpp"
 #include "tribos/feti/TotalFeti.hpp"
@@ -41,7 +42,10 @@ const core::ParameterTable<contact::FrictionLaw>& frictionLawTable() {
                contact::kFrictionModelNames)
           .add("F1", &L::F1, "friction coefficient along t1 (isotropic when F1 = F2)",
                core::closedInterval(0.0, core::kMaxMagnitude))
-          .add("F2", &L::F2, "friction coefficient along t2", core::closedInterval(0.0, core::kMaxMagnitude))
+          .add("F2", &L::F2,
+               "friction coefficient along t2; not given: F1 of the same list (isotropic; an interface sublist "
+               "that gives neither takes the flat list's)",
+               core::closedInterval(0.0, core::kMaxMagnitude))
           .add("Slip Bound", &L::slipBound, "Tresca: the given slip bound g as a nodal force [force]",
                core::closedInterval(0.0, core::kMaxMagnitude));
   return table;
@@ -339,12 +343,20 @@ void readInterfaceRows(const ParameterList& list, feti::ContactInterfaceSpec& ro
   if (list.isParameter("Discretization"))
     rows.discretization = core::valueOf(feti::kContactDiscretizationNames, list.get<std::string>("Discretization"));
 }
+
+// The friction law of `list` over `law` (the flat list's, or the defaults): F2 not given in
+// `list` but F1 given (or filled in) there follows F1, so that a coefficient given alone is
+// isotropic friction, never F1 against the default F2.
+void readFrictionLaw(const ParameterList& list, contact::FrictionLaw& law) {
+  frictionLawTable().read(list, law);
+  if (list.isParameter("F1") && !core::givenByUser(list, "F2")) law.F2 = law.F1;
+}
 }  // namespace
 
 std::vector<ContactInterface> readContactInterfaces(const ParameterList& contactList, const std::string& source) {
   // The flat list: the one-interface shorthand, and every named interface's defaults.
   ContactInterface flat;
-  frictionLawTable().read(contactList, flat.law);
+  readFrictionLaw(contactList, flat.law);
   readInterfaceRows(contactList, flat.rows);
   std::vector<ContactInterface> named;
   std::string names;
@@ -354,7 +366,7 @@ std::vector<ContactInterface> readContactInterfaces(const ParameterList& contact
     one.rows.name = contactList.name(it);
     one.rows.slaveSideSet = one.rows.masterSideSet = "";
     const ParameterList& list = contactList.sublist(one.rows.name);
-    frictionLawTable().read(list, one.law);
+    readFrictionLaw(list, one.law);
     readInterfaceRows(list, one.rows);
     core::requireInput(!one.rows.slaveSideSet.empty() && !one.rows.masterSideSet.empty(),
                        source + ": " + one.rows.list() + ": give both \"Slave Side Set\" and \"Master Side Set\"");
@@ -385,7 +397,7 @@ contact::FrictionSettings readFrictionParameters(const std::vector<ContactInterf
   fixedPointTable().read(contactList, friction);
   friction.laws.clear();
   for (const auto& one : interfaces) friction.laws.push_back(one.law);
-  if (friction.laws.empty()) frictionLawTable().read(contactList, friction.laws.emplace_back());
+  if (friction.laws.empty()) readFrictionLaw(contactList, friction.laws.emplace_back());
   return friction;
 }
 

@@ -15,9 +15,14 @@ namespace tribos::core {
 /// message starts with `where` (e.g. the XML file and the sublist path) and lists the
 /// valid names with their documentation. A valid sublist that contains only a sublist named
 /// "*" accepts user sublists of any name, each validated against "*" (materials per body,
-/// loads); no defaults are filled in at that level.
+/// loads); no defaults are filled in at that level. Defaults filled in are marked
+/// (Teuchos::ParameterEntry::isDefault(); givenByUser tells them apart).
 void validateAndSetDefaults(Teuchos::ParameterList& user, const Teuchos::ParameterList& valid,
                             const std::string& where, int depth = 1000);
+
+/// Whether `list` holds `name` as the user gave it (by the scene or a --set), not as a default
+/// validateAndSetDefaults filled in.
+bool givenByUser(const Teuchos::ParameterList& list, const std::string& name);
 
 /// Two lines per parameter, "Path/Name  (type, default D, range R)" and its documentation
 /// indented, the parameters of a list before its sublists (`tribos --list-parameters`;
