@@ -104,7 +104,7 @@ def slave_element_size(mesh, slave_nodes, near):
     x, y, z = mesh["x"], mesh["y"], mesh["z"]
     areas = []
     for name, sides in mesh["side_sets"].items():
-        tris = [tuple(elements[e][v] for v in exodus_read.TET_FACES[s]) for e, s in sides]
+        tris = [t for e, s in sides for t in exodus_read.triangles_of(exodus_read.element_faces(elements[e])[s])]
         if not tris or not all(all(v in nodes for v in t) for t in tris):
             continue
         for a, b, c in tris:

@@ -11,6 +11,28 @@ import subprocess
 
 # Local vertices (0-based) of the faces of a 4-node tetrahedron, Exodus side = index + 1.
 TET_FACES = ((0, 1, 3), (1, 2, 3), (0, 3, 2), (0, 2, 1))
+# The corner vertices of the faces of every element type Tribos writes, by nodes per element
+# (the vertices come first in each: a 10-node tetrahedron's faces are its corners'), Exodus
+# side = index + 1, each ordered so its right-hand normal points out (mesh/ElementTypes.cpp).
+FACES_BY_NODE_COUNT = {
+    4: TET_FACES,
+    10: TET_FACES,
+    8: ((0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (0, 4, 7, 3), (0, 3, 2, 1), (4, 5, 6, 7)),
+    6: ((0, 1, 4, 3), (1, 2, 5, 4), (0, 3, 5, 2), (0, 2, 1), (3, 4, 5)),
+}
+
+
+def element_faces(element):
+    """The faces of one element as tuples of its corner node ids (3 or 4 each), side order."""
+    faces = FACES_BY_NODE_COUNT.get(len(element))
+    if faces is None:
+        raise KeyError("an element of %d nodes (Tribos writes 4-, 10-, 8- and 6-node elements)" % len(element))
+    return [tuple(element[v] for v in face) for face in faces]
+
+
+def triangles_of(face):
+    """A face as triangles: itself, or a quadrilateral's two (0, 1, 2), (0, 2, 3)."""
+    return [face] if len(face) == 3 else [(face[0], face[1], face[2]), (face[0], face[2], face[3])]
 
 
 def ncdump_header(path):
@@ -101,9 +123,9 @@ def element_nodes(mesh):
 
 
 def side_set_triangles(mesh, name):
-    """The faces of side set `name` as node triples (0-based, Exodus TETRA side order)."""
+    """The faces of side set `name` as node triples (0-based; a quadrilateral as two triangles)."""
     elements = element_nodes(mesh)
-    return [tuple(elements[e][v] for v in TET_FACES[side]) for e, side in mesh["side_sets"][name]]
+    return [tri for e, side in mesh["side_sets"][name] for tri in triangles_of(element_faces(elements[e])[side])]
 
 
 # ---- every time step (load histories: tribos writes each load step as a time step)

@@ -592,15 +592,15 @@ def plot_history(history, axis, out, dpi, title=""):
 
 
 def boundary_faces(mesh):
-    """(face node triple, block index) of every tetrahedron face that belongs to one element."""
+    """(face node triple, block index) of every element face that belongs to one element (any
+    element type; a quadrilateral face as its two triangles)."""
     seen = {}
     for b, (_, elements) in enumerate(mesh["blocks"]):
         for element in elements:
-            for face in exodus_read.TET_FACES:
-                tri = tuple(element[v] for v in face)
-                key = tuple(sorted(tri))
-                seen[key] = None if key in seen else (tri, b)
-    return [v for v in seen.values() if v is not None]
+            for face in exodus_read.element_faces(element):
+                key = tuple(sorted(face))
+                seen[key] = None if key in seen else (face, b)
+    return [(tri, b) for face, b in (v for v in seen.values() if v is not None) for tri in exodus_read.triangles_of(face)]
 
 
 def magnification(coords, displacement, requested):
