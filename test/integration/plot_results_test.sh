@@ -163,12 +163,3 @@ failed = [message for ok, message in checks if not ok]
 if failed:
     sys.exit("history.csv: " + "; ".join(failed))
 PY
-[ $? -eq 0 ] || exit 1
-
-# Hexahedra (issue 42: the tool knew tetrahedron faces only and stopped with an IndexError):
-# the Hertz cylinder on its hexahedral mesh, every picture of a contact run.
-"$tribos" --input "$source/input/hertz_cylinder.xml" --set "Mesh/File=meshes/hertz_cylinder_hex_h0.4.exo" \
-  --set Solver/Verbose=false --output "$dir/hex.exo" --summary "$dir/hex.json" > "$dir/hex.log" 2>&1 ||
-  { cat "$dir/hex.log"; echo "tribos failed on the hexahedral cylinder"; exit 1; }
-"$python" "$source/doc/tools/plot_results.py" "$dir/hex.exo" "$dir/hex.json" "$dir/hex" || exit 1
-png "$dir/hex" contact_stress convergence deformed
