@@ -82,6 +82,34 @@ void gatherContactFields(const Scene& scene, const feti::ConstraintMatrix& B,
   }
 }
 
+void addKinematicSlip(const Scene& scene, const feti::ConstraintMatrix& B,
+                      const std::vector<std::array<double, 3>>& displacement, const ContactFields* before,
+                      ContactFields& out) {
+  if (displacement.empty() || out.contactSlipT1.size() != displacement.size()) return;  // not rank 0
+  for (const auto& c : B.contact) {
+    if (scene.contacts[c.interface].law.hasTangentialRows()) continue;
+    std::array<double, 3> relative{0.0, 0.0, 0.0};
+    for (const auto& [node, weight] : c.sides())
+      for (int x = 0; x < 3; ++x) relative[x] += weight * displacement[node][x];
+    const size_t g = static_cast<size_t>(c.slaveNode);
+    double increment[2];
+    for (int j = 0; j < 2; ++j) {
+      const auto& t = j == 0 ? c.t1 : c.t2;
+      const double total = relative[0] * t[0] + relative[1] * t[1] + relative[2] * t[2];
+      double totalBefore = 0.0;
+      if (before) {
+        const auto& field = j == 0 ? before->contactTangentialT1 : before->contactTangentialT2;
+        if (g < field.size()) totalBefore = field[g];
+      }
+      increment[j] = total - totalBefore;
+    }
+    out.contactSlipT1[g] = out.contactTangentialT1[g] = increment[0];
+    out.contactSlipT2[g] = out.contactTangentialT2[g] = increment[1];
+    if (static_cast<int>(out.contactStatus[g]) == static_cast<int>(contact::ContactStatus::Slip))
+      out.contactAccumulatedSlip[g] = std::hypot(increment[0], increment[1]);
+  }
+}
+
 void addEarlierSteps(const ContactFields& previous, ContactFields& now) {
   for (size_t g = 0; g < now.contactTangentialT1.size(); ++g) {
     now.contactTangentialT1[g] += previous.contactTangentialT1[g];

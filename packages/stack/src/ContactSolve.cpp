@@ -244,13 +244,16 @@ std::vector<std::vector<std::vector<double>>> namedLoadVectors(std::vector<fem::
   return out;
 }
 
-/// What the results show of the state `result`: displacement, reactions, contact fields.
-/// Collective over `comm`.
+/// What the results show of the state `result`: displacement, reactions, contact fields (the
+/// increments since `before`, a history's totals before this state, or null). Collective over
+/// `comm`.
 void gatherStateResults(const Scene& scene, const feti::ConstraintMatrix& B, const feti::TotalFeti& feti,
-                        const contact::ContactResult& result, MPI_Comm comm, StepResults& out) {
+                        const contact::ContactResult& result, MPI_Comm comm, const ContactFields* before,
+                        StepResults& out) {
   out.displacement = gatherDisplacement(scene, feti.firstOwnedSubdomain(), result.displacement, comm);
   out.reaction = gatherReactions(scene, B, result.lambda, comm);
   gatherContactFields(scene, B, result.nodes, comm, out);
+  addKinematicSlip(scene, B, out.displacement.value, before, out);
 }
 
 /// The applied load of a state: the sum and the magnitude of the loads `f` (owned subdomains).
@@ -353,7 +356,7 @@ const ContactFields* solveHistory(const Scene& scene, const feti::ConstraintMatr
     const ContactFields* before = previous();
     StepResults results;
     setAppliedLoad(loads.loads(k), comm, results);
-    gatherStateResults(scene, B, feti, step, comm, results);
+    gatherStateResults(scene, B, feti, step, comm, before, results);
     if (before) addEarlierSteps(*before, results);
     out.earlierSteps.push_back(std::move(results));
   };
@@ -414,7 +417,7 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
   out.profile = feti.profile();
   out.factorNonzeros = feti.factorNonzeros();
   out.bytesPerFApplication = feti.bytesPerFApplication();
-  gatherStateResults(scene, B, feti, out.contact, comm, out);
+  gatherStateResults(scene, B, feti, out.contact, comm, totalsBefore, out);
   if (totalsBefore) addEarlierSteps(*totalsBefore, out);
   addOverloadNote(B, chain.friction, comm, out);
   return out;

@@ -63,6 +63,15 @@ void gatherContactFields(const Scene& scene, const feti::ConstraintMatrix& B,
 /// dissipated energy) are the previous step's plus this one's (rank 0).
 void addEarlierSteps(const ContactFields& previous, ContactFields& now);
 
+/// The slip fields of the nodes of frictionless interfaces (no tangential rows, so the solver
+/// reports no tangential relative displacement), from the kinematics (rank 0): the relative
+/// displacement of the node's row, u_slave - sum_j w_j u_master_j, along t1 and t2 (this state
+/// less `before`'s totals where a history has them: the increment, as gatherContactFields's),
+/// and the accumulated slip where the node slips. `displacement`: per global node.
+void addKinematicSlip(const Scene& scene, const feti::ConstraintMatrix& B,
+                      const std::vector<std::array<double, 3>>& displacement, const ContactFields* before,
+                      ContactFields& out);
+
 /// The contact nodes of this rank's rows of a bonded (tied) solve: forces rowScale lambda,
 /// status stick, opening -(B u - c)_N / rowScale. `ownedLambda` and `ownedResidual` (B u - c)
 /// hold this rank's rows [B.firstRowOfRank[rank], B.firstRowOfRank[rank + 1]).
