@@ -22,11 +22,6 @@ set -- --input "$source/input/$scene" --set Solver/Verbose=false --output "$dir/
 [ -n "$mesh" ] && set -- "$@" --set "Mesh/File=$mesh"
 "$tribos" "$@" > "$dir/run.log" 2>&1 || { cat "$dir/run.log"; echo "tribos failed on $scene ($kind)"; exit 1; }
 "$python" "$source/doc/tools/plot_results.py" "$dir/r.exo" "$dir/s.json" "$dir/pictures" || exit 1
-for name in $pictures; do
-  file="$dir/pictures/$name.png"
-  if [ ! -s "$file" ] || [ "$(head -c 4 "$file" | tail -c 3)" != "PNG" ]; then
-    echo "missing, empty or not a PNG: $name.png ($kind)"
-    exit 1
-  fi
-  echo "$kind: $name.png $(wc -c < "$file") bytes"
-done
+. "$(dirname "$0")/png_check.sh"
+# shellcheck disable=SC2086 # the names are words
+png "$dir/pictures" $pictures

@@ -16,18 +16,7 @@ dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 
 # png DIR NAME...: each DIR/NAME.png exists, is non-empty and starts with the PNG signature.
-png() {
-  folder=$1
-  shift
-  for name in "$@"; do
-    file="$folder/$name.png"
-    if [ ! -s "$file" ] || [ "$(head -c 4 "$file" | tail -c 3)" != "PNG" ]; then
-      echo "missing, empty or not a PNG: $file"
-      exit 1
-    fi
-    echo "$name.png: $(wc -c < "$file") bytes"
-  done
-}
+. "$(dirname "$0")/png_check.sh"
 
 # plot ARGS...: the plotting tool; a skip (77) ends the test as skipped, any other failure fails it.
 plot() {
