@@ -74,7 +74,7 @@ def step_values(path, header, step):
 def read_result(path, step, slave):
     header = exodus_read.ncdump_header(path)
     for needed in ("name_nod_var", "ns_names"):
-        if needed not in header:
+        if not exodus_read.has_variable(header, needed):
             raise KeyError("no %s in the file (not a tribos result, or no node sets)" % needed)
     mesh = exodus_read.read_mesh(path, header)
     k, steps, nodal, glo = step_values(path, header, step)

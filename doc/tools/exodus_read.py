@@ -1,13 +1,20 @@
-"""Reads Tribos's Exodus II results with `ncdump` (Debian: apt-get install netcdf-bin).
-
-Standard library only, so that the comparison tools run wherever ncdump does. Used by
-hertz_compare.py and plot_results.py. Exodus stores the mesh as netCDF variables:
-coordx/y/z, connect<b> (1-based node ids per element block), node_ns<s>, elem_ss<s> and
-side_ss<s> (1-based), names in name_nod_var, eb_names, ns_names, ss_names, and the nodal
-results either as vals_nod_var<i>(time, node) or as one vals_nod_var(time, var, node).
+"""Reads Tribos's Exodus II results: with netCDF4 (Debian: python3-netcdf4) where it is
+installed, which reads the file itself, else by parsing the text of `ncdump` (Debian:
+netcdf-bin), so that the comparison tools also run where only ncdump is. Used by
+hertz_compare.py, cattaneo_compare.py, cantilever_compare.py, mindlin_loop.py and
+plot_results.py. Exodus stores the mesh as netCDF variables: coordx/y/z, connect<b> (1-based
+node ids per element block), node_ns<s>, elem_ss<s> and side_ss<s> (1-based), names in
+name_nod_var, eb_names, ns_names, ss_names, and the nodal results either as
+vals_nod_var<i>(time, node) or as one vals_nod_var(time, var, node). Both readers give the
+same values: numbers as floats (missing ones NaN), character arrays as one string per row.
 """
 import re
 import subprocess
+
+try:
+    import netCDF4  # the file itself, not ncdump's text
+except ImportError:  # ncdump's text then
+    netCDF4 = None
 
 # Local vertices (0-based) of the faces of a 4-node tetrahedron, Exodus side = index + 1.
 TET_FACES = ((0, 1, 3), (1, 2, 3), (0, 3, 2), (0, 2, 1))
@@ -35,12 +42,52 @@ def triangles_of(face):
     return [face] if len(face) == 3 else [(face[0], face[1], face[2]), (face[0], face[2], face[3])]
 
 
+class NetcdfLayout:
+    """The dimensions and variable names of a file, as netCDF4 reads them (the header)."""
+
+    def __init__(self, path):
+        with netCDF4.Dataset(path) as d:
+            self.dimensions = {name: len(dim) for name, dim in d.dimensions.items()}
+            self.variables = set(d.variables)
+
+
+def can_read():
+    """Whether a reader is installed: netCDF4, or the ncdump program."""
+    import shutil
+    return netCDF4 is not None or shutil.which("ncdump") is not None
+
+
 def ncdump_header(path):
+    """The file's header: its layout (netCDF4), or ncdump -h's text."""
+    if netCDF4 is not None:
+        return NetcdfLayout(path)
     return subprocess.run(["ncdump", "-h", path], check=True, capture_output=True, text=True).stdout
+
+
+def _netcdf_vars(path, names):
+    """ncdump_vars through netCDF4: numbers flattened as floats (fill values NaN), character
+    arrays as one string per row."""
+    import numpy as np
+    out = {}
+    with netCDF4.Dataset(path) as d:
+        for name in names:
+            if name not in d.variables:
+                raise KeyError(name)
+            v = d.variables[name]
+            v.set_auto_chartostring(False)
+            data = v[:]
+            if v.dtype.kind == "S":
+                rows = np.atleast_2d(np.ma.filled(data, b""))
+                out[name] = [b"".join(c for c in row if c).decode() for row in rows]
+            else:
+                out[name] = np.ma.filled(np.ma.asarray(data, dtype=float), np.nan).ravel().tolist()
+    return out
 
 
 def ncdump_vars(path, names):
     """The data of the named variables as {name: list of numbers or strings} (flattened)."""
+    if netCDF4 is not None:
+        return _netcdf_vars(path, names)
     text = subprocess.run(["ncdump", "-v", ",".join(names), path], check=True, capture_output=True,
                           text=True).stdout
     data = text.split("\ndata:\n", 1)[1]
@@ -64,11 +111,15 @@ def ncdump_vars(path, names):
 
 
 def dimension(header, name):
+    if isinstance(header, NetcdfLayout):
+        return header.dimensions.get(name)
     m = re.search(r"^\s*" + re.escape(name) + r"\s*=\s*(?:UNLIMITED\s*;\s*//\s*\()?(\d+)", header, re.M)
     return int(m.group(1)) if m else None
 
 
 def has_variable(header, name):
+    if isinstance(header, NetcdfLayout):
+        return name in header.variables
     return re.search(r"\s" + re.escape(name) + r"\(", header) is not None
 
 

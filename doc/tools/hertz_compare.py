@@ -44,7 +44,7 @@ def read_result(path, slave):
     """Coordinates, the last step's nodal contact variables and the slave node ids (0-based)."""
     header = exodus_read.ncdump_header(path)
     for needed in ("name_nod_var", "ns_names"):
-        if needed not in header:
+        if not exodus_read.has_variable(header, needed):
             raise KeyError("no %s in the file (not a tribos result, or no node sets)" % needed)
     mesh = exodus_read.read_mesh(path, header)
     if slave not in mesh["node_sets"]:

@@ -82,17 +82,16 @@ its loads' forces: mm, N and N mm = mJ for the MPa scenes). Zones from contact_s
 the lines are where the indicator of "in contact" and of "stick", interpolated linearly on the
 surface, crosses 1/2, i.e. half-way between nodes of different status.
 
-Needs python3-matplotlib (numpy comes with it) and ncdump (netcdf-bin) on Debian.
+Needs python3-matplotlib (numpy comes with it) and python3-netcdf4 or ncdump (netcdf-bin) on Debian.
 Exit status: 0 written, 2 bad input (missing file, variable, side set or node set, bad
 --profile, --step or --history),
-77 matplotlib or ncdump missing (the CTest reports a skip).
+77 matplotlib missing, or both netCDF4 and ncdump (the CTest reports a skip).
 """
 import argparse
 import io
 import json
 import math
 import os
-import shutil
 import subprocess
 import sys
 
@@ -688,8 +687,9 @@ def main():
     parser.add_argument("--step", type=int, default=None)
     parser.add_argument("--history", default="")
     args = parser.parse_args(attach_profile_value(sys.argv[1:]))
-    if shutil.which("ncdump") is None:
-        print("plot_results.py: needs ncdump to read Exodus (apt-get install netcdf-bin)", file=sys.stderr)
+    if not exodus_read.can_read():
+        print("plot_results.py: needs python3-netcdf4 or ncdump to read Exodus (apt-get install python3-netcdf4 "
+              "or netcdf-bin)", file=sys.stderr)
         return 77
     try:
         segment = parse_segment(args.profile) if args.profile else None
