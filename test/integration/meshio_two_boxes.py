@@ -25,14 +25,22 @@ def box(origin, cells):
         for j in range(ny):
             for i in range(nx):
                 corner = [node(i + (v & 1), j + ((v >> 1) & 1), k + ((v >> 2) & 1)) for v in range(8)]
-                # The 6 tetrahedra around the diagonal 0-7, positively oriented.
-                for a, b in [(1, 3), (1, 5), (2, 3), (2, 6), (4, 5), (4, 6)]:
-                    tet = [corner[0], corner[a], corner[b], corner[7]]
-                    x = points[tet]
-                    if np.linalg.det(np.array([x[1] - x[0], x[2] - x[0], x[3] - x[0]])) < 0:
-                        tet[1], tet[2] = tet[2], tet[1]
-                    tets.append(tet)
+                tets += kuhn_tetrahedra(points, corner)
     return points, np.array(tets)
+
+
+def kuhn_tetrahedra(points, corner):
+    """The 6 tetrahedra of a hexahedral cell around its diagonal 0-7, positively oriented;
+    corner[v] is the node at the binary position v = (di, dj, dk) of the cell. Shared with
+    shrink_fit_mesh.py."""
+    tets = []
+    for a, b in [(1, 3), (1, 5), (2, 3), (2, 6), (4, 5), (4, 6)]:
+        tet = [corner[0], corner[a], corner[b], corner[7]]
+        x = points[tet]
+        if np.linalg.det(np.array([x[1] - x[0], x[2] - x[0], x[3] - x[0]])) < 0:
+            tet[1], tet[2] = tet[2], tet[1]
+        tets.append(tet)
+    return tets
 
 
 def main(path):

@@ -195,3 +195,65 @@ TEST(displacementConditions, aRollerOnOneBodyAtTheContactEdgeKeepsItsFriction) {
     EXPECT_EQ(sliding, 0) << value;
   }
 }
+
+// A push-out by prescribed end displacements (issue 42): an upper box pressed onto a lower
+// one and pushed along x by its x = 0 face (u_x = 0.01, far beyond the elastic shear), while
+// the lower box's x = 0 face is held at u_x = 0. The contact nodes on the x = 0 edge are held
+// along x on both bodies at different values: their tangential rows have nothing free. Those
+// rows were dropped as on a symmetry plane, so the edge carried no friction and the push force
+// was a quarter (the edge's share of the area) short of F N. Now the edge slides with F times
+// its normal force, which the supports carry. The y = 0 edge is held along y on both bodies at
+// the same value (a symmetry plane): no friction there.
+TEST(displacementConditions, aPushOutByPrescribedEndDisplacementsTakesTheWholeFrictionForce) {
+  const double F = 0.2;
+  auto material = [](const std::string& block) {
+    return std::vector<std::string>{"Materials/" + block + "/Young Modulus=1000",
+                                    "Materials/" + block + "/Poisson Ratio=0.3"};
+  };
+  auto o = with(with({"Mesh/Subdomains=4", "Solver/Tolerance=1e-10", "Solver/Verbose=false"}, material("lower")),
+                material("upper"));
+  o = with(o, {"Contact/Friction Model=Coulomb", "Contact/F1=0.2", "Contact/Slave Side Set=lower_z1",
+               "Contact/Master Side Set=upper_z0", "Boundary/Dirichlet Node Sets={lower_z0}",
+               "Loads/press/Side Set=upper_z1", "Loads/press/Traction={0, 0, -5}"});
+  o = with(o, displacementCondition("hub_end", "lower_x0_above", "x"));
+  o = with(o, displacementCondition("push", "upper_x0", "x", "{0.01, 0, 0}"));
+  o = with(o, displacementCondition("lower_symmetry", "lower_y0_above", "y"));
+  o = with(o, displacementCondition("upper_symmetry", "upper_y0", "y"));
+  auto lower = test::boxMesh({0.0, 0.0, 0.0}, {1.0, 1.0, 1.0}, {2, 2, 2}, "lower");
+  mesh::NodeSet x0{"lower_x0_above", 100, {}}, y0{"lower_y0_above", 101, {}};
+  for (LO n = 0; n < lower.numNodes(); ++n) {
+    if (lower.coords[n][2] == 0.0) continue;  // the clamped bottom
+    if (lower.coords[n][0] == 0.0) x0.nodes.push_back(n);
+    if (lower.coords[n][1] == 0.0) y0.nodes.push_back(n);
+  }
+  lower.nodeSets.push_back(x0);
+  lower.nodeSets.push_back(y0);
+  const auto upper = test::boxMesh({0.0, 0.0, 1.0}, {1.0, 1.0, 1.0}, {2, 2, 2}, "upper");
+  const auto s = test::solveBoxScene(test::mergeMeshes(lower, upper), o);
+  ASSERT_TRUE(s.contact.contact.converged) << s.contact.contact.message;
+  if (worldRank() != 0) return;
+  const auto& r = s.contact;
+  double push = 0.0;  // the reaction of the pushed face along x
+  for (LO n : s.scene.mesh.nodeSet("upper_x0").nodes) push += r.reaction[n][0];
+  const double N = r.interfaces.at(0).normalForce;
+  std::printf("push-out: push force %.6f, F N = %.6f (N = %.6f), %d of %d contact nodes slide\n", push, F * N, N,
+              r.interfaces[0].counts[2], r.interfaces[0].counts[1] + r.interfaces[0].counts[2]);
+  EXPECT_NEAR(N, 5.0, 1e-6) << "the pressure over the unit contact area";
+  EXPECT_NEAR(std::abs(push), F * N, 0.01 * F * N);
+  EXPECT_EQ(r.interfaces[0].counts[1], 0) << "every contact node slides";
+  // The edge nodes slide by the prescribed difference, and the friction they carry is F times
+  // their normal force.
+  for (const auto& c : s.B.contact) {
+    const size_t g = static_cast<size_t>(c.slaveNode);
+    if (s.scene.mesh.coords[g][0] != 0.0) continue;
+    const double tangential = std::hypot(r.contactT1[g], r.contactT2[g]);
+    EXPECT_NEAR(tangential, F * r.contactNormal[g], 1e-6 * N) << "edge node " << g;
+    const double alongX = std::abs(r.contactSlipT1[g] * c.t1[0] + r.contactSlipT2[g] * c.t2[0]);
+    EXPECT_NEAR(alongX, 0.01, 1e-9) << "edge node " << g;
+  }
+  // Reactions and load balance, the friction included.
+  double total[3] = {0.0, 0.0, 0.0};
+  for (const auto& f : r.reaction)
+    for (int c = 0; c < 3; ++c) total[c] += f[c];
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(total[c] + r.appliedLoad[c], 0.0, 1e-8 * N) << "component " << c;
+}

@@ -64,9 +64,18 @@ void requireFrictionModel(const FrictionSettings& friction) {
 /// (with the earlier runs' products and the slip bound's last change).
 qp::SmalseSettings smalseSettingsFor(const qp::SmalseSettings& given, const FrictionSettings& friction,
                                      const qp::SymmetricOperator* preconditioner, const RunTally& tally,
-                                     const ContactResult& result) {
+                                     const DualContactProblem& problem, const ContactResult& result) {
   qp::SmalseSettings settings = given;
   if (preconditioner) settings.preconditioner = preconditioner;
+  if (friction.overloaded)
+    settings.stallConfirmed = [&friction, &problem](const qp::Vector& mu) {
+      return friction.overloaded(problem.interfaceNormalForces(mu));
+    };
+  // A diverging Coulomb fixed point (SlipBoundStrategy) ends the run as a stop request does;
+  // the flag is the same on every rank (the slip-bound change is global).
+  settings.stopRequested = [stop = given.stopRequested, &result] {
+    return result.fixedPointDiverged || (stop && stop());
+  };
   if (friction.progress)
     settings.monitor = [&friction, &tally, &result](const qp::SmalseProgress& p) {
       friction.progress(tally.withEarlierRuns(p), result.fixedPointChange);
@@ -131,7 +140,7 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
   if (preconditioner != feti::DualPreconditioner::None)
     M = std::make_unique<ProjectedDualPreconditioner>(feti, preconditioner == feti::DualPreconditioner::Dirichlet);
   RunTally tally(result.counters);
-  qp::SmalseSettings settings = smalseSettingsFor(smalseSettings, friction, M.get(), tally, result);
+  qp::SmalseSettings settings = smalseSettingsFor(smalseSettings, friction, M.get(), tally, problem, result);
   settings.rightHandSideScale = problem.stoppingScale();
   const qp::SmalseM smalse(settings);
   auto mu = feti.createDualVector();

@@ -134,6 +134,14 @@ void DualContactProblem::buildOmega(const FrictionSettings& friction) {
     const FrictionLaw& law = friction.laws[B_.contact[lc_.node[k]].interface];
     lc_.model.push_back(law.model);
     lc_.F.push_back({law.F1, law.F2});
+    // A node whose slip along t_j is prescribed (feti::ContactNode::slipPrescribed) slides along
+    // t_j by the prescribed difference, and Coulomb's force follows the slip: it takes the whole
+    // F_j lambda_nu along t_j (added after the solve, stack/ContactFields.hpp), and its free
+    // tangential row none. Exact where the node's free slip is small against the prescribed one
+    // (a push-out); a step that holds the prescribed difference still leaves that node no friction.
+    const auto& prescribedSlip = B_.contact[lc_.node[k]].slipPrescribed;
+    for (int j = 0; j < 2; ++j)
+      if (prescribedSlip[j] && !prescribedSlip[1 - j]) lc_.F.back()[1 - j] = 0.0;
     if (law.tiesSurfaces()) continue;
     const LO r = lc_.normalRow[k];
     omega_.addBound(r, -lIm(r, 0));
@@ -163,6 +171,20 @@ std::vector<double> DualContactProblem::impliedSlip(const qp::Vector& mu) const 
     if (lc_.model[k] == FrictionModel::Coulomb)
       g[k] = std::max(m(lc_.normalRow[k], 0) + lIm(lc_.normalRow[k], 0), 0.0);
   return g;
+}
+
+std::vector<double> DualContactProblem::interfaceNormalForces(const qp::Vector& mu) const {
+  const auto m = mu.getLocalViewHost(Tpetra::Access::ReadOnly);
+  const auto lIm = feti_.lambdaIm().getLocalViewHost(Tpetra::Access::ReadOnly);
+  const size_t n = B_.interfaces.size();
+  std::vector<double> mine(n, 0.0), out(n, 0.0);
+  for (size_t k = 0; k < lc_.node.size(); ++k) {
+    const auto& node = B_.contact[lc_.node[k]];
+    const LO r = lc_.normalRow[k];
+    mine[static_cast<size_t>(node.interface)] += node.rowScale * std::max(m(r, 0) + lIm(r, 0), 0.0);
+  }
+  if (n > 0) Teuchos::reduceAll(comm_, Teuchos::REDUCE_SUM, static_cast<int>(n), mine.data(), out.data());
+  return out;
 }
 
 double DualContactProblem::relativeChange(const std::vector<double>& gNew, const std::vector<double>& gOld) const {

@@ -66,6 +66,9 @@ class DualContactProblem {
   /// The slip bound the current mu implies: g = max(mu_nu + lambda_Im,nu, 0) (paper (20)) on
   /// Coulomb's nodes; the others keep theirs.
   std::vector<double> impliedSlip(const qp::Vector& mu) const;
+  /// Per interface (B.interfaces' order), the sum of the normal nodal forces
+  /// rowScale max(mu_nu + lambda_Im,nu, 0) of `mu` (global, every rank the same). Collective.
+  std::vector<double> interfaceNormalForces(const qp::Vector& mu) const;
   /// ||g_new - g_old|| / ||g_old|| over Coulomb's nodes (global; infinite from g_old = 0 to
   /// g_new != 0).
   double relativeChange(const std::vector<double>& gNew, const std::vector<double>& gOld) const;

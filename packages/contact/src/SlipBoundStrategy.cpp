@@ -19,10 +19,6 @@ class GivenSlipBound final : public SlipBoundStrategy {
   }
 };
 
-struct FixedPointDiverged {
-  std::string message;
-};
-
 /// Coulomb, inexact successive approximations (20): g := mu_nu + lambda_Im,nu after every
 /// outer iteration of one SMALSE-M run (update), which may stop only when the last update
 /// settled g and Coulomb's law holds for the current multipliers (mayStop).
@@ -33,35 +29,35 @@ class InexactCoulomb final : public SlipBoundStrategy {
 
   void solve(const SmalseRun& run, DualContactProblem& problem, qp::Vector&, ContactResult& result) const override {
     FixedPointWatch watch(friction_.divergenceWindow);
+    // A divergence vetoes the stop and sets ContactResult::fixedPointDiverged, on which
+    // SMALSE-M's stop request ends the run (ContactSolver.cpp): its counts stay in the result.
     auto hook = [&](int, const qp::Vector& current, double, double, double) {
+      if (result.fixedPointDiverged) return true;
       const double change = update(problem, current, watch, result);
-      return !mayStop(problem, current, change);
+      return result.fixedPointDiverged || !mayStop(problem, current, change);
     };
-    try {
-      run(hook, 0.0);
-      result.converged = result.counters.converged;
-      result.message = result.converged ? "converged" : "SMALSE-M reached its outer iteration limit";
-    } catch (const FixedPointDiverged& d) {
-      result.converged = false;
-      result.message = d.message;
-    }
+    run(hook, 0.0);
+    result.converged = result.counters.converged && !result.fixedPointDiverged;
+    if (result.fixedPointDiverged) result.message = watch.message();
+    else result.message = result.converged ? "converged" : "SMALSE-M reached its outer iteration limit";
   }
 
  private:
-  /// g := the bound `current` implies; returns ||g_new - g_old|| / ||g_old||. Throws
-  /// FixedPointDiverged when the change is NaN or keeps growing (FixedPointWatch).
+  /// g := the bound `current` implies; returns ||g_new - g_old|| / ||g_old||. Sets
+  /// result.fixedPointDiverged when the change is NaN (g then kept) or keeps growing
+  /// (FixedPointWatch).
   double update(DualContactProblem& problem, const qp::Vector& current, FixedPointWatch& watch,
                 ContactResult& result) const {
     const auto g = problem.impliedSlip(current);
     const double change = problem.relativeChange(g, problem.slipBounds());
     if (std::isnan(change)) {
-      watch.diverges(change);
-      throw FixedPointDiverged{watch.message()};
+      result.fixedPointDiverged = watch.diverges(change);
+      return change;
     }
     problem.setSlipBounds(g);
     ++result.fixedPointIterations;
     result.fixedPointChange = change;
-    if (watch.diverges(change)) throw FixedPointDiverged{watch.message()};
+    result.fixedPointDiverged = watch.diverges(change);
     return change;
   }
 
@@ -116,6 +112,7 @@ class ExactCoulomb final : public SlipBoundStrategy {
       growing = change > previous ? growing + 1 : 0;
       previous = change;
       if (growing >= friction_.divergenceWindow) {
+        result.fixedPointDiverged = true;
         result.message = "the Coulomb fixed point diverges";
         return;
       }

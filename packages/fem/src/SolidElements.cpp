@@ -3,6 +3,7 @@
 #include "tribos/fem/SolidElements.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "tribos/fem/ElementKernels.hpp"
@@ -100,11 +101,16 @@ ElementStress solidStress(ElementType type, const double (*x)[3], const double* 
     copyTet(x, t);
     out.volume = tetStress(t, u, lambda, mu, out.eps, out.sigma);
     if (out.volume > 0.0) out.strainEnergy = out.volume * strainEnergyDensity(out.eps, out.sigma);
+    for (auto& node : out.atNodes) std::copy(out.sigma, out.sigma + 6, node);
     return out;
   }
   const int n = mesh::elementShape(type).numNodes;
+  const auto& rule = mesh::volumeRule(type);
   double N[mesh::kMaxElementNodes], G[mesh::kMaxElementNodes][3];
-  for (const auto& q : mesh::volumeRule(type)) {
+  constexpr size_t kMaxPoints = 8;  // the hexahedron's 2 x 2 x 2
+  std::array<std::array<double, 6>, kMaxPoints> atPoints{};
+  size_t points = 0;
+  for (const auto& q : rule) {
     const double det = cartesianGradients(type, x, q.xi, N, G);
     if (!(det > 0.0)) return ElementStress{det};
     double du[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
@@ -117,6 +123,7 @@ ElementStress solidStress(ElementType type, const double (*x)[3], const double* 
     const double trace = eps[0] + eps[1] + eps[2];
     for (int k = 0; k < 6; ++k) sigma[k] = 2.0 * mu * eps[k] + (k < 3 ? lambda * trace : 0.0);
     const double w = q.weight * det;
+    if (points < kMaxPoints) atPoints[points++] = {sigma[0], sigma[1], sigma[2], sigma[3], sigma[4], sigma[5]};
     out.volume += w;
     out.strainEnergy += w * strainEnergyDensity(eps, sigma);
     for (int k = 0; k < 6; ++k) {
@@ -128,6 +135,10 @@ ElementStress solidStress(ElementType type, const double (*x)[3], const double* 
     out.eps[k] /= out.volume;
     out.sigma[k] /= out.volume;
   }
+  const std::vector<double>& E = mesh::nodalExtrapolation(type);
+  for (int k = 0; k < n; ++k)
+    for (size_t q = 0; q < points; ++q)
+      for (int c = 0; c < 6; ++c) out.atNodes[k][c] += E[k * points + q] * atPoints[q][c];
   return out;
 }
 

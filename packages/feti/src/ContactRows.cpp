@@ -72,6 +72,50 @@ double freeAlong(const Prescribed& prescribed, LO node, const Vec3& dir) {
   return free;
 }
 
+/// Whether nodes a and b are held along `dir` at the same value in every step: their
+/// prescribed displacements along dir, condition by condition (each its own factor in a
+/// history), cancel. Both must be held along dir (freeAlong zero).
+bool heldAlike(const Prescribed& prescribed, LO a, LO b, const Vec3& dir) {
+  std::vector<std::pair<int, double>> parts;  // (condition, part of (u_a - u_b) . dir)
+  double size = 0.0;
+  for (const auto& [node, sign] : {std::pair<LO, double>{a, 1.0}, std::pair<LO, double>{b, -1.0}})
+    for (int c = 0; c < 3; ++c) {
+      const size_t i = 3 * static_cast<size_t>(node) + c;
+      if (!prescribed.fixed[i] || dir[c] == 0.0) continue;
+      parts.push_back({prescribed.condition[i], sign * dir[c] * prescribed.value[i]});
+      size += std::abs(dir[c] * prescribed.value[i]);
+    }
+  std::sort(parts.begin(), parts.end());
+  for (size_t i = 0; i < parts.size();) {
+    double sum = 0.0;
+    size_t j = i;
+    for (; j < parts.size() && parts[j].first == parts[i].first; ++j) sum += parts[j].second;
+    if (std::abs(sum) > 1e-12 * size) return false;
+    i = j;
+  }
+  return true;
+}
+
+/// Whether a tangential row along `dir` of `node` has both sides held along it, to be
+/// dropped: the slave node and its nearest master node both held along t_j, the slave free
+/// otherwise (`slaveFree2`: |dir|^2 over the slave's free components). What would remain of
+/// the row (master nodes off the held plane, through the mortar weights) is no physical slip;
+/// its multiplier, bounded by F g along an almost empty row, makes a needle-thin ellipse on
+/// which MPGP crawls (measured on the Hertz half models: 24:1 semi-axes, 20 000 proportioning
+/// steps; on a tet10 push-out the slip bound stalled at a change of 1e-7 for 400 outer
+/// iterations). Held at the same value (a symmetry plane) nothing slips along t_j: the friction
+/// there is the displacement condition's reaction. Held at different values (a shaft pushed
+/// out of its hub by its end faces) the slip is prescribed: ContactNode::slipPrescribed.
+/// Where only the slave is held along t_j (a roller on one body at the contact edge) the
+/// master can slip past it: the row stays, the slave's prescribed part in c, and Coulomb's
+/// law acts on the master's tangential displacement (issue 30).
+/// (A slave clamped in every component keeps its rows: the master slides on a fixed
+/// point, and the friction acts on the master alone.)
+bool bothSidesHeld(const ContactNode& node, const Vec3& dir, double slaveFree2, const Prescribed& prescribed) {
+  return !(slaveFree2 > 1e-12) && !prescribed.all(node.slaveNode) &&
+         !(freeAlong(prescribed, node.masterNode, dir) > 1e-12);
+}
+
 /// The known parts of a contact row's c (scaled by -scale), one per displacement condition:
 /// `knownBy` holds (condition, part) per prescribed component of the row's nodes.
 void addKnownParts(std::vector<std::pair<int, double>> knownBy, double scale, RowList& list, Row& row) {
@@ -88,7 +132,8 @@ void addKnownParts(std::vector<std::pair<int, double>> knownBy, double scale, Ro
 /// The row of contact node `node` along direction d (0: nu, 1: t1, 2: t2) over its nodes
 /// `sides` (ContactNode::sides: +1 on the slave, -w_i on master node i), its scale recorded in `node`; or
 /// false when it is dropped (the entries it appended are removed): a row (almost) entirely
-/// on prescribed components, or a tangential row on a symmetry plane (both sides held along it).
+/// on prescribed components (a tangential one marked ContactNode::slipPrescribed), or a
+/// tangential row on a symmetry plane (both sides held along it at the same value).
 bool contactRow(int d, bool tied, ContactNode& node, const std::vector<std::pair<LO, double>>& sides,
                 const RowContext& ctx, RowList& list, Row& row) {
   const Vec3* directions[3] = {&node.normal, &node.t1, &node.t2};
@@ -127,20 +172,14 @@ bool contactRow(int d, bool tied, ContactNode& node, const std::vector<std::pair
     }
   }
   // A row (almost) entirely on prescribed components is redundant: removed, counted.
-  // On a symmetry plane with normal t_j (the slave node and its nearest master node both
-  // held along t_j, the slave free otherwise) nothing slips along t_j: the friction force
-  // along it is the displacement condition's reaction. What would remain of the row (master
-  // nodes off the plane, through the mortar weights) is no physical slip; its multiplier,
-  // bounded by F g along an almost empty row, makes a needle-thin ellipse on which MPGP
-  // crawls (measured on the Hertz half models: 24:1 semi-axes, 20 000 proportioning steps).
-  // Where only the slave is held along t_j (a roller on one body at the contact edge) the
-  // master can slip past it: the row stays, the slave's prescribed part in c, and Coulomb's
-  // law acts on the master's tangential displacement (issue 30).
-  // (A slave clamped in every component keeps its rows: the master slides on a fixed
-  // point, and the friction acts on the master alone.)
-  const bool symmetryPlane = d > 0 && !(slaveFree2 > 1e-12) && !prescribed.all(node.slaveNode) &&
-                             !(freeAlong(prescribed, node.masterNode, dir) > 1e-12);
-  if (!(free2 > 1e-16 * full2) || symmetryPlane) {
+  const bool held = d > 0 && bothSidesHeld(node, dir, slaveFree2, prescribed);
+  if (!(free2 > 1e-16 * full2) || held) {
+    // A tangential row whose slave and nearest master are held at different values: its
+    // slip is prescribed, and its friction, which acts on held components, is added after
+    // the solve (stack/ContactFields.hpp, issue 42).
+    if (d > 0 && !(slaveFree2 > 1e-12) && !(freeAlong(prescribed, node.masterNode, dir) > 1e-12) &&
+        !heldAlike(prescribed, node.slaveNode, node.masterNode, dir))
+      node.slipPrescribed[d - 1] = true;
     list.drop(row);
     return false;
   }

@@ -107,6 +107,85 @@ const std::vector<QuadraturePoint>& volumeRule(ElementType type) {
   return rules[static_cast<int>(type)];
 }
 
+void referenceNode(ElementType type, int k, double xi[3]) {
+  const int vertices = elementShape(type).numVertices;
+  if (k < vertices) {
+    const double* v = type == ElementType::Hex8 ? kHexVertices[k] : type == ElementType::Wedge6 ? kWedgeVertices[k] : kTetVertices[k];
+    std::copy(v, v + 3, xi);
+    return;
+  }
+  // The 10-node tetrahedron's mid-edge nodes: edges 0-1, 1-2, 0-2, 0-3, 1-3, 2-3 (Exodus order).
+  static const int edge[6][2] = {{0, 1}, {1, 2}, {0, 2}, {0, 3}, {1, 3}, {2, 3}};
+  const int* e = edge[k - vertices];
+  for (int c = 0; c < 3; ++c) xi[c] = 0.5 * (kTetVertices[e[0]][c] + kTetVertices[e[1]][c]);
+}
+
+namespace {
+/// The vertex (linear) type of a type's family: the 4-node tetrahedron for the 10-node one.
+ElementType vertexType(ElementType type) { return type == ElementType::Tet10 ? ElementType::Tet4 : type; }
+
+/// Solves the dense n x n system A x = b in place (partial pivoting; A well conditioned here).
+void solveDense(int n, std::vector<double>& A, std::vector<double>& b) {
+  for (int i = 0; i < n; ++i) {
+    int p = i;
+    for (int r = i + 1; r < n; ++r)
+      if (std::abs(A[r * n + i]) > std::abs(A[p * n + i])) p = r;
+    for (int c = 0; c < n; ++c) std::swap(A[i * n + c], A[p * n + c]);
+    std::swap(b[i], b[p]);
+    for (int r = i + 1; r < n; ++r) {
+      const double f = A[r * n + i] / A[i * n + i];
+      for (int c = i; c < n; ++c) A[r * n + c] -= f * A[i * n + c];
+      b[r] -= f * b[i];
+    }
+  }
+  for (int i = n - 1; i >= 0; --i) {
+    for (int c = i + 1; c < n; ++c) b[i] -= A[i * n + c] * b[c];
+    b[i] /= A[i * n + i];
+  }
+}
+
+std::vector<double> extrapolationOf(ElementType type) {
+  const auto& rule = volumeRule(type);
+  const int nodes = elementShape(type).numNodes, points = static_cast<int>(rule.size());
+  const ElementType linear = vertexType(type);
+  const int nv = elementShape(linear).numVertices;
+  std::vector<double> E(static_cast<size_t>(nodes) * points, 1.0 / points);
+  if (points < nv) return E;  // one point: the constant
+  double N[kMaxElementNodes], dN[kMaxElementNodes][3];
+  std::vector<double> A(static_cast<size_t>(points) * nv);  // A[q][v] = N_v(xi_q)
+  for (int q = 0; q < points; ++q) {
+    shapeFunctions(linear, rule[q].xi, N, dN);
+    for (int v = 0; v < nv; ++v) A[q * nv + v] = N[v];
+  }
+  // Column q of (A^T A)^{-1} A^T: the vertex coefficients of a unit value at point q.
+  for (int q = 0; q < points; ++q) {
+    std::vector<double> AtA(static_cast<size_t>(nv) * nv, 0.0), rhs(nv);
+    for (int i = 0; i < nv; ++i) {
+      rhs[i] = A[q * nv + i];
+      for (int j = 0; j < nv; ++j)
+        for (int r = 0; r < points; ++r) AtA[i * nv + j] += A[r * nv + i] * A[r * nv + j];
+    }
+    solveDense(nv, AtA, rhs);
+    for (int k = 0; k < nodes; ++k) {
+      double xi[3];
+      referenceNode(type, k, xi);
+      shapeFunctions(linear, xi, N, dN);
+      double value = 0.0;
+      for (int v = 0; v < nv; ++v) value += N[v] * rhs[v];
+      E[static_cast<size_t>(k) * points + q] = value;
+    }
+  }
+  return E;
+}
+}  // namespace
+
+const std::vector<double>& nodalExtrapolation(ElementType type) {
+  static const std::vector<double> tables[kNumElementTypes] = {
+      extrapolationOf(ElementType::Tet4), extrapolationOf(ElementType::Tet10), extrapolationOf(ElementType::Hex8),
+      extrapolationOf(ElementType::Wedge6)};
+  return tables[static_cast<int>(type)];
+}
+
 void shapeFunctions(ElementType type, const double xi[3], double N[], double dN[][3]) {
   switch (type) {
     case ElementType::Tet4: return tet4Functions(xi, N, dN);

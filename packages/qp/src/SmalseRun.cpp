@@ -224,7 +224,7 @@ bool SmalseRun::updateMultipliers(int k, const MpgpCounters& inner, const OuterH
     counters_.converged = true;
     return true;
   }
-  if (!done && stalled(counters_.equalityResidual)) {
+  if (!done && stalled(counters_.equalityResidual) && (!s_.stallConfirmed || s_.stallConfirmed(mu_))) {
     counters_.stalled = true;
     return true;
   }

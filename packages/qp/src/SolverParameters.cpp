@@ -54,8 +54,10 @@ const core::ParameterTable<SmalseSettings>& smalseTable() {
                kEqualityTestNames)
           .add("stall window", &SmalseSettings::stallWindow,
                "stop, not converged, when ||G mu|| has not halved over this many outer iterations while above 100 "
-               "epsilon: the bodies' balance G lambda = e cannot be met inside the constraints (loads beyond what "
-               "contact and friction carry); 0: never",
+               "epsilon and, with friction, the load along some interface exceeds its friction capacity F N: the "
+               "bodies' balance G lambda = e cannot be met inside the constraints (loads beyond what contact and "
+               "friction carry; a joint below its capacity may approach equilibrium with ||G mu|| flat for a while, "
+               "and goes on); 0: never",
                core::intRange(0, kMaxCount))
           .add("rho growth", &SmalseSettings::rhoGrowth,
                "rho is multiplied by it (rho update Ratio; Model: by at most it) after an outer iteration that "

@@ -82,32 +82,100 @@ void gatherContactFields(const Scene& scene, const feti::ConstraintMatrix& B,
   }
 }
 
+namespace {
+/// The increment since `before` of the relative tangential displacement of contact node c's
+/// row, u_slave - sum_j w_j u_master_j, along t1 (j = 0) and t2 (j = 1), from the kinematics.
+std::array<double, 2> kinematicIncrement(const feti::ContactNode& c,
+                                         const std::vector<std::array<double, 3>>& displacement,
+                                         const ContactFields* before) {
+  std::array<double, 3> relative{0.0, 0.0, 0.0};
+  for (const auto& [node, weight] : c.sides())
+    for (int x = 0; x < 3; ++x) relative[x] += weight * displacement[node][x];
+  const size_t g = static_cast<size_t>(c.slaveNode);
+  std::array<double, 2> increment{};
+  for (int j = 0; j < 2; ++j) {
+    const auto& t = j == 0 ? c.t1 : c.t2;
+    const double total = relative[0] * t[0] + relative[1] * t[1] + relative[2] * t[2];
+    double totalBefore = 0.0;
+    if (before) {
+      const auto& field = j == 0 ? before->contactTangentialT1 : before->contactTangentialT2;
+      if (g < field.size()) totalBefore = field[g];
+    }
+    increment[j] = total - totalBefore;
+  }
+  return increment;
+}
+}  // namespace
+
 void addKinematicSlip(const Scene& scene, const feti::ConstraintMatrix& B,
                       const std::vector<std::array<double, 3>>& displacement, const ContactFields* before,
                       ContactFields& out) {
   if (displacement.empty() || out.contactSlipT1.size() != displacement.size()) return;  // not rank 0
   for (const auto& c : B.contact) {
     if (scene.contacts[c.interface].law.hasTangentialRows()) continue;
-    std::array<double, 3> relative{0.0, 0.0, 0.0};
-    for (const auto& [node, weight] : c.sides())
-      for (int x = 0; x < 3; ++x) relative[x] += weight * displacement[node][x];
     const size_t g = static_cast<size_t>(c.slaveNode);
-    double increment[2];
-    for (int j = 0; j < 2; ++j) {
-      const auto& t = j == 0 ? c.t1 : c.t2;
-      const double total = relative[0] * t[0] + relative[1] * t[1] + relative[2] * t[2];
-      double totalBefore = 0.0;
-      if (before) {
-        const auto& field = j == 0 ? before->contactTangentialT1 : before->contactTangentialT2;
-        if (g < field.size()) totalBefore = field[g];
-      }
-      increment[j] = total - totalBefore;
-    }
+    const std::array<double, 2> increment = kinematicIncrement(c, displacement, before);
     out.contactSlipT1[g] = out.contactTangentialT1[g] = increment[0];
     out.contactSlipT2[g] = out.contactTangentialT2[g] = increment[1];
     if (static_cast<int>(out.contactStatus[g]) == static_cast<int>(contact::ContactStatus::Slip))
       out.contactAccumulatedSlip[g] = std::hypot(increment[0], increment[1]);
   }
+}
+
+std::array<int, 3> addPrescribedSlipFriction(const Scene& scene, const feti::ConstraintMatrix& B,
+                                             const std::vector<std::array<double, 3>>& displacement,
+                                             const ContactFields* before, std::vector<std::array<double, 3>>& reaction,
+                                             ContactFields& out) {
+  std::array<int, 3> change{0, 0, 0};
+  if (displacement.empty() || out.contactSlipT1.size() != displacement.size()) return change;  // not rank 0
+  const int slip = static_cast<int>(contact::ContactStatus::Slip);
+  for (const auto& c : B.contact) {
+    const size_t g = static_cast<size_t>(c.slaveNode), m = static_cast<size_t>(c.masterNode);
+    const int status = static_cast<int>(out.contactStatus[g]);
+    if ((!c.slipPrescribed[0] && !c.slipPrescribed[1]) || status == static_cast<int>(contact::ContactStatus::NoContact))
+      continue;
+    InterfaceResult& i = out.interfaces[c.interface];
+    i.frictionForce -= std::hypot(out.contactT1[g], out.contactT2[g]);
+    double size = 0.0;  // of the displacements the increment is a difference of (round-off scale)
+    for (int x = 0; x < 3; ++x) size += std::abs(displacement[g][x]) + std::abs(displacement[m][x]);
+    bool slides = false;
+    for (int j = 0; j < 2; ++j) {
+      if (!c.slipPrescribed[j]) continue;
+      const auto& t = j == 0 ? c.t1 : c.t2;
+      auto& total = j == 0 ? out.contactTangentialT1 : out.contactTangentialT2;
+      double relative = 0.0;
+      for (int x = 0; x < 3; ++x) relative += (displacement[g][x] - displacement[m][x]) * t[x];
+      const double increment = relative - (before && g < total.size() ? (j == 0 ? before->contactTangentialT1
+                                                                                : before->contactTangentialT2)[g]
+                                                                       : 0.0);
+      if (!(std::abs(increment) > 1e-10 * size)) continue;  // held still: no slip
+      slides = true;
+      // The force of the slave on the master along t_j: with the slip (the slave drags the master).
+      const double force = std::copysign(scene.contacts[c.interface].law.slidingForce(j, out.contactNormal[g]), increment);
+      (j == 0 ? out.contactT1 : out.contactT2)[g] = force;
+      (j == 0 ? out.contactSlipT1 : out.contactSlipT2)[g] = total[g] = increment;
+      for (int x = 0; x < 3; ++x) {
+        out.totalContactForce[x] += force * t[x];
+        i.force[x] += force * t[x];
+        // As addDroppedContactForces (GlobalFields.cpp): the supports of the held components take it.
+        reaction[g][x] += t[x] * force;
+        reaction[m][x] -= t[x] * force;
+      }
+      i.stepDissipation += force * increment;
+      i.dissipatedEnergy += force * increment;
+      out.dissipatedEnergy += force * increment;
+    }
+    i.frictionForce += std::hypot(out.contactT1[g], out.contactT2[g]);
+    if (!slides) continue;
+    out.contactAccumulatedSlip[g] = std::hypot(out.contactSlipT1[g], out.contactSlipT2[g]);
+    if (status == slip) continue;
+    --i.counts[status];
+    ++i.counts[slip];
+    --change[status];
+    ++change[slip];
+    out.contactStatus[g] = slip;
+  }
+  return change;
 }
 
 void addEarlierSteps(const ContactFields& previous, ContactFields& now) {

@@ -19,6 +19,7 @@
 #include "tribos/stack/RootGather.hpp"
 #include "tribos/stack/SceneParameters.hpp"
 #include "tribos/stack/SolveBudget.hpp"
+#include "HistorySolve.hpp"
 #include "LoadHistory.hpp"
 #include "Restart.hpp"
 
@@ -148,6 +149,8 @@ void nameTheLimit(const WallClockBudget& budget, const RunRecord& runs, const qp
   std::string message;
   if (budget.ranOut()) {
     message = budget.message();
+  } else if (result.fixedPointDiverged) {
+    return;  // the contact solver's message says it, the capacity note follows (addOverloadNote)
   } else if (!result.counters.converged && runs.lastOuterIteration >= smalse.maxOuterIterations) {
     message = capMessage("Solver/Max Outer Iterations", smalse.maxOuterIterations,
                          relativeResiduals(result.counters, smalse.tolerance));
@@ -168,10 +171,54 @@ void nameTheLimit(const WallClockBudget& budget, const RunRecord& runs, const qp
   result.message = result.note.empty() ? message : message + "; " + result.note;
 }
 
-/// The note of one interface where SMALSE-M stalled: the friction it can carry, F N, against
-/// the applied load along its contact plane (`normal`: the mean contact normal of its nodes).
+/// The length of the load f's part along a contact plane of (mean) normal `normal`.
+double alongContactPlane(const std::array<double, 3>& normal, const std::array<double, 3>& f) {
+  const double length = std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
+  const double along = length > 0.0 ? (f[0] * normal[0] + f[1] * normal[1] + f[2] * normal[2]) / length : 0.0;
+  return std::sqrt(std::max(f[0] * f[0] + f[1] * f[1] + f[2] * f[2] - along * along, 0.0));
+}
+
+/// Per interface, the sum of its contact nodes' normals (the mean normal's direction), every
+/// rank the same: each rank sums the nodes whose rows it owns. Collective.
+std::vector<std::array<double, 3>> interfaceNormals(const feti::ConstraintMatrix& B, MPI_Comm comm) {
+  const size_t n = B.interfaces.size();
+  std::vector<double> mine(3 * n, 0.0), all(3 * n, 0.0);
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  for (const auto& node : B.contact)
+    if (B.firstRowOfRank.empty() || (node.normalRow >= B.firstRowOfRank[rank] && node.normalRow < B.firstRowOfRank[rank + 1]))
+      for (int c = 0; c < 3; ++c) mine[3 * node.interface + c] += node.normal[c];
+  MPI_Allreduce(mine.data(), all.data(), static_cast<int>(3 * n), MPI_DOUBLE, MPI_SUM, comm);
+  std::vector<std::array<double, 3>> out(n);
+  for (size_t i = 0; i < n; ++i) out[i] = {all[3 * i], all[3 * i + 1], all[3 * i + 2]};
+  return out;
+}
+
+/// contact::FrictionSettings::overloaded: whether, at the normal forces N of the current
+/// iterate, the load `*load` along some interface's contact plane exceeds its friction capacity
+/// F N (each interface against the whole load, as addOverloadNote). A given slip bound (Tresca)
+/// has no capacity to compare: every stall stops there, as without the test.
+std::function<bool(const std::vector<double>&)> overloadTest(const contact::FrictionSettings& friction,
+                                                             std::vector<std::array<double, 3>> normals,
+                                                             std::shared_ptr<const std::array<double, 3>> load) {
+  return [&friction, normals = std::move(normals), load](const std::vector<double>& N) {
+    for (size_t i = 0; i < normals.size(); ++i) {
+      const auto& law = friction.laws.at(i);
+      if (law.boundIsGiven()) return true;
+      if (law.tiesSurfaces() || !(std::abs(normals[i][0]) + std::abs(normals[i][1]) + std::abs(normals[i][2]) > 0.0))
+        continue;
+      if (law.capacityCoefficient() * N.at(i) < alongContactPlane(normals[i], *load)) return true;
+    }
+    return false;
+  };
+}
+
+/// The note of one interface of a contact solve that did not converge: the friction it can
+/// carry, F N, against the applied load along its contact plane (`normal`: the mean contact
+/// normal of its nodes). Only a load beyond the capacity is called an overload; below it the
+/// note states both numbers, and why the stop may have come all the same.
 std::string overloadNote(const InterfaceResult& i, const contact::FrictionSettings& friction,
-                         const std::array<double, 3>& normal, const std::array<double, 3>& f) {
+                         const std::array<double, 3>& normal, const std::array<double, 3>& f, bool diverged) {
   std::ostringstream note;
   const std::string interface = i.surfaces;
   if (i.law.boundIsGiven()) {
@@ -180,51 +227,50 @@ std::string overloadNote(const InterfaceResult& i, const contact::FrictionSettin
          << ": the loads may exceed what contact and the given slip bounds (Tresca) can carry";
     return note.str();
   }
-  const double length = std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
-  const double along = length > 0.0 ? (f[0] * normal[0] + f[1] * normal[1] + f[2] * normal[2]) / length : 0.0;
-  const double tangential = std::sqrt(std::max(f[0] * f[0] + f[1] * f[1] + f[2] * f[2] - along * along, 0.0));
+  const double tangential = alongContactPlane(normal, f);
   const double F = i.law.capacityCoefficient();
   const double N = i.normalForce;
   const bool beyond = F * N < tangential;
-  note << (beyond ? "the loads may exceed what contact and friction can carry at "
-                  : "no equilibrium within the contact constraints at ")
-       << interface << ": its friction capacity F N = " << F << " x " << N << " = " << F * N
-       << (beyond ? " against " : ", more than ") << "an applied load of " << tangential << " along the contact plane";
+  note << (beyond ? "the loads may exceed what contact and friction can carry at " : "at ") << interface
+       << ": its friction capacity F N = " << F << " x " << N << " = " << F * N
+       << (beyond ? " against " : " exceeds ") << "an applied load of " << tangential << " along the contact plane";
   if (beyond)
     note << " (where contact and friction alone hold the loaded body, reduce that load or raise the friction "
             "coefficient)";
   else if (i.law.boundFollowsNormalForce() && friction.fixedPoint == contact::FixedPoint::Exact)
     note << " (Contact/Fixed Point = Exact starts frictionless, where a body held by friction alone has no "
             "equilibrium: use Inexact)";
+  else if (diverged)
+    note << " (the friction coefficient may be too large for a unique solution)";
   return note.str();
 }
 
-/// Where SMALSE-M stalled on the bodies' balance: per interface, the friction it can carry
-/// against the applied load along its contact plane, in the message (every rank the same
-/// numbers: the normal forces from rank 0, the mean contact normals summed over the ranks'
-/// nodes). The whole scene's applied load is compared with each interface: with several
-/// interfaces in series, the load passes through each.
-void addOverloadNote(const feti::ConstraintMatrix& B, const contact::FrictionSettings& friction, MPI_Comm comm,
-                     ContactSolveResult& out) {
-  if (!out.contact.counters.stalled) return;
+/// Where a contact solve with friction did not converge because SMALSE-M stalled on the
+/// bodies' balance or the Coulomb fixed point diverged (not a budget's stop): per interface, the friction it can carry against the applied load along its
+/// contact plane, in the message (every rank the same numbers: the normal forces from rank 0,
+/// the mean contact normals summed over the ranks' nodes). The whole scene's applied load is
+/// compared with each interface: with several interfaces in series, the load passes through each.
+void addOverloadNote(const feti::ConstraintMatrix& B, const contact::FrictionSettings& friction, bool budgetStop,
+                     MPI_Comm comm, ContactSolveResult& out) {
+  const contact::ContactResult& result = out.contact;
+  if (result.converged || result.counters.nonFinite || budgetStop) return;
+  // The stops of an overload; not an iteration cap (the whole load against each interface means
+  // little where supports carry part of it, as on the paper's clamped bricks).
+  if (!result.counters.stalled && !result.fixedPointDiverged) return;
   const size_t n = out.interfaces.size();
-  std::vector<double> normalForce(n), mine(3 * n, 0.0), normals(3 * n, 0.0);
+  std::vector<double> normalForce(n);
   for (size_t i = 0; i < n; ++i) normalForce[i] = out.interfaces[i].normalForce;
   MPI_Bcast(normalForce.data(), static_cast<int>(n), MPI_DOUBLE, 0, comm);
-  int rank = 0;
-  MPI_Comm_rank(comm, &rank);
-  for (const auto& node : B.contact)
-    if (B.firstRowOfRank.empty() || (node.normalRow >= B.firstRowOfRank[rank] && node.normalRow < B.firstRowOfRank[rank + 1]))
-      for (int c = 0; c < 3; ++c) mine[3 * node.interface + c] += node.normal[c];
-  MPI_Allreduce(mine.data(), normals.data(), static_cast<int>(3 * n), MPI_DOUBLE, MPI_SUM, comm);
+  const auto normals = interfaceNormals(B, comm);
   std::string notes;
   for (size_t i = 0; i < n; ++i) {
     InterfaceResult interface = out.interfaces[i];
     if (interface.law.tiesSurfaces()) continue;  // tied: no capacity to exceed
     interface.normalForce = normalForce[i];
-    const std::array<double, 3> normal{normals[3 * i], normals[3 * i + 1], normals[3 * i + 2]};
+    const std::array<double, 3>& normal = normals[i];
     if (!(std::abs(normal[0]) + std::abs(normal[1]) + std::abs(normal[2]) > 0.0)) continue;
-    notes += (notes.empty() ? "" : "; ") + overloadNote(interface, friction, normal, out.appliedLoad);
+    notes += (notes.empty() ? "" : "; ") +
+             overloadNote(interface, friction, normal, out.appliedLoad, result.fixedPointDiverged);
   }
   if (notes.empty()) return;
   if (n > 1) notes += " (each interface compared with the whole applied load, as if the load passed through each)";
@@ -245,15 +291,24 @@ std::vector<std::vector<std::vector<double>>> namedLoadVectors(std::vector<fem::
 }
 
 /// What the results show of the state `result`: displacement, reactions, contact fields (the
-/// increments since `before`, a history's totals before this state, or null). Collective over
-/// `comm`.
-void gatherStateResults(const Scene& scene, const feti::ConstraintMatrix& B, const feti::TotalFeti& feti,
-                        const contact::ContactResult& result, MPI_Comm comm, const ContactFields* before,
-                        StepResults& out) {
+/// increments since `before`, a history's totals before this state, or null). Returns, on
+/// every rank, the change of the contact status counts that the friction of prescribed slips
+/// made (addPrescribedSlipFriction), for the state's counts. Collective over `comm`.
+std::array<int, 3> gatherStateResults(const Scene& scene, const feti::ConstraintMatrix& B,
+                                      const feti::TotalFeti& feti, const contact::ContactResult& result,
+                                      MPI_Comm comm, const ContactFields* before, StepResults& out) {
   out.displacement = gatherDisplacement(scene, feti.firstOwnedSubdomain(), result.displacement, comm);
   out.reaction = gatherReactions(scene, B, result.lambda, comm);
   gatherContactFields(scene, B, result.nodes, comm, out);
   addKinematicSlip(scene, B, out.displacement.value, before, out);
+  std::array<int, 3> change = addPrescribedSlipFriction(scene, B, out.displacement.value, before, out.reaction, out);
+  MPI_Bcast(change.data(), 3, MPI_INT, 0, comm);
+  return change;
+}
+
+/// Adds a change of the status counts (gatherStateResults) to `counts`.
+void addStatusChange(const std::array<int, 3>& change, std::array<int, 3>& counts) {
+  for (int s = 0; s < 3; ++s) counts[s] += change[s];
 }
 
 /// The applied load of a state: the sum and the magnitude of the loads `f` (owned subdomains).
@@ -262,73 +317,6 @@ void setAppliedLoad(const std::vector<std::vector<double>>& f, MPI_Comm comm, St
   for (size_t i = 0; i < f.size(); ++i) loaded[i].f = f[i];
   out.appliedLoad = totalLoad(loaded, comm);
   out.appliedLoadMagnitude = loadMagnitude(loaded, comm);
-}
-
-/// The contact solver's settings, as every solve of a scene takes them.
-struct ContactChain {
-  contact::FrictionSettings friction;
-  qp::SmalseSettings smalse;
-  feti::DualPreconditioner preconditioner = feti::DualPreconditioner::None;
-};
-
-/// How the steps of a history run: their times (Load Steps/Times), warm or cold (Load Steps/Warm
-/// Start), and the first step (after a restart: the step after the file's last).
-struct HistoryRun {
-  const std::vector<double>& times;
-  bool warmStart = true;
-  int firstStep = 1;
-};
-
-/// The steps of a load history (LoadHistory): each a contact solve on the same operators with
-/// its right-hand side; the history stops at the first step that does not converge (its result
-/// returned). `everyStep` gathers the results of each converged step before the last (the
-/// caller gathers the last). The counters are summed over the steps.
-contact::ContactResult solveLoadHistory(feti::TotalFeti& feti, const feti::ConstraintMatrix& B,
-                                        const ContactChain& chain, LoadHistory& history, const HistoryRun& run,
-                                        int rank, std::vector<LoadStepRecord>& records,
-                                        const std::function<void(int, const contact::ContactResult&)>& everyStep) {
-  const int steps = history.steps();
-  contact::ContactResult result;
-  qp::SmalseCounters total;  // the counts over every step
-  int fixedPointIterations = 0;
-  for (int k = run.firstStep; k <= steps; ++k) {
-    const double factor = history.ramp(k);
-    feti.setRightHandSide(history.loads(k), history.constraintValues(k));
-    // Warm: the last step's multipliers (scaled to this step's load factor where every load
-    // follows the ramp: exact for a proportional history), the slip bound they imply and the
-    // last ||PFP|| (ALGORITHMS.md 11).
-    contact::WarmStart warm;
-    if (run.warmStart) warm = {result.lambda, result.counters.normA};
-    if (run.warmStart && history.proportional())
-      for (double& v : warm.lambda) v *= factor / history.ramp(k - 1);
-    result = contact::solveContact(feti, B, chain.friction, chain.smalse, chain.preconditioner, warm);
-    total.outerIterations += result.counters.outerIterations;
-    total.innerIterations += result.counters.innerIterations;
-    total.operatorApplications += result.counters.operatorApplications;
-    total.seconds += result.counters.seconds;
-    fixedPointIterations += result.fixedPointIterations;
-    records.push_back({k, factor, run.times[static_cast<size_t>(k - 1)], history.label(k), history.factors(k),
-                       result.converged, result.counters.outerIterations, result.counters.operatorApplications,
-                       result.fixedPointIterations, result.statusCounts, result.message, result.kkt,
-                       result.kktTolerance});
-    if (rank == 0) {
-      std::printf("  load step %d/%d (%s): %s, %d outer, %lld PFP; %d no contact, %d stick, %d slip\n", k, steps,
-                  history.label(k).c_str(), result.converged ? "converged" : "NOT CONVERGED",
-                  result.counters.outerIterations,
-                  result.counters.operatorApplications, result.statusCounts[0], result.statusCounts[1],
-                  result.statusCounts[2]);
-      std::fflush(stdout);
-    }
-    if (!result.converged || k == steps) break;  // the caller gathers the last step and names a failed one
-    everyStep(k, result);
-    history.advance(feti, result.displacement, k);
-  }
-  result.counters.outerIterations = total.outerIterations;
-  result.counters.innerIterations = total.innerIterations;
-  result.counters.operatorApplications = total.operatorApplications;
-  result.counters.seconds = total.seconds;
-  result.fixedPointIterations = fixedPointIterations;
-  return result;
 }
 
 /// A load history (Scene::loadHistory) on the factorised operators, from step 1 or after the
@@ -341,7 +329,7 @@ const ContactFields* solveHistory(const Scene& scene, const feti::ConstraintMatr
                                   MPI_Comm comm, ContactSolveResult& out) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
-  HistoryRun run{scene.stepTimes, stepsList.get<bool>("Warm Start")};
+  HistoryRun run{comm, scene.stepTimes, stepsList.get<bool>("Warm Start"), 1, stepsList.get<int>("Max Cutbacks")};
   if (!restart.file.empty()) {
     loads.restore(B, rank, restart.totals.contactTangentialT1, restart.totals.contactTangentialT2);
     run.firstStep = restart.step + 1;
@@ -356,7 +344,7 @@ const ContactFields* solveHistory(const Scene& scene, const feti::ConstraintMatr
     const ContactFields* before = previous();
     StepResults results;
     setAppliedLoad(loads.loads(k), comm, results);
-    gatherStateResults(scene, B, feti, step, comm, before, results);
+    addStatusChange(gatherStateResults(scene, B, feti, step, comm, before, results), out.steps.back().statusCounts);
     if (before) addEarlierSteps(*before, results);
     out.earlierSteps.push_back(std::move(results));
   };
@@ -386,6 +374,8 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
 
   out.appliedLoad = totalLoad(owned, comm);
   out.appliedLoadMagnitude = loadMagnitude(owned, comm);
+  *chain.load = out.appliedLoad;
+  chain.friction.overloaded = overloadTest(chain.friction, interfaceNormals(B, comm), chain.load);
   const bool history = scene.loadHistory;  // several steps, or a table on one step too
   const auto& stepsList = tribos.sublist("Load Steps");
   RestartState restart;  // read before the factorisation: a file that cannot serve costs nothing
@@ -410,16 +400,25 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
   nameTheLimit(budget, *runs, chain.smalse, chain.friction, out.contact);
   if (!out.steps.empty() && !out.contact.converged) {
     const auto& last = out.steps.back();
+    std::string cut;
+    if (last.cutbacks > 0) {
+      std::ostringstream text;
+      text << ", after " << last.cutbacks << " cutback(s) (Load Steps/Max Cutbacks = " << stepsList.get<int>("Max Cutbacks")
+           << "; the history reached " << last.reached - (last.step - 1) << " of the step)";
+      cut = text.str();
+    }
     out.contact.message = "load step " + std::to_string(last.step) + " of " + std::to_string(scene.loadSteps) +
-                          " (" + last.label + "): " + out.contact.message;
+                          " (" + last.label + ")" + cut + ": " + out.contact.message;
   }
   out.fApplications = feti.fApplications();
   out.profile = feti.profile();
   out.factorNonzeros = feti.factorNonzeros();
   out.bytesPerFApplication = feti.bytesPerFApplication();
-  gatherStateResults(scene, B, feti, out.contact, comm, totalsBefore, out);
+  const auto change = gatherStateResults(scene, B, feti, out.contact, comm, totalsBefore, out);
+  addStatusChange(change, out.contact.statusCounts);
+  if (!out.steps.empty()) addStatusChange(change, out.steps.back().statusCounts);
   if (totalsBefore) addEarlierSteps(*totalsBefore, out);
-  addOverloadNote(B, chain.friction, comm, out);
+  addOverloadNote(B, chain.friction, budget.ranOut(), comm, out);
   return out;
 }
 

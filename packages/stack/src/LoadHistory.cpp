@@ -1,6 +1,7 @@
 #include "LoadHistory.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include <Tpetra_Vector.hpp>
 
@@ -65,33 +66,49 @@ std::string LoadHistory::label(int k) const {
   return text;
 }
 
-std::vector<std::vector<double>> LoadHistory::loads(int k) const {
+namespace {
+/// A factor table's value at `position`: its entry k - 1 at step k, linear in between, 0 before
+/// step 1 (the unloaded start).
+double factorAt(const std::vector<double>& table, double position) {
+  const int k = static_cast<int>(std::ceil(position));
+  const double after = table[static_cast<size_t>(k - 1)];
+  const double s = position - (k - 1);
+  if (s == 1.0) return after;  // a whole step: the table's value itself
+  const double before = k >= 2 ? table[static_cast<size_t>(k - 2)] : 0.0;
+  return before + s * (after - before);
+}
+}  // namespace
+
+std::vector<std::vector<double>> LoadHistory::loads(double position) const {
   std::vector<std::vector<double>> f;
   for (size_t n : dofs_) f.emplace_back(n, 0.0);
-  for (size_t l = 0; l < loadVectors_.size(); ++l)
+  for (size_t l = 0; l < loadVectors_.size(); ++l) {
+    const double factor = factorAt(factors_[l], position);
     for (size_t i = 0; i < f.size(); ++i)
-      for (size_t d = 0; d < f[i].size(); ++d) f[i][d] += factors_[l][k - 1] * loadVectors_[l][i][d];
+      for (size_t d = 0; d < f[i].size(); ++d) f[i][d] += factor * loadVectors_[l][i][d];
+  }
   return f;
 }
 
-std::vector<double> LoadHistory::prescribedValues(int k) const {
+std::vector<double> LoadHistory::prescribedValues(double position) const {
   std::vector<double> c(fixed_);
   for (const auto& part : parts_)
-    c[static_cast<size_t>(part.row)] += displacementFactors_[static_cast<size_t>(part.condition)][k - 1] * part.value;
+    c[static_cast<size_t>(part.row)] +=
+        factorAt(displacementFactors_[static_cast<size_t>(part.condition)], position) * part.value;
   return c;
 }
 
-std::vector<double> LoadHistory::constraintValues(int k) const {
-  std::vector<double> c = prescribedValues(k);
+std::vector<double> LoadHistory::constraintValues(double position) const {
+  std::vector<double> c = prescribedValues(position);
   for (size_t r = 0; r < c.size(); ++r) c[r] += slip_[r];
   return c;
 }
 
-void LoadHistory::advance(const feti::TotalFeti& feti, const std::vector<std::vector<double>>& u, int k) {
+void LoadHistory::advance(const feti::TotalFeti& feti, const std::vector<std::vector<double>>& u, double position) {
   auto Bu = feti.createDualVector();
   feti.applyB(u, *Bu);
   const auto bu = Bu->getLocalViewHost(Tpetra::Access::ReadOnly);
-  const std::vector<double> c = prescribedValues(k);
+  const std::vector<double> c = prescribedValues(position);
   for (size_t r = 0; r < slip_.size(); ++r)
     if (tangential_[r]) slip_[r] = bu(r, 0) - c[r];
 }

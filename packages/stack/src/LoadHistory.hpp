@@ -31,8 +31,9 @@ class LoadHistory {
               std::vector<std::vector<std::vector<double>>> loadVectors, std::vector<size_t> dofs);
 
   int steps() const { return steps_; }
-  /// The ramp k / N: the prescribed values' factor in step k (and a load's without a table).
-  double ramp(int k) const { return static_cast<double>(k) / steps_; }
+  /// The ramp k / N: the prescribed values' factor in step k (and a load's without a table); at
+  /// a position between steps (a cut-back sub-step), position / N.
+  double ramp(double position) const { return position / steps_; }
   /// Every load and prescribed displacement follows the ramp (a proportional history).
   bool proportional() const { return proportional_; }
   /// Each load's and displacement condition's factor in step k, by name (Loads/<name>,
@@ -40,14 +41,15 @@ class LoadHistory {
   std::vector<std::pair<std::string, double>> factors(int k) const;
   /// Step k in words: "ramp r" for a proportional history, else each factor ("press 1, shear -1").
   std::string label(int k) const;
-  /// f_s of step k (1-based).
-  std::vector<std::vector<double>> loads(int k) const;
-  /// c on this rank's rows in step k: prescribed values at their factors, gaps kept, the
+  /// f_s at `position` in steps: step k at k (1-based); between steps k - 1 and k (a cut-back
+  /// sub-step) every factor interpolated linearly, from 0 before step 1.
+  std::vector<std::vector<double>> loads(double position) const;
+  /// c on this rank's rows at `position`: prescribed values at their factors, gaps kept, the
   /// tangential rows shifted by the slip so far.
-  std::vector<double> constraintValues(int k) const;
-  /// After step k with displacements `u` (owned subdomains): the relative tangential
-  /// displacement so far, T u - (c(k) without the slip) on the tangential rows. Collective.
-  void advance(const feti::TotalFeti& feti, const std::vector<std::vector<double>>& u, int k);
+  std::vector<double> constraintValues(double position) const;
+  /// After the state at `position` with displacements `u` (owned subdomains): the relative
+  /// tangential displacement so far, T u - (c without the slip) on the tangential rows. Collective.
+  void advance(const feti::TotalFeti& feti, const std::vector<std::vector<double>>& u, double position);
   /// A restart (Load Steps/Restart From): the relative tangential displacement reached so far,
   /// per global node along each contact node's t1 and t2 (the result's contact_tangential_t1/t2).
   void restore(const feti::ConstraintMatrix& B, int rank, const std::vector<double>& t1, const std::vector<double>& t2);
@@ -63,8 +65,8 @@ class LoadHistory {
   bool proportional_ = true;
   std::vector<double> fixed_;     ///< the part of B's c that no factor scales (the normal rows' gaps)
   std::vector<feti::PrescribedPart> parts_;  ///< the owned rows' parts, rows counted from the first owned
-  /// c on the owned rows in step k without the slip: the fixed part and the factored parts.
-  std::vector<double> prescribedValues(int k) const;
+  /// c on the owned rows at `position` without the slip: the fixed part and the factored parts.
+  std::vector<double> prescribedValues(double position) const;
   std::vector<char> tangential_;  ///< owned row is a contact tangential row (not tied)
   std::vector<double> slip_;      ///< relative tangential displacement so far (tangential rows)
 };

@@ -5,6 +5,7 @@
 
 #include "tribos/fem/ElementKernels.hpp"
 #include "tribos/fem/SolidElements.hpp"
+#include "PatchRecovery.hpp"
 
 namespace tribos::stack {
 
@@ -21,20 +22,23 @@ std::vector<int> nodeBody(const mesh::Mesh& mesh) {
   return body;
 }
 
-/// Nodal means of the element stresses, weighted by element volume, within each node's body.
-void averageToNodes(const mesh::Mesh& mesh, const std::vector<double>& volume, StressResults& r) {
-  const auto body = nodeBody(mesh);
-  std::vector<double> weight(mesh.numNodes(), 0.0);
-  for (auto& c : r.nodal) c.assign(mesh.numNodes(), 0.0);
-  for (int b = 0; b < mesh.numBlocks(); ++b)
-    for (LO e = mesh.blocks[b].first; e < mesh.blocks[b].first + mesh.blocks[b].count; ++e)
-      for (LO n : mesh.elementNodes(e)) {
-        if (body[n] != b) continue;
-        weight[n] += volume[e];
-        for (int k = 0; k < 6; ++k) r.nodal[k][n] += volume[e] * r.element[k][e];
-      }
-  r.nodalVonMises.assign(mesh.numNodes(), 0.0);
-  for (LO n = 0; n < mesh.numNodes(); ++n) {
+/// Sums each element's stresses at its nodes (ElementStress::atNodes), weighted by the
+/// element's volume, into the nodes of its body: `weight` gathers the volumes.
+void addAtNodes(const mesh::Mesh& mesh, LO e, const std::vector<int>& body, int b, const fem::ElementStress& stress,
+                std::vector<double>& weight, StressResults& r) {
+  const auto nodes = mesh.elementNodes(e);
+  for (int v = 0; v < nodes.size(); ++v) {
+    const LO n = nodes[v];
+    if (body[n] != b) continue;
+    weight[n] += stress.volume;
+    for (int k = 0; k < 6; ++k) r.nodal[k][n] += stress.volume * stress.atNodes[v][k];
+  }
+}
+
+/// Divides the sums by the weights and takes the nodes' von Mises stresses.
+void finishNodalMeans(const std::vector<double>& weight, StressResults& r) {
+  r.nodalVonMises.assign(weight.size(), 0.0);
+  for (size_t n = 0; n < weight.size(); ++n) {
     if (!(weight[n] > 0.0)) continue;  // a node of no element
     double sigma[6];
     for (int k = 0; k < 6; ++k) sigma[k] = r.nodal[k][n] /= weight[n];
@@ -48,7 +52,9 @@ StressResults evaluateStresses(const Scene& scene, const std::vector<std::array<
   StressResults r;
   for (auto& c : r.element) c.assign(mesh.numElements(), 0.0);
   r.elementVonMises.assign(mesh.numElements(), 0.0);
-  std::vector<double> volume(mesh.numElements(), 0.0);
+  for (auto& c : r.nodal) c.assign(mesh.numNodes(), 0.0);
+  const auto body = nodeBody(mesh);
+  std::vector<double> weight(mesh.numNodes(), 0.0);
   for (int b = 0; b < mesh.numBlocks(); ++b) {
     const auto& material = scene.materials[b];
     for (LO e = mesh.blocks[b].first; e < mesh.blocks[b].first + mesh.blocks[b].count; ++e) {
@@ -60,14 +66,15 @@ StressResults evaluateStresses(const Scene& scene, const std::vector<std::array<
           u[3 * v + c] = displacement[nodes[v]][c];
         }
       const fem::ElementStress stress = fem::solidStress(mesh.elementType(e), x, u, material.lambda, material.mu);
-      volume[e] = stress.volume;
-      if (!(volume[e] > 0.0)) continue;  // Mesh::validate rejects these; never read garbage
+      if (!(stress.volume > 0.0)) continue;  // Mesh::validate rejects these; never read garbage
       for (int k = 0; k < 6; ++k) r.element[k][e] = stress.sigma[k];
       r.elementVonMises[e] = fem::vonMisesStress(stress.sigma);
       r.strainEnergy += stress.strainEnergy;
+      addAtNodes(mesh, e, body, b, stress, weight, r);
     }
   }
-  averageToNodes(mesh, volume, r);
+  finishNodalMeans(weight, r);
+  recoverLinearElementStresses(scene, displacement, body, r);
   return r;
 }
 

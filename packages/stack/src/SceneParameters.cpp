@@ -310,6 +310,12 @@ Teuchos::RCP<const Teuchos::ParameterList> sceneValidParameters() {
               "start each step from the last step's multipliers (scaled to the load factor when every load and "
               "prescribed displacement follows the ramp), the slip bound they imply and the last ||PFP||; false: "
               "each step from zero, as a one-step solve (for comparison: ALGORITHMS.md 11)");
+    steps.set("Max Cutbacks", 4,
+              "a step that does not converge is retried from the last converged state with half the increment, "
+              "again and again down to 2^-(this) of a step (4: 1/16), before the history gives up; converged "
+              "sub-steps are states of the history (their slip is remembered) but not results; each try is a "
+              "line of the log and counted in its step's entry (attempts, cutbacks, reached). 0: no retry",
+              core::intRange(0, 30));
     steps.set("Restart From", std::string(),
               "an Exodus result of a load history of this scene (a path relative to the working directory, like "
               "--output): the history continues after its last converged step, from the relative tangential "

@@ -172,6 +172,39 @@ TEST(SolidElements, patchTestOnDistortedMeshesOfEveryTypeAndAMixedOne) {
   }
 }
 
+// Nodal stresses extrapolated from the quadrature points (issue 42): the field
+// u = (x z, y z, 0) lies in every type's space on an undistorted box (its strain is linear),
+// so the stress at each element node must be the exact stress there, not the element's mean.
+TEST(SolidElements, stressesAtTheNodesAreExactForALinearStressField) {
+  for (BoxElements kind : {BoxElements::Tet10, BoxElements::Hex8, BoxElements::Wedge6, BoxElements::HexAndWedge}) {
+    SCOPED_TRACE(kindName(kind));
+    const mesh::Mesh m = test::typedBox(kind, 2, 0.5, 0.0);
+    double worst = 0.0, spread = 0.0;
+    for (LO e = 0; e < m.numElements(); ++e) {
+      double x[mesh::kMaxElementNodes][3], ue[fem::kMaxElementDofs];
+      elementCoordinates(m, e, x);
+      const auto nodes = m.elementNodes(e);
+      for (int k = 0; k < nodes.size(); ++k) {
+        ue[3 * k] = x[k][0] * x[k][2];
+        ue[3 * k + 1] = x[k][1] * x[k][2];
+        ue[3 * k + 2] = 0.0;
+      }
+      const auto stress = fem::solidStress(m.elementType(e), x, ue, kSteel.lambda, kSteel.mu);
+      for (int k = 0; k < nodes.size(); ++k) {
+        const double eps[6] = {x[k][2], x[k][2], 0.0, 0.0, x[k][1] / 2, x[k][0] / 2};
+        const double trace = eps[0] + eps[1] + eps[2];
+        for (int c = 0; c < 6; ++c) {
+          const double exact = 2 * kSteel.mu * eps[c] + (c < 3 ? kSteel.lambda * trace : 0.0);
+          worst = std::max(worst, std::abs(stress.atNodes[k][c] - exact));
+          spread = std::max(spread, std::abs(stress.atNodes[k][c] - stress.sigma[c]));
+        }
+      }
+    }
+    EXPECT_LT(worst, 1e-9 * kSteel.mu) << "largest error of a nodal stress";
+    EXPECT_GT(spread, 0.1 * kSteel.mu) << "the nodal stresses must vary within the elements";
+  }
+}
+
 TEST(SolidElements, faceLoadsSumToTheResultantAndSplitAsTheShapeFunctions) {
   const double p[3] = {1.0, -2.0, 3.0};
   // A flat 6-node triangle: corner weights 0, mid-edge weights area / 3.

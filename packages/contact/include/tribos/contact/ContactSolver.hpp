@@ -45,6 +45,12 @@ struct FrictionSettings {
   /// inexact, of the last Tresca solve when exact; infinite after an update from g = 0; 0
   /// without Coulomb); may be empty.
   std::function<void(const qp::SmalseProgress&, double)> progress;
+  /// Given the normal force of each interface (ConstraintMatrix::interfaces' order) of the
+  /// current iterate: whether the loads exceed what friction can carry at some interface.
+  /// SMALSE-M stops on a stall only then (qp::SmalseSettings::stallConfirmed): a joint near
+  /// its capacity approaches equilibrium slowly, with ||G mu|| flat for a while (issue 42).
+  /// Called on every rank at the same points; empty: every stall stops.
+  std::function<bool(const std::vector<double>&)> overloaded;
 };
 
 enum class ContactStatus : int { NoContact = 0, Stick = 1, Slip = 2 };
@@ -82,6 +88,8 @@ struct ContactResult {
   qp::SmalseCounters counters;    ///< summed over all SMALSE-M runs
   int fixedPointIterations = 0;   ///< updates of g (Coulomb)
   double fixedPointChange = 0.0;  ///< ||g_{k+1} - g_k|| / ||g_k|| at the end
+  /// The Coulomb fixed point diverged (FixedPointWatch): the run stopped there, its counts kept.
+  bool fixedPointDiverged = false;
   KktReport kkt;
   double kktTolerance = 0.0;      ///< every KKT residual must be <= this for "converged"
   std::array<int, 3> statusCounts{0, 0, 0};  ///< no contact, stick, slip (global)

@@ -29,8 +29,7 @@ class FixedPointWatch {
     for (int i = 0; i < window_; ++i)
       if (!(changes_[n - 1 - i] > changes_[n - 2 - i])) return false;
     message_ = "the Coulomb fixed point diverges: the slip bound change grew in " + std::to_string(window_) +
-               " consecutive updates (last " + std::to_string(change) +
-               "); the friction coefficient may be too large for a unique solution";
+               " consecutive updates (last " + std::to_string(change) + ")";
     return true;
   }
   const std::string& message() const { return message_; }

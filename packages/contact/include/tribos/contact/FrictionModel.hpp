@@ -36,6 +36,12 @@ struct FrictionLaw {
   /// The coefficient of the friction capacity F N quoted in messages: the larger of F1 and F2;
   /// 0 without friction.
   double capacityCoefficient() const { return model == FrictionModel::None ? 0.0 : std::max(F1, F2); }
+  /// The friction force of a node sliding along t_j (j = 0: t1, 1: t2) under the normal force
+  /// `normalForce`: F_j lambda_nu (Coulomb), the given bound (Tresca), 0 (frictionless, tied).
+  double slidingForce(int j, double normalForce) const {
+    if (model == FrictionModel::Coulomb) return (j == 0 ? F1 : F2) * std::max(normalForce, 0.0);
+    return model == FrictionModel::Tresca ? slipBound : 0.0;
+  }
 };
 
 /// Contact/Fixed Point: Coulomb's slip bound updated after every outer iteration, or after

@@ -30,6 +30,9 @@ struct ElementStress {
   double eps[6] = {0, 0, 0, 0, 0, 0};
   double sigma[6] = {0, 0, 0, 0, 0, 0};
   double strainEnergy = 0.0;
+  /// The stress at each node of the element, extrapolated from the quadrature points
+  /// (mesh::nodalExtrapolation): varying within the element where the rule has more than one point.
+  double atNodes[mesh::kMaxElementNodes][6] = {};
 };
 ElementStress solidStress(mesh::ElementType type, const double (*x)[3], const double* u, double lambda, double mu);
 

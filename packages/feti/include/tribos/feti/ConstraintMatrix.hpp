@@ -105,6 +105,12 @@ struct ContactNode {
   std::array<bool, 2> hasTangential{false, false};  ///< T1_r, T2_r present
   double rowScale = 1.0;                   ///< the factor that made N_r unit norm (force = rowScale lambda)
   std::array<double, 2> tangentialScale{1.0, 1.0};  ///< the same for T1_r, T2_r
+  /// T1_r (j = 0) or T2_r (j = 1) absent because the slave node and its nearest master node
+  /// are held along t_j at different values: the relative tangential displacement there is
+  /// prescribed, its friction (F_j times the normal force against the slip, between the slave
+  /// and that master node) acts on held components and is added to the reactions and contact
+  /// fields after the solve (stack::addPrescribedSlipFriction).
+  std::array<bool, 2> slipPrescribed{false, false};
   /// Row of T1_r (j = 0) or T2_r (j = 1), or -1 when that row is absent.
   GO tangentialRow(int j) const {
     if (!hasTangential[j]) return -1;

@@ -28,6 +28,17 @@ void shapeFunctions(ElementType type, const double xi[3], double N[], double dN[
 /// determinant; dN as shapeFunctions gives it.
 double jacobian(ElementType type, const double (*x)[3], const double dN[][3], double J[3][3]);
 
+/// The reference coordinates of node k of a type (vertices, then mid-edge nodes).
+void referenceNode(ElementType type, int k, double xi[3]);
+
+/// Stresses at the nodes from their values at the volumeRule points, row-major E[k][q]
+/// (numNodes x number of points): the least-squares fit of the point values by the vertex
+/// (linear) shape functions of the type's family, evaluated at node k. Square, so an exact
+/// interpolation, for every type with more than one point (8 Gauss points and the trilinear
+/// functions of the hexahedron, 3 x 2 and the prism's, 4 and the linear tetrahedron's for the
+/// quadratic one, whose strain is linear); the one-point tetrahedron keeps its constant.
+const std::vector<double>& nodalExtrapolation(ElementType type);
+
 /// Volume (the sum of det J over volumeRule) and the smallest det J at the quadrature points
 /// and at the vertices, times the reference volume: a negative one marks an inverted corner.
 struct ElementMeasure {

@@ -55,7 +55,8 @@ struct SmalseSettings {
   int maxOuterIterations = 100;
   /// Stop (not converged, SmalseCounters::stalled) when ||G mu|| has not halved over this many
   /// outer iterations while above 100 epsilon: the equality G lambda = e (every body's
-  /// balance) cannot be met inside Omega, e.g. loads beyond what friction can carry. 0: never.
+  /// balance) cannot be met inside Omega, e.g. loads beyond what friction can carry; where
+  /// stallConfirmed is given, only when it confirms. 0: never.
   int stallWindow = 20;
   /// Conventional: ||A|| ||Q mu|| <= eps ||c||;  Paper: ||Q mu|| <= eps M_0 ||mu||
   /// (M_0 relative, so the paper's eps M_0 = 1e-11 needs a tolerance above round-off).
@@ -96,6 +97,11 @@ struct SmalseSettings {
   /// every rank at the same points, so it may communicate to reach one verdict; once true it
   /// must stay true. May be empty.
   std::function<bool()> stopRequested;
+  /// Asked, with the current iterate mu, when ||G mu|| stalled (stallWindow) before SMALSE-M
+  /// stops on it: a caller that can tell loads beyond what Omega admits from a slow approach
+  /// answers (the contact solver: the friction capacity against the load). Called on every
+  /// rank at the same points (collective-safe). Empty: every stall stops.
+  std::function<bool(const Vector&)> stallConfirmed;
 };
 
 struct SmalseCounters {

@@ -72,6 +72,19 @@ void addKinematicSlip(const Scene& scene, const feti::ConstraintMatrix& B,
                       const std::vector<std::array<double, 3>>& displacement, const ContactFields* before,
                       ContactFields& out);
 
+/// The friction of the tangential components whose slip is prescribed (feti::ContactNode::
+/// slipPrescribed: the slave node and its nearest master node held along t_j at different
+/// values, so no row): where this state moves the slave against that master along t_j (the
+/// increment since `before`), a node in contact slides, and the law's sliding force (F_j times
+/// its normal force) acts against the slip on the held components of the two nodes (the free
+/// tangential row carries none: contact::DualContactProblem). Added to the contact fields, the
+/// interface sums and `reaction` (the supports carry it); rank 0 (`displacement`, `reaction`:
+/// per global node). Returns the change of the status counts (no contact, stick, slip) it made.
+std::array<int, 3> addPrescribedSlipFriction(const Scene& scene, const feti::ConstraintMatrix& B,
+                                             const std::vector<std::array<double, 3>>& displacement,
+                                             const ContactFields* before, std::vector<std::array<double, 3>>& reaction,
+                                             ContactFields& out);
+
 /// The contact nodes of this rank's rows of a bonded (tied) solve: forces rowScale lambda,
 /// status stick, opening -(B u - c)_N / rowScale. `ownedLambda` and `ownedResidual` (B u - c)
 /// hold this rank's rows [B.firstRowOfRank[rank], B.firstRowOfRank[rank + 1]).

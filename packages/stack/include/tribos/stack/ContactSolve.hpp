@@ -39,6 +39,10 @@ struct LoadStepRecord {
   std::string label;            ///< "ramp r" (a proportional history), else each factor
   std::vector<std::pair<std::string, double>> factors;  ///< each load's and condition's factor, by name
   bool converged = false;
+  /// Its tries (1 + the retries of its cutbacks) and their counts, summed over them.
+  int attempts = 1;
+  int cutbacks = 0;       ///< halvings of the increment (Load Steps/Max Cutbacks)
+  double reached = 0.0;   ///< the load position reached, in steps: k when converged, less where it failed
   int outerIterations = 0;
   long long pfpApplications = 0;
   int fixedPointIterations = 0;

@@ -20,9 +20,13 @@ struct StressResults {
   /// element, weighted by det J at the quadrature points), components kStressComponents.
   std::array<std::vector<double>, 6> element;
   std::vector<double> elementVonMises;
-  /// Per node: the volume-weighted mean of the stress of the elements around it that belong
-  /// to the node's body (stresses jump across bodies; a node shared by two bodies shows the
-  /// first body's mean). Von Mises is that of the mean tensor.
+  /// Per node, within the node's body (stresses jump across bodies; a node shared by two
+  /// bodies shows the first body's): where the elements around it are linear, the stress of
+  /// the displacement gradient recovered at the node by a quadratic fit over a patch
+  /// (PatchRecovery.hpp); elsewhere (10-node tetrahedra) the volume-weighted mean of each
+  /// element's stress extrapolated to the node from its quadrature points
+  /// (fem::ElementStress::atNodes: their strain is linear, exact at the node). Von Mises is
+  /// that of the nodal tensor.
   std::array<std::vector<double>, 6> nodal;
   std::vector<double> nodalVonMises;
   double strainEnergy = 0.0;  ///< u^T K u / 2 = sum over elements of V sigma:eps / 2

@@ -1,0 +1,112 @@
+#include "HistorySolve.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <utility>
+
+#include "tribos/stack/GlobalFields.hpp"
+
+namespace tribos::stack {
+
+std::array<double, 3> loadSum(const std::vector<std::vector<double>>& f, MPI_Comm comm) {
+  std::vector<fem::SubdomainSystem> loaded(f.size());
+  for (size_t i = 0; i < f.size(); ++i) loaded[i].f = f[i];
+  return totalLoad(loaded, comm);
+}
+
+namespace {
+/// One solve of the history at `position` (in steps: k - 1 < position <= k), from the state
+/// reached at `reached`. Warm: the last converged state's multipliers (scaled to this load
+/// factor where every load follows the ramp: exact for a proportional history), the slip
+/// bound they imply and its ||PFP|| (ALGORITHMS.md 11).
+contact::ContactResult solveAt(feti::TotalFeti& feti, const feti::ConstraintMatrix& B, const ContactChain& chain,
+                               const LoadHistory& history, const HistoryRun& run, double position, double reached,
+                               const contact::ContactResult& last) {
+  const auto loads = history.loads(position);
+  *chain.load = loadSum(loads, run.comm);
+  feti.setRightHandSide(loads, history.constraintValues(position));
+  contact::WarmStart warm;
+  if (run.warmStart) warm = {last.lambda, last.counters.normA};
+  if (run.warmStart && history.proportional())
+    for (double& v : warm.lambda) v *= history.ramp(position) / history.ramp(reached);
+  return contact::solveContact(feti, B, chain.friction, chain.smalse, chain.preconditioner, warm);
+}
+
+/// Adds the counts of one try to its step's record and to the history's totals.
+void count(const contact::ContactResult& r, LoadStepRecord& record, qp::SmalseCounters& total, int& fixedPoint) {
+  ++record.attempts;
+  record.outerIterations += r.counters.outerIterations;
+  record.pfpApplications += r.counters.operatorApplications;
+  record.fixedPointIterations += r.fixedPointIterations;
+  total.outerIterations += r.counters.outerIterations;
+  total.innerIterations += r.counters.innerIterations;
+  total.operatorApplications += r.counters.operatorApplications;
+  total.seconds += r.counters.seconds;
+  fixedPoint += r.fixedPointIterations;
+}
+
+/// The console line of one try: the step, where it went (a sub-step: its position), the outcome.
+void printTry(const LoadHistory& history, int k, double position, const contact::ContactResult& r) {
+  char at[64] = "";
+  if (position != k) std::snprintf(at, sizeof at, ", cut back to %.6g of the step", position - (k - 1));
+  std::printf("  load step %d/%d (%s%s): %s, %d outer, %lld PFP; %d no contact, %d stick, %d slip\n", k,
+              history.steps(), history.label(k).c_str(), at, r.converged ? "converged" : "NOT CONVERGED",
+              r.counters.outerIterations, r.counters.operatorApplications, r.statusCounts[0], r.statusCounts[1],
+              r.statusCounts[2]);
+  std::fflush(stdout);
+}
+}  // namespace
+
+contact::ContactResult solveLoadHistory(feti::TotalFeti& feti, const feti::ConstraintMatrix& B,
+                                        const ContactChain& chain, LoadHistory& history, const HistoryRun& run,
+                                        int rank, std::vector<LoadStepRecord>& records,
+                                        const std::function<void(int, const contact::ContactResult&)>& everyStep) {
+  const int steps = history.steps();
+  contact::ContactResult result, last;  // the last try; the last converged state
+  qp::SmalseCounters total;             // the counts over every try
+  int fixedPointIterations = 0;
+  for (int k = run.firstStep; k <= steps; ++k) {
+    LoadStepRecord record{k, history.ramp(k), run.times[static_cast<size_t>(k - 1)], history.label(k),
+                          history.factors(k)};
+    record.attempts = 0;
+    double reached = k - 1;
+    int depth = 0;  // the increment is 2^-depth of a step
+    for (;;) {
+      const double position = std::min(static_cast<double>(k), reached + std::ldexp(1.0, -depth));
+      result = solveAt(feti, B, chain, history, run, position, reached, last);
+      count(result, record, total, fixedPointIterations);
+      if (rank == 0) printTry(history, k, position, result);
+      if (result.converged) {
+        reached = position;
+        if (position == k) break;
+        history.advance(feti, result.displacement, position);  // a sub-step: remembered, not written
+        last = std::move(result);
+      } else if (depth < run.maxCutbacks) {
+        ++depth;
+        ++record.cutbacks;
+      } else {
+        break;
+      }
+    }
+    record.converged = result.converged;
+    record.reached = reached;
+    record.statusCounts = result.statusCounts;
+    record.message = result.message;
+    record.kkt = result.kkt;
+    record.kktTolerance = result.kktTolerance;
+    records.push_back(record);
+    if (!result.converged || k == steps) break;  // the caller gathers the last step and names a failed one
+    everyStep(k, result);
+    history.advance(feti, result.displacement, k);
+    last = std::move(result);
+  }
+  result.counters.outerIterations = total.outerIterations;
+  result.counters.innerIterations = total.innerIterations;
+  result.counters.operatorApplications = total.operatorApplications;
+  result.counters.seconds = total.seconds;
+  result.fixedPointIterations = fixedPointIterations;
+  return result;
+}
+
+}  // namespace tribos::stack

@@ -1,0 +1,57 @@
+#pragma once
+// Internal to stack/: the steps of a quasi-static load history solved one after another on the
+// same operators (LoadHistory gives each step's right-hand side), with step cutback: a step
+// that does not converge is retried from the last converged state in halves of the increment.
+#include <mpi.h>
+
+#include <array>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "tribos/contact/ContactSolver.hpp"
+#include "tribos/feti/ConstraintMatrix.hpp"
+#include "tribos/feti/TotalFeti.hpp"
+#include "tribos/qp/SmalseM.hpp"
+#include "tribos/stack/ContactSolve.hpp"
+#include "LoadHistory.hpp"
+
+namespace tribos::stack {
+
+/// The contact solver's settings, as every solve of a scene takes them.
+struct ContactChain {
+  contact::FrictionSettings friction;
+  qp::SmalseSettings smalse;
+  feti::DualPreconditioner preconditioner = feti::DualPreconditioner::None;
+  /// The applied load of the state being solved (every rank), which friction.overloaded reads.
+  std::shared_ptr<std::array<double, 3>> load = std::make_shared<std::array<double, 3>>();
+};
+
+/// How the steps of a history run: their times (Load Steps/Times), warm or cold (Load Steps/Warm
+/// Start), the first step (after a restart: the step after the file's last) and the deepest
+/// cutback (Load Steps/Max Cutbacks: the smallest increment is 2^-maxCutbacks of a step).
+struct HistoryRun {
+  MPI_Comm comm;
+  const std::vector<double>& times;
+  bool warmStart = true;
+  int firstStep = 1;
+  int maxCutbacks = 0;
+};
+
+/// The sum of the loads `f` (owned subdomains) in x, y, z. Collective.
+std::array<double, 3> loadSum(const std::vector<std::vector<double>>& f, MPI_Comm comm);
+
+/// The steps of a load history: each a contact solve with its right-hand side, warm from the
+/// last converged state. A step that does not converge is cut back: retried from the last
+/// converged state (a step's end, or a sub-step's) at half the increment, at most
+/// run.maxCutbacks halvings deep; a converged sub-step is a state of the history (its slip is
+/// remembered) but not a result. The history stops at the first step that still fails (its last
+/// try returned). One record per step (its tries' counts summed, LoadStepRecord::attempts,
+/// cutbacks, reached); `everyStep` gathers the results of each converged step before the last
+/// (the caller gathers the last). The counters are summed over every try of every step.
+contact::ContactResult solveLoadHistory(feti::TotalFeti& feti, const feti::ConstraintMatrix& B,
+                                        const ContactChain& chain, LoadHistory& history, const HistoryRun& run,
+                                        int rank, std::vector<LoadStepRecord>& records,
+                                        const std::function<void(int, const contact::ContactResult&)>& everyStep);
+
+}  // namespace tribos::stack
