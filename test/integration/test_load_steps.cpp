@@ -108,6 +108,30 @@ TEST(loadSteps, warmStepsCostLessThanAColdOneStepSolve) {
         << "step " << k + 1;
 }
 
+TEST(loadSteps, aHistoryFactorisesTheCoarseProblemOnceAndCountsEveryStep) {
+  // Issue 43: G G^T is the same in every step, so a 10-step history factorises it once (it was
+  // released after each step's recovery and made again in the next step's first projection),
+  // and every additive count of the result is the sum of its steps' (cg_steps was the last
+  // step's).
+  const std::string path = test::sourceDir() + "/input/two_bricks.xml";
+  const auto ramped = test::solveContactScene(*Teuchos::getParametersFromXmlFile(path), path,
+                                              {"Solver/Verbose=false", "Load Steps/Number Of Steps=10"});
+  const auto cold = test::solveContactScene(*Teuchos::getParametersFromXmlFile(path), path, {"Solver/Verbose=false"});
+  const auto& r = ramped.result;
+  ASSERT_EQ(r.steps.size(), 10u);
+  EXPECT_EQ(r.profile.coarseFactorizations, 1);
+  EXPECT_EQ(cold.result.profile.coarseFactorizations, 1);
+  long long pfp = 0;
+  int outer = 0;
+  for (const auto& k : r.steps) {
+    pfp += k.pfpApplications;
+    outer += k.outerIterations;
+  }
+  EXPECT_EQ(r.contact.counters.operatorApplications, pfp);
+  EXPECT_EQ(r.contact.counters.outerIterations, outer);
+  EXPECT_GT(r.contact.counters.cgSteps, cold.result.contact.counters.cgSteps) << "the sum over 10 steps";
+}
+
 /// block_on_plate.xml with its load split: 20 MPa down held in both steps, a shear q along x in
 /// step 1 only (Load Steps/<name>/Factors); or the pressure alone in one step.
 test::SolvedContactScene blockLoadedAndUnloaded(double q, bool shear) {

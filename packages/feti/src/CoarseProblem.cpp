@@ -287,6 +287,7 @@ void CoarseProblem::factorize() {
   profile_.coarseValuesPerSolve =
       distributed_ ? distributed_->valuesOnThisRank() : (factor_ ? factor_->factorNonzeros() : 0);
   factored_ = true;
+  ++profile_.coarseFactorizations;
   profile_.coarseFactorSeconds += watch.seconds();
 }
 

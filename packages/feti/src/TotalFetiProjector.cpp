@@ -16,7 +16,9 @@ void TotalFeti::solveCoarseExactly(std::vector<double>& a) const {
   });
 }
 
-void TotalFeti::releaseCoarseFactor() const { coarse_->release(); }
+void TotalFeti::releaseCoarseFactor() const {
+  if (!keepCoarseFactor_) coarse_->release();
+}
 
 void TotalFeti::project(const DualVector& x, DualVector& y, CoarseCoordinates* ofX) const {
   // y = x - G^T (G G^T)^{-1} G x on the owned rows: x on the overlap rows (several ranks),

@@ -39,10 +39,18 @@ void count(const contact::ContactResult& r, LoadStepRecord& record, qp::SmalseCo
   record.outerIterations += r.counters.outerIterations;
   record.pfpApplications += r.counters.operatorApplications;
   record.fixedPointIterations += r.fixedPointIterations;
-  total.outerIterations += r.counters.outerIterations;
-  total.innerIterations += r.counters.innerIterations;
-  total.operatorApplications += r.counters.operatorApplications;
-  total.seconds += r.counters.seconds;
+  const qp::SmalseCounters& c = r.counters;
+  total.outerIterations += c.outerIterations;
+  total.innerIterations += c.innerIterations;
+  total.cgSteps += c.cgSteps;
+  total.expansionSteps += c.expansionSteps;
+  total.proportioningSteps += c.proportioningSteps;
+  total.operatorApplications += c.operatorApplications;
+  total.preconditionerApplications += c.preconditionerApplications;
+  total.seconds += c.seconds;
+  total.operatorSeconds += c.operatorSeconds;
+  total.productSeconds += c.productSeconds;
+  total.preconditionerSeconds += c.preconditionerSeconds;
   fixedPoint += r.fixedPointIterations;
 }
 
@@ -63,6 +71,7 @@ contact::ContactResult solveLoadHistory(feti::TotalFeti& feti, const feti::Const
                                         int rank, std::vector<LoadStepRecord>& records,
                                         const std::function<void(int, const contact::ContactResult&)>& everyStep) {
   const int steps = history.steps();
+  feti.keepCoarseFactor(true);  // G G^T is the same in every step: factorised once
   contact::ContactResult result, last;  // the last try; the last converged state
   qp::SmalseCounters total;             // the counts over every try
   int fixedPointIterations = 0;
@@ -101,11 +110,22 @@ contact::ContactResult solveLoadHistory(feti::TotalFeti& feti, const feti::Const
     history.advance(feti, result.displacement, k);
     last = std::move(result);
   }
-  result.counters.outerIterations = total.outerIterations;
-  result.counters.innerIterations = total.innerIterations;
-  result.counters.operatorApplications = total.operatorApplications;
-  result.counters.seconds = total.seconds;
+  // Every additive count of the summary is the sum over every try of every step; the
+  // residuals, ||A|| and the flags stay the last try's.
+  qp::SmalseCounters& c = result.counters;
+  c.outerIterations = total.outerIterations;
+  c.innerIterations = total.innerIterations;
+  c.cgSteps = total.cgSteps;
+  c.expansionSteps = total.expansionSteps;
+  c.proportioningSteps = total.proportioningSteps;
+  c.operatorApplications = total.operatorApplications;
+  c.preconditionerApplications = total.preconditionerApplications;
+  c.seconds = total.seconds;
+  c.operatorSeconds = total.operatorSeconds;
+  c.productSeconds = total.productSeconds;
+  c.preconditionerSeconds = total.preconditionerSeconds;
   result.fixedPointIterations = fixedPointIterations;
+  feti.keepCoarseFactor(false);
   return result;
 }
 

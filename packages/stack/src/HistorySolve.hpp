@@ -48,7 +48,8 @@ std::array<double, 3> loadSum(const std::vector<std::vector<double>>& f, MPI_Com
 /// remembered) but not a result. The history stops at the first step that still fails (its last
 /// try returned). One record per step (its tries' counts summed, LoadStepRecord::attempts,
 /// cutbacks, reached); `everyStep` gathers the results of each converged step before the last
-/// (the caller gathers the last). The counters are summed over every try of every step.
+/// (the caller gathers the last). The counters are summed over every try of every step. G G^T
+/// is factorised once for the whole history (TotalFeti::keepCoarseFactor).
 contact::ContactResult solveLoadHistory(feti::TotalFeti& feti, const feti::ConstraintMatrix& B,
                                         const ContactChain& chain, LoadHistory& history, const HistoryRun& run,
                                         int rank, std::vector<LoadStepRecord>& records,

@@ -24,6 +24,7 @@ nlohmann::json profileJson(const feti::OperatorProfile& p) {
           {"coarse_solve_s", p.coarseSolveSeconds},
           {"preconditioner_s", p.preconditionerSeconds},
           {"coarse_factor_s", p.coarseFactorSeconds},
+          {"coarse_factorizations", p.coarseFactorizations},
           {"rigid_coefficients_s", p.rigidCoefficientsSeconds},
           {"coarse_factor_nonzeros", p.coarseFactorNonzeros},
           {"coarse_subtrees", p.coarseSubtrees},

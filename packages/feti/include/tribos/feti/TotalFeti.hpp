@@ -106,6 +106,7 @@ struct OperatorProfile {
   double coarseSolveSeconds = 0.0;     ///< (G G^T)^{-1} a
   double preconditionerSeconds = 0.0;  ///< B K B^T or B S B^T
   double coarseFactorSeconds = 0.0;    ///< assembly + factorisation of G G^T
+  int coarseFactorizations = 0;        ///< factorisations of G G^T (a released factor is made again)
   /// rigidBodyCoefficients: F lambda, G_I (F lambda - d~)_I, G_I G_I^T assembled, factorised and
   /// solved (contact), or the exact coarse solve (all rows active)
   double rigidCoefficientsSeconds = 0.0;
@@ -177,7 +178,12 @@ class TotalFeti {
   /// thousands of subdomains: doc/measurements/scalability.md), for a caller done with projections,
   /// before the factor of G_I G_I^T of rigidBodyCoefficients(lambda, mask). A later coarse
   /// solve factorises G G^T again (the same bits; collective, as every coarse solve is).
+  /// A no-op while keepCoarseFactor(true): a load history, whose next step projects again.
   void releaseCoarseFactor() const;
+  /// Keep the factor of G G^T through releaseCoarseFactor (a history: G G^T does not change
+  /// between its steps, so it is factorised once, at the cost of holding it beside
+  /// G_I G_I^T's during each step's recovery).
+  void keepCoarseFactor(bool keep) { keepCoarseFactor_ = keep; }
   /// y = P x = x - G^T (G G^T)^{-1} G x (y may be x). With `ofX`, also the coordinates
   /// of Q x = x - P x it computes on the way: G x and (G G^T)^{-1} G x (the bits of
   /// coarseCoordinates(x)), so that a caller who needs them does not compute them again.
@@ -332,6 +338,7 @@ class TotalFeti {
 
   std::unique_ptr<CoarseRows> G_;           ///< G on the owned rows
   std::unique_ptr<CoarseProblem> coarse_;   ///< G G^T, its factor and solves (CoarseProblem.hpp)
+  bool keepCoarseFactor_ = false;           ///< releaseCoarseFactor keeps it (keepCoarseFactor)
   /// Coarse work vectors of project() and solveCoarse(), allocated once (length l).
   mutable std::vector<double> coarseLocal_, coarseVector_;
   std::vector<double> e_;
