@@ -33,6 +33,10 @@ contact::ContactResult solveAt(feti::TotalFeti& feti, const feti::ConstraintMatr
   return contact::solveContact(feti, B, chain.friction, chain.smalse, chain.preconditioner, warm);
 }
 
+/// Whether the solve's budget (Solver/Max Seconds) is spent: SMALSE-M's stop request, asked
+/// between tries and steps too. Collective, as that request is.
+bool budgetSpent(const ContactChain& chain) { return chain.smalse.stopRequested && chain.smalse.stopRequested(); }
+
 /// Adds the counts of one try to its step's record and to the history's totals.
 void count(const contact::ContactResult& r, LoadStepRecord& record, qp::SmalseCounters& total, int& fixedPoint) {
   ++record.attempts;
@@ -91,7 +95,7 @@ contact::ContactResult solveLoadHistory(feti::TotalFeti& feti, const feti::Const
         if (position == k) break;
         history.advance(feti, result.displacement, position);  // a sub-step: remembered, not written
         last = std::move(result);
-      } else if (depth < run.maxCutbacks) {
+      } else if (depth < run.maxCutbacks && !budgetSpent(chain)) {
         ++depth;
         ++record.cutbacks;
       } else {
@@ -106,6 +110,13 @@ contact::ContactResult solveLoadHistory(feti::TotalFeti& feti, const feti::Const
     record.kktTolerance = result.kktTolerance;
     records.push_back(record);
     if (!result.converged || k == steps) break;  // the caller gathers the last step and names a failed one
+    if (budgetSpent(chain)) {
+      // Steps that each converge at once never reach SMALSE-M's budget test: the history stops
+      // here, after a converged step (its results the last; a restart continues from it).
+      result.converged = false;
+      result.message = "stopped after this step: the budget ran out";
+      break;
+    }
     everyStep(k, result);
     history.advance(feti, result.displacement, k);
     last = std::move(result);

@@ -48,7 +48,9 @@ std::array<double, 3> loadSum(const std::vector<std::vector<double>>& f, MPI_Com
 /// remembered) but not a result. The history stops at the first step that still fails (its last
 /// try returned). One record per step (its tries' counts summed, LoadStepRecord::attempts,
 /// cutbacks, reached); `everyStep` gathers the results of each converged step before the last
-/// (the caller gathers the last). The counters are summed over every try of every step. G G^T
+/// (the caller gathers the last). A spent budget (Solver/Max Seconds) stops the history after
+/// the step it ends in, not converged, and is never cut back. The counters are summed over
+/// every try of every step. G G^T
 /// is factorised once for the whole history (TotalFeti::keepCoarseFactor).
 contact::ContactResult solveLoadHistory(feti::TotalFeti& feti, const feti::ConstraintMatrix& B,
                                         const ContactChain& chain, LoadHistory& history, const HistoryRun& run,
