@@ -183,24 +183,6 @@ std::vector<std::string> inputBase() {
   return base;
 }
 
-TEST(ThreeBodiesInput, aSlaveNodePairedTwiceKeepsTheRowsOfOneInterface) {
-  // The rule for corners (a body on a floor and against a wall): the smallest gap, the earlier
-  // interface on a tie. Here the same surfaces twice, so the later interface keeps nothing.
-  const test::ExodusScene input(threeBodies(true), with(inputBase(), {"Contact/a/Slave Side Set=block_z0",
-                                                                     "Contact/a/Master Side Set=foundation_z1",
-                                                                     "Contact/b/Slave Side Set=block_z0",
-                                                                     "Contact/b/Master Side Set=foundation_z1"}));
-  const auto scene = input.build();
-  const auto B = feti::buildConstraintMatrix(scene.mesh, scene.decomposition, stack::constraintSpec(scene), 1);
-  ASSERT_EQ(B.interfaces.size(), 2u);
-  EXPECT_EQ(B.interfaces[0].pairedSlaveNodes, 25);
-  EXPECT_EQ(B.interfaces[0].sharedSlaveNodes, 0);
-  EXPECT_EQ(B.interfaces[1].pairedSlaveNodes, 0);
-  EXPECT_EQ(B.interfaces[1].sharedSlaveNodes, 25);
-  EXPECT_EQ(B.contact.size(), 25u);
-  for (const auto& node : B.contact) EXPECT_EQ(node.interface, 0);
-}
-
 TEST(ThreeBodiesBonded, aBondedInterfaceTiesTheSurfacesWhereTheyAre) {
   // The punch lifted 0.1 above the block and bonded to it: tied in place, the gap is kept, and
   // (matching meshes, node-to-node rows, the punch only translated) the displacements are
@@ -231,6 +213,19 @@ TEST(ThreeBodiesInput, badInterfacesAreInputErrorsNamingThem) {
   EXPECT_TRUE(contains(message, "Contact/b (foundation_z1 -> block_z0) models the contact of Contact/a (block_z0 -> "
                                 "foundation_z1) again with slave and master swapped"))
       << message;
+  // The same contact twice (issue 44: the later interface got no rows, exit 0), with one law or
+  // another on it.
+  for (const char* law : {"Coulomb", "Bonded"}) {
+    message = inputError(with(base, {"Contact/a/Slave Side Set=block_z0", "Contact/a/Master Side Set=foundation_z1",
+                                     "Contact/b/Slave Side Set=block_z0", "Contact/b/Master Side Set=foundation_z1",
+                                     std::string("Contact/b/Friction Model=") + law}));
+    EXPECT_TRUE(contains(message, "Contact/b (block_z0 -> foundation_z1) models the contact of Contact/a (block_z0 -> "
+                                  "foundation_z1) again"))
+        << message;
+  }
+  // An interface sublist without a name (its results would be the flat list's contact_...).
+  message = inputError(with(base, {"Contact//Slave Side Set=block_z0", "Contact//Master Side Set=foundation_z1"}));
+  EXPECT_TRUE(contains(message, "an interface sublist has an empty name")) << message;
   // Self-contact.
   message = inputError(with(base, {"Contact/self/Slave Side Set=block_z0", "Contact/self/Master Side Set=block_z1"}));
   EXPECT_TRUE(contains(message, "Contact/self (block_z0 -> block_z1): both surfaces have faces on element block "

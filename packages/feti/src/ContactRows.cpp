@@ -250,12 +250,20 @@ void refuseContactsModelledTwice(const mesh::Mesh& mesh, const std::vector<Conta
     master.push_back(geometry::sideSetNodes(mesh, mesh.sideSet(spec.masterSideSet)));
   }
   for (size_t j = 0; j < interfaces.size(); ++j)
-    for (size_t i = 0; i < j; ++i)
+    for (size_t i = 0; i < j; ++i) {
       if (aFaceWithin(mesh, interfaces[j].slaveSideSet, master[i]) &&
           aFaceWithin(mesh, interfaces[j].masterSideSet, slave[i]))
         throw core::InputError(interfaces[j].label() + " models the contact of " + interfaces[i].label() +
                                " again with slave and master swapped: give each contact once (a double pass "
                                "would split its forces between the two at random)");
+      // The same faces on both sides again (the same pair, another law on it, or the same
+      // faces under other set names): the later interface would get no rows (issue 44).
+      if (aFaceWithin(mesh, interfaces[j].slaveSideSet, slave[i]) &&
+          aFaceWithin(mesh, interfaces[j].masterSideSet, master[i]))
+        throw core::InputError(interfaces[j].label() + " models the contact of " + interfaces[i].label() +
+                               " again (faces of both its surfaces are that interface's): give each contact once, "
+                               "with one law");
+    }
 }
 
 /// The master side of every pair of an interface (dual mortar or node-to-surface weights).

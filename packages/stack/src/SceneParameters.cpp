@@ -370,6 +370,9 @@ std::vector<ContactInterface> readContactInterfaces(const ParameterList& contact
     if (!contactList.entry(it).isList()) continue;
     ContactInterface one = flat;
     one.rows.name = contactList.name(it);
+    // Its name prefixes its results (<name>_normal_force; the flat list's are contact_...).
+    core::requireInput(!one.rows.name.empty(), source + ": Contact: an interface sublist has an empty name: name it "
+                                                         "(its results are called <name>_normal_force, ...)");
     one.rows.slaveSideSet = one.rows.masterSideSet = "";
     const ParameterList& list = contactList.sublist(one.rows.name);
     readFrictionLaw(list, one.law);
