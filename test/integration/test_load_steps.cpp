@@ -212,7 +212,10 @@ TEST(loadSteps, aTableForNoLoadOrOfTheWrongLengthIsAnInputError) {
            {{"Load Steps/Number Of Steps=3", "Load Steps/press/Factors={1, 0}"},
             "Load Steps/press/Factors: 2 values for Load Steps/Number Of Steps = 3"},
            {{"Load Steps/Number Of Steps=2", "Contact/Friction Model=Bonded"},
-            "Load Steps: the scene is linear"}}) {
+            "Load Steps: the scene is linear"},
+           // Issue 44: each within range, their product absurd (it was exit 3, "non-finite").
+           {{"Load Steps/Number Of Steps=2", "Loads/press/Traction={0, 0, -1e60}", "Load Steps/press/Factors={1, 1e60}"},
+            "Load Steps/press/Factors: step 2's factor 1e+60 times Loads/press's largest value 1e+60 is beyond 1e+100"}}) {
     test::SolvedContactScene s;
     s.params = *Teuchos::getParametersFromXmlFile(path);
     const auto valid = stack::sceneValidParameters();

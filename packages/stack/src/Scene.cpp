@@ -11,6 +11,7 @@
 #include "tribos/core/Errors.hpp"
 #include "tribos/core/Format.hpp"
 #include "tribos/core/Timer.hpp"
+#include "tribos/core/Validators.hpp"
 #include "tribos/mesh/BoundaryFaces.hpp"
 #include "tribos/mesh/ExodusIO.hpp"
 #include "tribos/mesh/TwoBricks.hpp"
@@ -198,6 +199,36 @@ void readLoads(const ParameterList& list, const std::string& source, bool paperD
     }
   }
 }
+/// The largest magnitude a load gives (traction components, pressure, volume force) or a
+/// displacement condition prescribes.
+double largestValue(const fem::Loads& loads) {
+  double largest = 0.0;
+  for (const auto& t : loads.tractions) {
+    for (double p : t.p) largest = std::max(largest, std::abs(p));
+    largest = std::max(largest, std::abs(t.pressure));
+  }
+  for (const auto& b : loads.volumeForce)
+    for (double v : b) largest = std::max(largest, std::abs(v));
+  return largest;
+}
+double largestValue(const feti::DisplacementCondition& condition) {
+  double largest = 0.0;
+  for (double v : condition.value) largest = std::max(largest, std::abs(v));
+  return largest;
+}
+
+/// A factor table times the values it scales stays within the magnitudes every input has
+/// (core::kMaxMagnitude): beyond, the step's loads are absurd (issue 44: a table of 1e60 on a
+/// traction of 1e60 ended the solve "non-finite", exit 3, where an absurd input is exit 2).
+void requireFiniteProducts(const std::vector<double>& factors, double largest, const std::string& table,
+                           const std::string& scaled) {
+  for (size_t k = 0; k < factors.size(); ++k)
+    core::requireInput(!(std::abs(factors[k]) * largest > core::kMaxMagnitude),
+                       table + ": step " + std::to_string(k + 1) + "'s factor " + core::formatNumber(factors[k]) +
+                           " times " + scaled + "'s largest value " + core::formatNumber(largest) +
+                           " is beyond " + core::formatNumber(core::kMaxMagnitude) + " (absurd magnitudes)");
+}
+
 /// Load Steps: the number of steps, each named load's and displacement condition's factors (the
 /// ramp k / N unless a Load Steps/<name> table gives them; the name must be a Loads/<name> or a
 /// Boundary/<name>, the table's length N) and the steps' times.
@@ -244,6 +275,8 @@ void readLoadSteps(const ParameterList& list, const std::string& source, Scene& 
     auto& target = isLoad ? scene.loadFactors[load - scene.namedLoads.begin()]
                           : scene.displacementFactors[condition - scene.displacementConditions.begin()];
     target.assign(factors.begin(), factors.end());
+    requireFiniteProducts(target, isLoad ? largestValue(load->second) : largestValue(*condition),
+                          where + "/Factors", isLoad ? "Loads/" + name : "Boundary/" + name);
     scene.loadHistory = true;
   }
   scene.loadHistory = scene.loadHistory || n > 1;
