@@ -5,7 +5,9 @@
 /// - A regular file (or a name not yet taken) is written under a temporary name unique to the
 ///   run, created exclusively in the target's directory (two runs with the same target never
 ///   share one), and renamed over the target only once complete; a write that fails removes
-///   the temporary file, so no partial file is left and the earlier file stays.
+///   the temporary file, so no partial file is left and the earlier file stays; so does
+///   SIGINT, SIGTERM or SIGHUP during the write (the temporary file is removed, then the
+///   signal ends the run as it would have).
 /// - A character device or a FIFO (/dev/null, a pipe to another program) is written in place,
 ///   never replaced; a FIFO is opened when checked, without blocking, so that one with no
 ///   reader is refused before any work instead of hanging at the end, and a reader that stops
