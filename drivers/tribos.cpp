@@ -234,7 +234,10 @@ int run(int argc, char** argv, int rank) {
   if (const int threads = params.sublist("Parallel").get<int>("Threads"); threads > 0)
     core::setNumThreads(threads);
   const std::string meshFile = stack::meshFilePath(params, cl.input);
-  driver::ResultFiles files = driver::prepareResultFiles(cl, {cl.input, meshFile}, rank);
+  // A restart file is an input too (issue 44: --output equal to it overwrote the steps it
+  // restarted from).
+  const std::string restartFile = params.sublist("Load Steps").get<std::string>("Restart From");
+  driver::ResultFiles files = driver::prepareResultFiles(cl, {cl.input, meshFile, restartFile}, rank);
   const core::Deadline deadline(params.sublist("Solver").get<double>("Max Seconds"), total);
   const RunStart start{std::move(cl), std::move(params), meshFile, std::move(files), deadline, total};
   try {

@@ -275,5 +275,9 @@ TEST(resultOutputs, aHistoryRestartedFromItsResultEndsWhereTheWholeHistoryDoes) 
     EXPECT_NE(run.output.find(expected), std::string::npos) << run.output;
     EXPECT_NE(run.output.find("Load Steps/Restart From"), std::string::npos) << run.output;
   }
-  std::filesystem::remove_all(dir);
+  // The restart file as --output (issue 44: exit 0, the steps restarted from overwritten).
+  run = runCommand(scene + four + " --set 'Load Steps/Restart From=" + (dir / "first.exo").string() + "' --output " +
+                   path("first.exo"));
+  EXPECT_EQ(run.status, 2) << run.output;
+  EXPECT_NE(run.output.find("(--output): is an input of this run"), std::string::npos) << run.output;
 }
