@@ -183,6 +183,34 @@ std::vector<std::string> inputBase() {
   return base;
 }
 
+TEST(ThreeBodiesInput, aSlaveNodeOnTwoInterfacesKeepsTheRowsOfOne) {
+  // The rule for corners: a block on a floor and against a wall, its edge x = 0, z = 0 on
+  // both slave surfaces. Each of its nodes is paired with both masters at gap 0; the smaller
+  // gap wins, the earlier interface on a tie: the floor keeps the 3 edge nodes, the wall
+  // counts them as shared, and no node has rows on both.
+  const auto block = test::boxMesh({0.0, 0.0, 0.0}, {1.0, 1.0, 1.0}, {2, 2, 2}, "block");
+  const auto floor = test::boxMesh({0.0, 0.0, -1.0}, {2.0, 1.0, 1.0}, {2, 1, 1}, "floor");
+  const auto wall = test::boxMesh({-1.0, 0.0, 0.0}, {1.0, 1.0, 2.0}, {1, 1, 2}, "wall");
+  std::vector<std::string> o = {"Mesh/Subdomains=3", "Contact/floor/Slave Side Set=block_z0",
+                                "Contact/floor/Master Side Set=floor_z1", "Contact/wall/Slave Side Set=block_x0",
+                                "Contact/wall/Master Side Set=wall_x1"};
+  for (const char* body : {"block", "floor", "wall"}) {
+    o.push_back(std::string("Materials/") + body + "/Young Modulus=70000");
+    o.push_back(std::string("Materials/") + body + "/Poisson Ratio=0.3");
+  }
+  const test::ExodusScene input(test::mergeMeshes(test::mergeMeshes(block, floor), wall), o);
+  const auto scene = input.build();
+  const auto B = feti::buildConstraintMatrix(scene.mesh, scene.decomposition, stack::constraintSpec(scene), 1);
+  ASSERT_EQ(B.interfaces.size(), 2u);
+  EXPECT_EQ(B.interfaces[0].pairedSlaveNodes, 9);
+  EXPECT_EQ(B.interfaces[0].sharedSlaveNodes, 0);
+  EXPECT_EQ(B.interfaces[1].pairedSlaveNodes, 6);
+  EXPECT_EQ(B.interfaces[1].sharedSlaveNodes, 3);
+  std::vector<int> rows(scene.mesh.numNodes(), 0);
+  for (const auto& node : B.contact) ++rows[node.slaveNode];
+  EXPECT_EQ(*std::max_element(rows.begin(), rows.end()), 1);
+}
+
 TEST(ThreeBodiesBonded, aBondedInterfaceTiesTheSurfacesWhereTheyAre) {
   // The punch lifted 0.1 above the block and bonded to it: tied in place, the gap is kept, and
   // (matching meshes, node-to-node rows, the punch only translated) the displacements are
