@@ -6,7 +6,7 @@
 # A 20-step history of the paper's bricks at 4x2x2/6 (8 450 nodes, a result of about 50 MB)
 # is signalled as soon as its temporary file appears; the run must end by that signal (status
 # 128 + signal) with neither the temporary file nor a result left. Tries again (up to 5 times)
-# where the write finished before the signal landed.
+# where the write finished before the signal landed; skipped (77) if it never lands.
 # Usage: signal_during_write_test.sh TRIBOS SOURCE_DIR SIGNAL (TERM or HUP)
 set -u
 tribos=$1 source=$2 signal=$3
@@ -24,7 +24,7 @@ for attempt in 1 2 3 4 5; do
       # Past the trial file of the start (created and removed at once): a file that grows.
       if [ -s "$f" ]; then kill "-$signal" "$pid"; caught=yes; break 2; fi
     done
-    sleep 0.01
+    sleep 0.002
   done
   wait "$pid"
   status=$?
@@ -36,5 +36,6 @@ for attempt in 1 2 3 4 5; do
   [ -z "$left" ] || { echo "FAIL: left behind: $left"; exit 1; }
   exit 0
 done
-echo "FAIL: never caught the write in 5 attempts"
-exit 1
+# A machine that writes the result faster than the polling sees it: nothing was checked.
+echo "skipped: the write never lasted long enough to be signalled (5 attempts)"
+exit 77
