@@ -113,13 +113,21 @@ TEST_F(Stability, coulombConvergesFromNoFrictionToFullStick) {
 
 TEST_F(Stability, withoutAGapTheSolutionScalesLinearlyWithTheLoad) {
   // u(s f) = s u(f): the reactions scale by s, the strain energy by s^2, to the tolerance
-  // (eps = 1e-5; measured deviations in doc/stability.md).
+  // (eps = 1e-5; measured deviations in doc/stability.md). At s = 1e6 the moduli are scaled by s
+  // too (u(s f, s E) = u(f, E), the energy by s): the paper's load times 1e6 on its steel moves
+  // the bricks by 340 mm, through each other, which the check after the solve rightly calls
+  // not converged (issue 41); the same magnitudes of force and stiffness stay tested.
   const auto unit = solve(scaledPaperLoads("1"));
   expectConverged(unit, "s = 1");
   for (const std::string s : {"1e-6", "1e6"}) {
-    const auto scaled = solve(scaledPaperLoads(s));
-    expectConverged(scaled, "s = " + s);
     const double k = std::stod(s);
+    const bool stiffened = k > 1.0;
+    std::string sets = scaledPaperLoads(s);
+    if (stiffened)  // the paper's Lame constants (stack/Scene.cpp) times s
+      sets += " --set 'Materials/aluminium/Lame Lambda=2.792e10' --set 'Materials/aluminium/Lame Mu=2.593e10'"
+              " --set 'Materials/steel/Lame Lambda=6.360e10' --set 'Materials/steel/Lame Mu=8.301e10'";
+    const auto scaled = solve(sets);
+    expectConverged(scaled, "s = " + s);
     double deviation = 0.0, size = 0.0;
     for (const auto& [set, force] : unit.summary.at("reactions").items())
       for (int c = 0; c < 3; ++c) {
@@ -128,7 +136,7 @@ TEST_F(Stability, withoutAGapTheSolutionScalesLinearlyWithTheLoad) {
         size = std::max(size, std::abs(b));
       }
     EXPECT_LE(deviation / size, 1e-3) << "s = " << s;
-    const double energy = scaled.summary.at("strain_energy").get<double>() / (k * k);
+    const double energy = scaled.summary.at("strain_energy").get<double>() / (stiffened ? k : k * k);
     EXPECT_NEAR(energy / unit.summary.at("strain_energy").get<double>(), 1.0, 1e-3) << "s = " << s;
   }
 }

@@ -235,6 +235,7 @@ class CholmodCholesky final : public SparseCholesky {
     const bool failed = !L || common_.status != CHOLMOD_OK || L->minor < L->n || !L->is_ll;
     if (consumed) *consumed = fem::CsrMatrix{};  // S pointed into it: not read from here on
     if (!failed) {
+      reciprocalCondition_ = cholmod_rcond(L, &common_);
       packed_ = packFactor(*L);  // the solves use the packed copy only
       // The threshold depends on the factor alone: every layout takes the same path
       // (measured in doc/measurements/coarse_problem.md).
@@ -257,6 +258,7 @@ class CholmodCholesky final : public SparseCholesky {
   }
 
   const std::vector<LO>& permutation() const override { return packed_.permutation(); }
+  double reciprocalCondition() const override { return reciprocalCondition_; }
   void solveInPlace(double* v) const override { packed_.solvePermuted(v, work_.data()); }
   void setSparseColumns(const std::vector<LO>& columns) override { reach_ = packed_.reach(columns); }
   void solveInPlaceOnColumns(double* v) const override {
@@ -284,6 +286,7 @@ class CholmodCholesky final : public SparseCholesky {
   bool subtreeSolve_ = false;
   mutable cholmod_common common_{};
   PackedFactor packed_;
+  double reciprocalCondition_ = 1.0;  ///< cholmod_rcond of the last factor
   PackedFactor::Ranges reach_;  ///< of setSparseColumns (empty: not set)
   mutable std::vector<double> work_;
   LO n_ = 0;

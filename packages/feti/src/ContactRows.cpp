@@ -57,7 +57,8 @@ ContactNode contactFrame(const geometry::ContactPair& pair, const geometry::Mort
   node.otherSlaveWeights = masterSide.slaveWeights;
   node.mortar = !masterSide.nodeToSurface;
   node.normal = symmetryPlaneNormal(pair.normal, prescribed, pair.slaveNode);
-  node.gap = masterSide.gap;
+  node.interference = spec.tied ? 0.0 : spec.interference;
+  node.gap = masterSide.gap - node.interference;
   node.t1 = tangent(spec.t1Direction, node.normal);
   node.t2 = cross(node.normal, node.t1);  // right-handed (nu, t1, t2)
   return node;
@@ -310,6 +311,8 @@ ContactInterfaceRows interfaceRows(const mesh::Mesh& mesh, const ContactInterfac
   found.unpairedSample.assign(search.unpaired.begin(),
                               search.unpaired.begin() + std::min(kSample, search.unpaired.size()));
   found.searchDistance = spec.searchDistance;
+  found.interference = spec.interference;
+  for (const auto& pair : search.pairs) found.pairedInside += pair.distance > spec.searchDistance;
   // The initial overlaps of the rows (weighted where mortar).
   for (const auto& side : masterSides) {
     if (side.gap < -roundOff) {

@@ -48,7 +48,7 @@ ContactSearchResult searchContactPairs(const mesh::Mesh& mesh, const std::string
                            std::to_string(slave + 1) + " at " + str(xs) +
                            " have a zero summed normal (degenerate or folded surface)");
     // Nearest face within the search distance; ties go to the lower face index.
-    const auto projection = master.project(xs, searchDistance, &result.facesTested);
+    const auto projection = master.pairingProjection(xs, searchDistance, &result.facesTested);
     if (!projection.outcome.settled() && result.unsettledProjections++ == 0)
       result.firstUnsettled = nodeAt(slave, xs) + ": " + describe(projection.outcome);
     if (projection.face < 0) {

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "TriangleTree.hpp"
 #include "VectorMath.hpp"
@@ -35,6 +36,22 @@ double deviationFromPieces(const mesh::FaceNodes& face, const FaceCoordinates& x
   }
   return bow;
 }
+
+/// Per face, the other faces that share a node with it (ascending).
+std::vector<std::vector<LO>> faceNeighbours(const std::vector<mesh::FaceNodes>& faces) {
+  std::map<LO, std::vector<LO>> facesAt;
+  for (size_t f = 0; f < faces.size(); ++f)
+    for (LO n : faces[f]) facesAt[n].push_back(static_cast<LO>(f));
+  std::vector<std::vector<LO>> neighbours(faces.size());
+  for (size_t f = 0; f < faces.size(); ++f) {
+    for (LO n : faces[f])
+      for (LO g : facesAt[n])
+        if (g != static_cast<LO>(f)) neighbours[f].push_back(g);
+    std::sort(neighbours[f].begin(), neighbours[f].end());
+    neighbours[f].erase(std::unique(neighbours[f].begin(), neighbours[f].end()), neighbours[f].end());
+  }
+  return neighbours;
+}
 }  // namespace
 
 MasterSurface::MasterSurface(const mesh::Mesh& mesh, const std::string& masterSideSet) : name_(masterSideSet) {
@@ -56,6 +73,14 @@ MasterSurface::MasterSurface(const mesh::Mesh& mesh, const std::string& masterSi
   }
   tree_ = std::make_unique<TriangleTree>(std::move(triangles));
   nodalNormal_ = unitNodalNormals(mesh, set);
+  neighbours_ = faceNeighbours(faceNodes_);
+  faceSize_.resize(faceNodes_.size());
+  for (size_t f = 0; f < faceNodes_.size(); ++f) {
+    for (int a = 0; a < faceNodes_[f].numNodes; ++a)
+      for (int b = 0; b < a; ++b)
+        faceSize_[f] = std::max(faceSize_[f], norm(minus(faceCoords_[f][a], faceCoords_[f][b])));
+    largestFaceSize_ = std::max(largestFaceSize_, faceSize_[f]);
+  }
 }
 
 MasterSurface::~MasterSurface() = default;
@@ -123,6 +148,18 @@ MasterSurface::Projection MasterSurface::onFace(LO triangle, const std::array<do
   best.distance = norm(minus(best.point, x));
   none.outcome = best.outcome;
   return best.distance <= radius ? best : none;
+}
+
+MasterSurface::Projection MasterSurface::pairingProjection(const Vec3& x, double searchDistance,
+                                                           long long* facesTested) const {
+  const Projection p = project(x, std::max(searchDistance, largestFaceSize_), facesTested);
+  if (p.face < 0 || p.distance <= searchDistance) return p;
+  Projection none;
+  none.outcome = p.outcome;
+  if (p.distance > faceSize_[p.face]) return none;
+  const Vec3 n = normalAt(p);  // outward of the master body
+  const double depth = -dot(minus(x, p.point), n);
+  return depth >= kInsideAlongNormal * p.distance ? p : none;
 }
 
 Vec3 MasterSurface::normalAt(const Projection& p) const {

@@ -50,19 +50,16 @@ std::vector<CompositePoint> compositeRule() {
 /// The same sub-triangles with the 6-point rule exact for quartics (Dunavant 1985) on each:
 /// for 6-node slave triangles, whose dual basis times an affine master field is cubic.
 std::vector<CompositePoint> compositeQuarticRule() {
-  const double a = 0.445948490915965, wa = 0.223381589678011, b = 0.091576213509771, wb = 0.109951743655322;
-  const double points[6][3] = {{a, a, 1 - 2 * a}, {a, 1 - 2 * a, a}, {1 - 2 * a, a, a},
-                               {b, b, 1 - 2 * b}, {b, 1 - 2 * b, b}, {1 - 2 * b, b, b}};
   std::vector<CompositePoint> rule;
   const int n = kSubdivisions;
   auto addTriangle = [&](const std::array<std::array<double, 2>, 3>& corner) {
-    for (int k = 0; k < 6; ++k) {
+    for (const TrianglePoint& q : quarticTriangleRule()) {
       double s = 0.0, t = 0.0;
       for (int c = 0; c < 3; ++c) {
-        s += points[k][c] * corner[c][0];
-        t += points[k][c] * corner[c][1];
+        s += q.lambda[c] * corner[c][0];
+        t += q.lambda[c] * corner[c][1];
       }
-      rule.push_back({{1.0 - s - t, s, t}, (k < 3 ? wa : wb) / (n * n)});
+      rule.push_back({{1.0 - s - t, s, t}, q.weight / (n * n)});
     }
   };
   for (int i = 0; i < n; ++i)
@@ -72,26 +69,6 @@ std::vector<CompositePoint> compositeQuarticRule() {
       if (i + j + 1 < n) addTriangle({{{x + h, y}, {x + h, y + h}, {x, y + h}}});
     }
   return rule;
-}
-
-double triangleArea(const Vec3& a, const Vec3& b, const Vec3& c);
-
-/// A 3-node triangle: the composite rule, psi_v = 4 phi_v - 1 (Wohlmuth's linear dual basis).
-std::vector<SlavePoint> trianglePoints(const std::array<Vec3, 3>& x, const std::vector<CompositePoint>& rule) {
-  const double area = triangleArea(x[0], x[1], x[2]);
-  std::vector<SlavePoint> points;
-  points.reserve(rule.size());
-  for (const auto& q : rule) {
-    SlavePoint s{{0.0, 0.0, 0.0}, q.weight * area, {}, {}};
-    for (int v = 0; v < 3; ++v)
-      for (int d = 0; d < 3; ++d) s.x[d] += q.lambda[v] * x[v][d];
-    for (int v = 0; v < 3; ++v) {
-      s.phi[v] = q.lambda[v];
-      s.psi[v] = 4.0 * q.lambda[v] - 1.0;
-    }
-    points.push_back(s);
-  }
-  return points;
 }
 
 /// The coefficients A = D M^{-1} of a dual basis psi = A phi from the face's moments D_k =
@@ -197,59 +174,71 @@ std::array<std::array<double, 6>, 6> sixNodeDualCoefficients(const std::array<Ve
   return dualCoefficients<6>(D, M);
 }
 
-/// A 6-node triangle: the composite rule on its reference triangle, mapped by the quadratic
-/// geometry; phi holds the transformed basis phi~, psi its dual.
-std::vector<SlavePoint> sixNodePoints(const std::array<Vec3, mesh::kMaxFaceNodes>& x, const std::vector<CompositePoint>& rule) {
-  const auto A = sixNodeDualCoefficients(x);
-  std::vector<SlavePoint> points;
-  points.reserve(rule.size());
-  for (const auto& q : rule) {
-    SlavePoint s{};
-    double N[6], dA;
-    quadraticTriangleAt(x, q.lambda[1], q.lambda[2], N, s.x, dA);
-    s.omega = q.weight / 2.0 * dA;  // q.weight: a fraction of the reference triangle (area 1/2)
-    transformedQuadratic(N, s.phi);
-    for (int v = 0; v < 6; ++v)
-      for (int k = 0; k < 6; ++k) s.psi[v] += A[v][k] * s.phi[k];
-    points.push_back(s);
-  }
-  return points;
-}
-
-/// A 4-node quadrilateral: kSubdivisions^2 sub-squares with 2 x 2 Gauss points each.
-std::vector<SlavePoint> quadPoints(const std::array<Vec3, mesh::kMaxFaceNodes>& x) {
-  const auto A = quadDualCoefficients(x);
-  const int n = kSubdivisions;
-  const double h = 2.0 / n, g = h / (2.0 * std::sqrt(3.0)), subWeight = h * h / 4;
-  std::vector<SlavePoint> points;
-  points.reserve(4 * n * n);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j)
-      for (double dxi : {-g, g})
-        for (double deta : {-g, g}) {
-          SlavePoint s{};
-          double dA;
-          bilinearAt(x, -1.0 + (i + 0.5) * h + dxi, -1.0 + (j + 0.5) * h + deta, s.phi, s.x, dA);
-          s.omega = subWeight * dA;
-          for (int v = 0; v < 4; ++v)
-            for (int k = 0; k < 4; ++k) s.psi[v] += A[v][k] * s.phi[k];
-          points.push_back(s);
-        }
-  return points;
-}
-
-double triangleArea(const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 u{b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v{c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-  const Vec3 n{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-  return 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-}
 }  // namespace
+
+const std::array<TrianglePoint, 6>& quarticTriangleRule() {
+  static constexpr double a = 0.445948490915965, wa = 0.223381589678011, b = 0.091576213509771,
+                          wb = 0.109951743655322;
+  static const std::array<TrianglePoint, 6> rule = {{{{a, a, 1 - 2 * a}, wa},
+                                                     {{a, 1 - 2 * a, a}, wa},
+                                                     {{1 - 2 * a, a, a}, wa},
+                                                     {{b, b, 1 - 2 * b}, wb},
+                                                     {{b, 1 - 2 * b, b}, wb},
+                                                     {{1 - 2 * b, b, b}, wb}}};
+  return rule;
+}
+
+SlaveBasis::SlaveBasis(const mesh::FaceNodes& face, const FaceCoordinates& x)
+    : type_(mesh::faceType(face.numVertices, face.numNodes)), x_(x) {
+  if (type_ == mesh::FaceType::Tri3) {
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < 3; ++k) dual_[i][k] = (i == k ? 4.0 : 0.0) - 1.0;
+    return;
+  }
+  if (type_ == mesh::FaceType::Quad4) {
+    const auto A = quadDualCoefficients(x);
+    for (int i = 0; i < 4; ++i) std::copy(A[i].begin(), A[i].end(), dual_[i].begin());
+    return;
+  }
+  const auto A = sixNodeDualCoefficients(x);
+  for (int i = 0; i < 6; ++i) std::copy(A[i].begin(), A[i].end(), dual_[i].begin());
+}
+
+SlavePoint SlaveBasis::at(double xi0, double xi1, double referenceWeight) const {
+  const mesh::FaceGeometry g = mesh::faceGeometry(type_, x_.data(), xi0, xi1);
+  SlavePoint s{};
+  s.xi = {xi0, xi1};
+  s.x = g.point;
+  s.omega = referenceWeight * g.areaElement();
+  const int n = mesh::faceNodeCount(type_);
+  if (type_ == mesh::FaceType::Tri6)
+    transformedQuadratic(g.N.data(), s.phi);
+  else
+    std::copy_n(g.N.begin(), n, s.phi.begin());
+  for (int v = 0; v < n; ++v)
+    for (int k = 0; k < n; ++k) s.psi[v] += dual_[v][k] * s.phi[k];
+  return s;
+}
 
 std::vector<SlavePoint> slaveFacePoints(const mesh::FaceNodes& face, const FaceCoordinates& x) {
   static const auto rule = compositeRule(), quarticRule = compositeQuarticRule();
-  if (face.numVertices == 4) return quadPoints(x);
-  if (face.numNodes == 6) return sixNodePoints(x, quarticRule);
-  return trianglePoints({x[0], x[1], x[2]}, rule);
+  const SlaveBasis basis(face, x);
+  std::vector<SlavePoint> points;
+  if (basis.type() == mesh::FaceType::Quad4) {
+    // kSubdivisions^2 sub-squares of the reference square with 2 x 2 Gauss points each.
+    const int n = kSubdivisions;
+    const double h = 2.0 / n, g = h / (2.0 * std::sqrt(3.0));
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j)
+        for (double dxi : {-g, g})
+          for (double deta : {-g, g})
+            points.push_back(basis.at(-1.0 + (i + 0.5) * h + dxi, -1.0 + (j + 0.5) * h + deta, h * h / 4));
+    return points;
+  }
+  // The reference triangle has area 1/2; the rules' weights are fractions of it.
+  for (const auto& q : basis.type() == mesh::FaceType::Tri6 ? quarticRule : rule)
+    points.push_back(basis.at(q.lambda[1], q.lambda[2], q.weight / 2.0));
+  return points;
 }
 
 }  // namespace tribos::geometry

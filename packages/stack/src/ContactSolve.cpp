@@ -1,5 +1,6 @@
 #include "tribos/stack/ContactSolve.hpp"
 #include "tribos/stack/FetiSettings.hpp"
+#include "tribos/stack/PenetrationCheck.hpp"
 
 #include <Teuchos_DefaultMpiComm.hpp>
 #include <Teuchos_ParameterList.hpp>
@@ -352,6 +353,27 @@ const ContactFields* solveHistory(const Scene& scene, const feti::ConstraintMatr
   setAppliedLoad(loads.loads(out.steps.back().step), comm, out);  // the last step solved (B2)
   return previous();
 }
+
+/// The check after the solve (PenetrationCheck.hpp) on rank 0, which holds the displacement and
+/// the side sets; its verdict on every rank: a result with bodies inside each other is not
+/// converged (exit 3), whatever the solver said.
+void checkPenetration(const Scene& scene, const feti::ConstraintMatrix& B, MPI_Comm comm, ContactSolveResult& out) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  std::string message;
+  if (rank == 0) {
+    const auto found = penetrationsAfterSolve(scene, B, out.displacement.value);
+    if (!found.empty()) message = describe(found.front());
+    if (found.size() > 1) message += " (and on " + std::to_string(found.size() - 1) + " more interface(s))";
+  }
+  int length = static_cast<int>(message.size());
+  MPI_Bcast(&length, 1, MPI_INT, 0, comm);
+  message.resize(length);
+  MPI_Bcast(message.data(), length, MPI_CHAR, 0, comm);
+  if (message.empty() || !out.contact.converged) return;
+  out.contact.converged = false;
+  out.contact.message = message;
+}
 }  // namespace
 
 ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
@@ -419,6 +441,7 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
   if (!out.steps.empty()) addStatusChange(change, out.steps.back().statusCounts);
   if (totalsBefore) addEarlierSteps(*totalsBefore, out);
   addOverloadNote(B, chain.friction, budget.ranOut(), comm, out);
+  checkPenetration(scene, B, comm, out);
   return out;
 }
 

@@ -43,6 +43,12 @@ LoadHistory::LoadHistory(const feti::ConstraintMatrix& B, int rank, const Scene&
   slip_.assign(fixed_.size(), 0.0);
   for (const auto& node : B.contact) {
     if (node.normalRow < first || node.normalRow >= end) continue;
+    // The Interference part of the gap (c = rowScale (gap - interference)) follows the ramp.
+    if (node.interference != 0.0) {
+      const double part = -node.rowScale * node.interference;
+      fixed_[static_cast<size_t>(node.normalRow - first)] -= part;
+      interference_.push_back({node.normalRow - first, part});
+    }
     // A tied row has no slip to remember (its rows are equalities in every step).
     if (B.interfaces.at(static_cast<size_t>(node.interface)).tied) continue;
     for (int j = 0; j < 2; ++j)
@@ -95,6 +101,7 @@ std::vector<double> LoadHistory::prescribedValues(double position) const {
   for (const auto& part : parts_)
     c[static_cast<size_t>(part.row)] +=
         factorAt(displacementFactors_[static_cast<size_t>(part.condition)], position) * part.value;
+  for (const auto& [row, part] : interference_) c[static_cast<size_t>(row)] += ramp(position) * part;
   return c;
 }
 

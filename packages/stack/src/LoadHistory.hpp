@@ -3,7 +3,7 @@
 // (ALGORITHMS.md 11). Step k scales each named load by its factor (Scene::loadFactors) and each
 // displacement condition's part of c (feti::PrescribedPart) by its factor
 // (Scene::displacementFactors); the normal rows keep their gaps on the reference
-// configuration; the tangential rows measure the slip increment since step k - 1: their c is
+// configuration, less an interface's Interference times the ramp k / N; the tangential rows measure the slip increment since step k - 1: their c is
 // shifted by the relative tangential displacement reached there, so Coulomb's and Tresca's laws
 // act on the increment (friction with memory).
 #include <string>
@@ -65,6 +65,8 @@ class LoadHistory {
   bool proportional_ = true;
   std::vector<double> fixed_;     ///< the part of B's c that no factor scales (the normal rows' gaps)
   std::vector<feti::PrescribedPart> parts_;  ///< the owned rows' parts, rows counted from the first owned
+  /// (owned row, its c's Interference part at the full value): normal rows, ramped (k / N).
+  std::vector<std::pair<GO, double>> interference_;
   /// c on the owned rows at `position` without the slip: the fixed part and the factored parts.
   std::vector<double> prescribedValues(double position) const;
   std::vector<char> tangential_;  ///< owned row is a contact tangential row (not tied)

@@ -292,6 +292,8 @@ nlohmann::json setupSummary(const Scene& scene, const SetupReport& report, const
     j["contact_search"].push_back({{"interface", i.label},
                                    {"paired", i.pairedSlaveNodes},
                                    {"unpaired", i.unpairedSlaveNodes},
+                                   {"paired_inside_beyond_search_distance", i.pairedInside},
+                                   {"interference", i.interference},
                                    {"given_to_another_interface", i.sharedSlaveNodes},
                                    {"initial_overlaps", i.overlappingPairs},
                                    {"largest_initial_overlap", i.largestOverlap},
@@ -345,10 +347,16 @@ std::string contactSearchLines(const feti::ConstraintMatrix& B) {
   if (B.interfaces.empty()) return "  contact: none (linear T-FETI)\n";
   std::ostringstream out;
   for (const auto& i : B.interfaces) {
-    out << "  " << i.label << ": " << i.pairedSlaveNodes << " slave nodes paired, " << i.unpairedSlaveNodes
+    out << "  " << i.label << ": " << i.pairedSlaveNodes << " slave nodes paired";
+    if (i.pairedInside > 0)
+      out << " (" << i.pairedInside << " of them inside the master body, beyond " << i.list << "/Search Distance)";
+    out << ", " << i.unpairedSlaveNodes
         << " out of reach (no master face facing them within " << i.list << "/Search Distance: no rows), "
         << i.overlappingPairs << " with initial overlap";
     if (i.overlappingPairs > 0) out << " (largest " << i.largestOverlap << ")";
+    if (i.interference != 0.0)
+      out << "; " << i.list << "/Interference " << i.interference << " subtracted from every gap"
+          << (i.interference > 0.0 ? " (an overlap to close)" : " (a clearance)");
     if (i.sharedSlaveNodes > 0)
       out << "; " << i.sharedSlaveNodes << " more paired here have the rows of another interface, where their gap "
           << "is smaller (a slave node has the rows of one interface)";

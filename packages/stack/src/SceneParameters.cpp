@@ -176,9 +176,16 @@ void interfaceParameters(ParameterList& pl) {
   pl.set("Search Distance", 1e-6,
          "contact search: a slave node is projected on the nearest master face within this distance [length] "
          "(set it above the largest initial gap that may close); a slave node with no master face that near "
-         "gets no contact rows (it cannot touch). The initial gap d is the signed distance along the master "
-         "normal (negative: initial overlap)",
+         "gets no contact rows (it cannot touch), except one inside the master body (an interference, up to a "
+         "master face's size deep), which is always paired. The initial gap d is the signed distance along the "
+         "master normal (negative: initial overlap). After the solve a slave node without rows found inside the "
+         "master body makes the run not converged (exit 3)",
          core::atLeast(0.0));
+  pl.set("Interference", 0.0,
+         "[length] an overlap the interface is to close (> 0: a shrink or press fit modelled on nominal, touching "
+         "geometry) or a clearance (< 0), subtracted from every pair's gap d (as Abaqus's contact interference). "
+         "In Load Steps it follows the ramp k / N like a load without a table. Not on a Bonded interface",
+         core::closedInterval(-core::kMaxMagnitude, core::kMaxMagnitude));
 }
 
 void contactParameters(ParameterList& pl) {
@@ -189,7 +196,7 @@ void contactParameters(ParameterList& pl) {
       "*", false,
       "one sublist per contact interface, any name (several bodies and interfaces): its Slave Side Set and Master "
       "Side Set (required), and any of Friction Model, F1, F2, Slip Bound, T1 Direction, Discretization, Search "
-      "Distance, which default to the flat Contact list's values. A node may be the slave of one interface only; "
+      "Distance, Interference, which default to the flat Contact list's values. A node may be the slave of one interface only; "
       "a body may be the slave of one interface and the master of another; both surfaces of an interface must be "
       "on different bodies (no self-contact). With such sublists the flat Slave/Master Side Set stay empty");
   frictionLawTable().declare(named);
@@ -346,6 +353,7 @@ void readInterfaceRows(const ParameterList& list, feti::ContactInterfaceSpec& ro
     rows.t1Direction = {t[0], t[1], t[2]};
   }
   if (list.isParameter("Search Distance")) rows.searchDistance = list.get<double>("Search Distance");
+  if (list.isParameter("Interference")) rows.interference = list.get<double>("Interference");
   if (list.isParameter("Discretization"))
     rows.discretization = core::valueOf(feti::kContactDiscretizationNames, list.get<std::string>("Discretization"));
 }
@@ -396,6 +404,9 @@ std::vector<ContactInterface> readContactInterfaces(const ParameterList& contact
   for (auto& one : named) {
     one.rows.tangentialRows = one.law.hasTangentialRows();
     one.rows.tied = one.law.tiesSurfaces();
+    core::requireInput(!one.rows.tied || one.rows.interference == 0.0,
+                       source + ": " + one.rows.list() + "/Interference: a Bonded interface keeps its gap as it is; "
+                                "give no Interference there");
   }
   return named;
 }

@@ -317,10 +317,15 @@ TEST(ContactSearch, overlapGivesNegativeGapsAndIsCounted) {
       EXPECT_NEAR(p.distance, 0.125, 1e-15);
       EXPECT_NEAR(p.normal[2], 1.0, 1e-15);
     }
-    // Closer than the overlap: nothing within reach.
-    EXPECT_EQ(search(m, 0.1).unpaired.size(), 25u);
+    // A search distance below the overlap: every node is inside the master body, paired whatever
+    // the distance (issue 41; it was "nothing within reach", the bodies left inside each other).
+    const auto inside = search(m, 0.1);
+    EXPECT_EQ(inside.pairs.size(), 25u);
+    EXPECT_TRUE(inside.unpaired.empty());
+    for (const auto& p : inside.pairs) EXPECT_NEAR(p.gap, -0.125, 1e-15);
   }
-  // Lifted by 1/4: an open gap, positive, not counted as overlap.
+  // Lifted by 1/4: an open gap, positive, not counted as overlap; below the search distance the
+  // nodes outside the master body are out of reach.
   {
     const auto m = stacked({2.0, 2.0}, {4, 4}, {2.0, 2.0}, {5, 5}, 1.25);
     const auto r = search(m, 0.3);
@@ -328,6 +333,7 @@ TEST(ContactSearch, overlapGivesNegativeGapsAndIsCounted) {
     EXPECT_EQ(r.overlapping, 0);
     EXPECT_EQ(r.largestOverlap, 0.0);
     for (const auto& p : r.pairs) EXPECT_NEAR(p.gap, 0.25, 1e-15);
+    EXPECT_EQ(search(m, 0.2).unpaired.size(), 25u);
   }
   // Partly overlapping: the master bottom tilted so that it dips below z = 1 over half the
   // footprint. Move the master's bottom nodes to z = 1 + (x - 1) / 8 (x in [0, 2]).

@@ -69,6 +69,9 @@ struct ContactInterfaceSpec {
   /// A slave node is projected on the master surface within this distance (the mesh's
   /// units); a slave node farther from every master face gets no contact rows.
   double searchDistance = 1e-6;
+  /// An overlap to close (> 0) or a clearance (< 0), subtracted from every pair's gap
+  /// (Contact/<name>/Interference); a load history ramps it (ContactNode::interference).
+  double interference = 0.0;
   ContactDiscretization discretization = ContactDiscretization::Mortar;
   /// "Contact/<name>", or "Contact" without a name: the parameter list of the interface.
   std::string list() const { return name.empty() ? "Contact" : "Contact/" + name; }
@@ -101,6 +104,8 @@ struct ContactNode {
   bool mortar = false;                     ///< weights from the dual mortar integrals
   std::array<double, 3> normal{}, t1{}, t2{};  ///< orthonormal frame, normal from slave to master
   double gap = 0.0;                        ///< d_r: signed distance along normal (< 0: initial overlap)
+  /// The interface's Interference, already subtracted from `gap` (a load history ramps this part).
+  double interference = 0.0;
   GO normalRow = -1;                       ///< row of N_r; the present tangential rows follow it
   std::array<bool, 2> hasTangential{false, false};  ///< T1_r, T2_r present
   double rowScale = 1.0;                   ///< the factor that made N_r unit norm (force = rowScale lambda)
@@ -135,9 +140,13 @@ struct ContactInterfaceRows {
   bool tied = false;                 ///< ContactInterfaceSpec::tied (no gap in the normal rows' c)
   GO pairedSlaveNodes = 0;           ///< slave nodes with a master face within the search distance
   GO unpairedSlaveNodes = 0;         ///< slave nodes with no master face within the search distance
+  /// Of the paired ones, those beyond the search distance: inside the master body (an
+  /// interference), paired whatever the distance (geometry::MasterSurface::pairingProjection).
+  GO pairedInside = 0;
   std::vector<LO> unpairedSample;    ///< the first few of them (global node ids), for messages
   GO sharedSlaveNodes = 0;           ///< paired here too but given to another interface (no rows here)
   double searchDistance = 0.0;       ///< its search distance, for messages
+  double interference = 0.0;         ///< ContactInterfaceSpec::interference, for messages
   GO overlappingPairs = 0;           ///< contact nodes whose row has a negative initial gap (beyond round-off)
   double largestOverlap = 0.0;       ///< max(-gap) over them
   /// Mortar rows whose weighted gap was kept within the pointwise gap over the node's support

@@ -40,6 +40,9 @@ class SparseCholesky {
   /// The order of the unknowns of solveInPlace: its entry k is row permutation()[k] of A
   /// (the fill-reducing order, so that the solve needs no permutation pass of its own).
   virtual const std::vector<LO>& permutation() const = 0;
+  /// An estimate of the reciprocal condition number of the factorised matrix: (min / max of
+  /// the factor's diagonal)^2 (CHOLMOD's cholmod_rcond); 1 where the factorisation keeps none.
+  virtual double reciprocalCondition() const { return 1.0; }
   /// v := A^{-1} v for one vector in the order of permutation(); no allocation.
   virtual void solveInPlace(double* v) const = 0;
   /// For right-hand sides that vanish outside `columns` (in the order of permutation()) and

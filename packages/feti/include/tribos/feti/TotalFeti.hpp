@@ -238,9 +238,10 @@ class TotalFeti {
   /// y = B u for displacements u of the owned subdomains (u[i] of subdomain firstOwned + i).
   void applyB(const std::vector<std::vector<double>>& u, DualVector& y) const;
   /// max over owned subdomains of ||K_s u_s - f_s + B_s^T lambda_s||_inf (equilibrium), all
-  /// ranks. With `forceScale`: also max(||f_s||_inf, ||B_s^T lambda_s||_inf) over all
-  /// subdomains, the forces the residual compares with; it is not zero when the loads are
-  /// (a scene driven by prescribed displacements: the constraint forces carry it).
+  /// ranks. With `forceScale`: also the largest of |f_s|, |B_s^T lambda_s| and sum_j |K_kj u_j|
+  /// over all dofs k of all subdomains, the forces the residual compares with; it is not zero
+  /// when the loads are (a scene driven by prescribed displacements: the constraint forces carry
+  /// it; a body moved rigidly, touching nothing: the terms of its K u, which cancel).
   double equilibriumResidual(const DualVector& lambda, const std::vector<std::vector<double>>& u,
                              double* forceScale = nullptr) const;
   /// u_s = K_s^dagger (f_s - B_s^T lambda) + R_s alpha_s for every owned subdomain.

@@ -55,7 +55,9 @@ struct ContactSearchResult {
 
 /// Pairs every node of `slaveSideSet` with the master surface `masterSideSet` within
 /// `searchDistance` (>= 0, the mesh's units; a slave node farther from every master face
-/// cannot touch and is listed in `unpaired`). Throws core::InputError naming the set and
+/// cannot touch and is listed in `unpaired`), and every node inside the master body whatever
+/// `searchDistance` says (MasterSurface::pairingProjection: an interference fit is paired at
+/// the default distance; its pair's distance exceeds `searchDistance`). Throws core::InputError naming the set and
 /// node when the surfaces share a node, a surface is folded (zero summed normal at a node),
 /// or the master surface faces away from the slave surface at every reachable slave node.
 ContactSearchResult searchContactPairs(const mesh::Mesh& mesh, const std::string& slaveSideSet,

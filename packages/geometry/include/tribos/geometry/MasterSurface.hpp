@@ -27,6 +27,11 @@ namespace tribos::geometry {
 
 class TriangleTree;
 
+/// A point is inside the master body where its offset from its closest point makes at most
+/// acos(0.9) = 26 degrees with the inward normal there (MasterSurface::pairingProjection): a point
+/// beside the surface's edge is not.
+inline constexpr double kInsideAlongNormal = 0.9;
+
 class MasterSurface {
  public:
   MasterSurface(const mesh::Mesh& mesh, const std::string& masterSideSet);
@@ -47,9 +52,26 @@ class MasterSurface {
   /// The closest point within `radius` (ties: the lower face index). `facesTested` counts
   /// the closest-point evaluations.
   Projection project(const Vec3& x, double radius, long long* facesTested = nullptr) const;
+  /// The projection that pairs a point with the surface (issue 41): the closest point within
+  /// `searchDistance`, or, whatever `searchDistance` says, the closest point of a point inside
+  /// the master body: behind the surface along its normal (the offset within
+  /// acos(kInsideAlongNormal) of the inward smoothed normal) and at most the size of the face it
+  /// projects on deep. A deeper overlap is not a contact this small-strain model can resolve;
+  /// the check after the solve (stack) reports it.
+  Projection pairingProjection(const Vec3& x, double searchDistance, long long* facesTested = nullptr) const;
+  /// The largest distance between two nodes of face f (its size).
+  double faceSize(LO face) const { return faceSize_[face]; }
   /// Unit smoothed normal (outward of the master body) interpolated at a projection.
   Vec3 normalAt(const Projection& p) const;
   const std::string& name() const { return name_; }
+
+  /// The faces of the surface (index: position in the master side set), their nodes and
+  /// coordinates, and the faces sharing a node with each (itself excluded; ascending): what
+  /// the segment-based mortar integration walks (MortarSegments.hpp).
+  LO numFaces() const { return static_cast<LO>(faceNodes_.size()); }
+  const mesh::FaceNodes& faceNodes(LO face) const { return faceNodes_[face]; }
+  const FaceCoordinates& faceCoordinates(LO face) const { return faceCoords_[face]; }
+  const std::vector<LO>& neighbours(LO face) const { return neighbours_[face]; }
 
  private:
   /// The closest point on the face of a search triangle, from the triangle's closest point
@@ -71,6 +93,9 @@ class MasterSurface {
   /// farther, and a face is then taken on its own distance. 0 on a surface of 3-node triangles.
   double pieceDeviation_ = 0.0;
   std::vector<Vec3> nodalNormal_;  ///< unit, per global node (zero off the set)
+  std::vector<std::vector<LO>> neighbours_;  ///< per face, the faces sharing a node with it
+  std::vector<double> faceSize_;             ///< per face, the largest distance between its nodes
+  double largestFaceSize_ = 0.0;
 };
 
 }  // namespace tribos::geometry
