@@ -4,9 +4,11 @@ contact surfaces given as node sets). Used by lame_hoop_stress_test.sh with shri
 and, thicker and in layers, by push_out_test.sh with push_out.xml (a push-out, not plane strain).
 
 Usage: python3 shrink_fit_mesh.py OUT.exo hex8|tet10 [--layers L] [--thickness T]
-         [--hub-cells RADIAL ANGULAR] [--shaft-cells RADIAL ANGULAR]
+         [--hub-cells RADIAL ANGULAR] [--shaft-cells RADIAL ANGULAR] [--delta DELTA]
 (needs Debian's python3-meshio). Defaults: one layer, T = 2 mm (the plane-strain slab), the
-cells below; push_out_test.sh writes 4 layers, T = 8 mm (and coarser cells for tet10).
+cells below; push_out_test.sh writes 4 layers, T = 8 mm (and coarser cells for tet10);
+--delta 0 writes the nominal geometry (the shaft's surface on the hub's bore: the interference
+then given as Contact/Interference, shrink_fit_default_search_test.sh).
 
 Units mm; x >= 0, y >= 0, L layers of cells in 0 <= z <= T. A hollow shaft (inner radius
 A = 10, outer B + DELTA) is pressed into a hub (bore B = 20, outer radius C = 40): radial
@@ -106,9 +108,9 @@ def quadratic(points, tets):
     return np.array(points), np.array(tet10)
 
 
-def main(path, kind, layers=1, thickness=T, hub_grid=HUB_CELLS, shaft_grid=SHAFT_CELLS):
+def main(path, kind, layers=1, thickness=T, hub_grid=HUB_CELLS, shaft_grid=SHAFT_CELLS, delta=DELTA):
     nt = hub_grid[1]
-    shaft_points, shaft_cells = polar_grid(A, lambda theta: hub_bore_radius(theta, DELTA, nt), shaft_grid,
+    shaft_points, shaft_cells = polar_grid(A, lambda theta: hub_bore_radius(theta, delta, nt), shaft_grid,
                                            layers, thickness)
     # The hub's nodes lie on its rays at the polygon's vertices: r = B on the bore, r = C outside.
     hub_points, hub_cells = polar_grid(B, lambda theta: C, hub_grid, layers, thickness)
@@ -127,7 +129,7 @@ def main(path, kind, layers=1, thickness=T, hub_grid=HUB_CELLS, shaft_grid=SHAFT
     eps = 1e-9
     # The shaft's outer surface: its outer nodes (the last radial layer of the grid; tet10: and
     # the midpoints between them), i.e. the nodes on the moved hub polygon.
-    on_shaft_outer = np.array([abs(hub_bore_radius(np.arctan2(y, x), DELTA, nt) - rr) < 1e-9
+    on_shaft_outer = np.array([abs(hub_bore_radius(np.arctan2(y, x), delta, nt) - rr) < 1e-9
                                for (x, y, _), rr in zip(points[shaft], r[shaft])])
     sets = {
         "shaft_outer": shaft[on_shaft_outer],
@@ -160,9 +162,13 @@ if __name__ == "__main__":
                         help="the hub's cells (default %d %d)" % HUB_CELLS)
     parser.add_argument("--shaft-cells", type=int, nargs=2, default=SHAFT_CELLS, metavar=("RADIAL", "ANGULAR"),
                         help="the shaft's cells, angular a multiple of the hub's (default %d %d)" % SHAFT_CELLS)
+    parser.add_argument("--delta", type=float, default=DELTA,
+                        help="the shaft's radial interference [mm] (default %g; 0: nominal geometry)" % DELTA)
     args = parser.parse_args()
     if args.layers < 1 or not args.thickness > 0:
         parser.error("--layers must be >= 1 and --thickness > 0")
     if min(list(args.hub_cells) + list(args.shaft_cells)) < 1 or args.shaft_cells[1] % args.hub_cells[1]:
         parser.error("cells must be >= 1, the shaft's angular ones a multiple of the hub's")
-    main(args.path, args.kind, args.layers, args.thickness, tuple(args.hub_cells), tuple(args.shaft_cells))
+    if args.delta < 0:
+        parser.error("--delta must be >= 0")
+    main(args.path, args.kind, args.layers, args.thickness, tuple(args.hub_cells), tuple(args.shaft_cells), args.delta)
