@@ -402,7 +402,7 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
   const auto& stepsList = tribos.sublist("Load Steps");
   RestartState restart;  // read before the factorisation: a file that cannot serve costs nothing
   if (history && !stepsList.get<std::string>("Restart From").empty())
-    restart = readRestart(stepsList.get<std::string>("Restart From"), scene, B);
+    restart = readRestartOnRoot(stepsList.get<std::string>("Restart From"), scene, B, comm);
   std::optional<LoadHistory> loads;
   if (history) {
     std::vector<size_t> dofs;

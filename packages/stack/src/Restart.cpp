@@ -5,6 +5,8 @@
 
 #include "tribos/core/Errors.hpp"
 #include "tribos/core/Format.hpp"
+#include "tribos/core/RankErrors.hpp"
+#include "tribos/core/Validators.hpp"
 #include "tribos/mesh/ExodusIO.hpp"
 
 namespace tribos::stack {
@@ -60,6 +62,36 @@ void requireSameContactNodes(const mesh::TimeStep& step, const feti::ConstraintM
                              " there and is no slave node of this scene (a result of other contact interfaces)");
   }
 }
+
+// A memory value the next step can start from: finite, within the magnitudes the scene accepts
+// (issue 44: NaN or 1e30 memory ended as "check the loads", a negative accumulated slip exit 0).
+bool plausible(double v, bool nonNegative) {
+  return std::isfinite(v) && std::abs(v) <= core::kMaxMagnitude && (!nonNegative || v >= 0.0);
+}
+std::string expected(bool nonNegative) {
+  return nonNegative ? " (a finite value >= 0, at most 1e100, expected)" : " (a finite value of at most 1e100 in size expected)";
+}
+void requirePlausible(const std::vector<double>& values, const std::string& name, bool nonNegative,
+                      const std::string& where) {
+  for (size_t n = 0; n < values.size(); ++n)
+    core::requireInput(plausible(values[n], nonNegative),
+                       where + ": " + name + " at node " + std::to_string(n + 1) + " is " +
+                           core::formatNumber(values[n]) + expected(nonNegative) +
+                           ": the file is damaged or not tribos's");
+}
+void requirePlausible(double value, const std::string& name, const std::string& where) {
+  core::requireInput(plausible(value, false), where + ": global variable " + name + " is " + core::formatNumber(value) +
+                                                  expected(false) + ": the file is damaged or not tribos's");
+}
+
+// Step k of a history is load_step k: 1, 2, ... in order (issue 44: -1 read the factor table
+// before its start, 1.5 was taken as 1).
+void requireStepNumber(double number, int expected, const std::string& where) {
+  core::requireInput(number == static_cast<double>(expected),
+                     where + ": its time step " + std::to_string(expected) + " has load_step " +
+                         core::formatNumber(number) + " (1, 2, ... in order expected): the file is damaged or not "
+                         "tribos's");
+}
 }  // namespace
 
 RestartState readRestart(const std::string& file, const Scene& scene, const feti::ConstraintMatrix& B) {
@@ -80,6 +112,10 @@ RestartState readRestart(const std::string& file, const Scene& scene, const feti
     const double* converged = globalValue(step, "converged");
     core::requireInput(number && converged, where + ": no global variables load_step and converged (not a result of "
                                                     "a tribos load history)");
+    requireStepNumber(*number, state.step + 1, where);
+    core::requireInput(*converged == 0.0 || *converged == 1.0,
+                       where + ": load step " + std::to_string(state.step + 1) + " has converged = " +
+                           core::formatNumber(*converged) + " (0 or 1 expected): the file is damaged or not tribos's");
     if (*converged != 1.0) break;
     last = &step;
     state.step = static_cast<int>(*number);
@@ -94,6 +130,9 @@ RestartState readRestart(const std::string& file, const Scene& scene, const feti
   t.contactTangentialT1 = nodalField(*last, "contact_tangential_t1", where);
   t.contactTangentialT2 = nodalField(*last, "contact_tangential_t2", where);
   t.contactAccumulatedSlip = nodalField(*last, "contact_accumulated_slip", where);
+  requirePlausible(t.contactTangentialT1, "contact_tangential_t1", false, where);
+  requirePlausible(t.contactTangentialT2, "contact_tangential_t2", false, where);
+  requirePlausible(t.contactAccumulatedSlip, "contact_accumulated_slip", true, where);
   for (const auto& one : scene.contacts) {
     const std::string name = (one.rows.name.empty() ? std::string("contact") : one.rows.name) + "_dissipated_energy";
     const double* energy = globalValue(*last, name);
@@ -101,10 +140,46 @@ RestartState readRestart(const std::string& file, const Scene& scene, const feti
                                               " is not in that result)");
     t.interfaces.push_back({one.rows.name, one.rows.slaveSideSet + " -> " + one.rows.masterSideSet, one.law});
     t.interfaces.back().dissipatedEnergy = *energy;
+    requirePlausible(*energy, name, where);
   }
   const double* total = globalValue(*last, "dissipated_energy");
   core::requireInput(total != nullptr, where + ": no global variable dissipated_energy");
   t.dissipatedEnergy = *total;
+  requirePlausible(*total, "dissipated_energy", where);
+  return state;
+}
+
+namespace {
+void broadcast(std::vector<double>& values, MPI_Comm comm) {
+  long long size = static_cast<long long>(values.size());
+  MPI_Bcast(&size, 1, MPI_LONG_LONG, 0, comm);
+  values.resize(static_cast<size_t>(size));
+  MPI_Bcast(values.data(), static_cast<int>(size), MPI_DOUBLE, 0, comm);
+}
+}  // namespace
+
+RestartState readRestartOnRoot(const std::string& file, const Scene& scene, const feti::ConstraintMatrix& B,
+                               MPI_Comm comm) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  RestartState state;
+  core::onEveryRankOrNone([&] { if (rank == 0) state = readRestart(file, scene, B); },
+                          "Load Steps/Restart From: " + file + " could not serve as a restart (rank 0 read it)", comm);
+  state.file = file;
+  MPI_Bcast(&state.step, 1, MPI_INT, 0, comm);
+  ContactFields& t = state.totals;
+  broadcast(t.contactTangentialT1, comm);
+  broadcast(t.contactTangentialT2, comm);
+  broadcast(t.contactAccumulatedSlip, comm);
+  std::vector<double> energies;
+  for (const auto& one : t.interfaces) energies.push_back(one.dissipatedEnergy);
+  energies.push_back(t.dissipatedEnergy);
+  broadcast(energies, comm);
+  if (rank != 0)
+    for (const auto& one : scene.contacts)
+      t.interfaces.push_back({one.rows.name, one.rows.slaveSideSet + " -> " + one.rows.masterSideSet, one.law});
+  for (size_t i = 0; i < t.interfaces.size(); ++i) t.interfaces[i].dissipatedEnergy = energies[i];
+  t.dissipatedEnergy = energies.back();
   return state;
 }
 

@@ -4,6 +4,8 @@
 // next is the tangential relative displacement reached at every contact node (LoadHistory's
 // slip), and the totals the results accumulate (the accumulated slip and the dissipated
 // energy); the multipliers are not in the file, so the first step after a restart starts cold.
+#include <mpi.h>
+
 #include <string>
 
 #include "tribos/stack/ContactFields.hpp"
@@ -25,6 +27,15 @@ struct RestartState {
 /// has another mesh or other contact pairs (a slave node's master, tangential displacement off
 /// B's slave nodes), lacks an interface of the scene, holds no converged step, or has solved
 /// every step of the scene.
+/// Also when a step's load_step is not its number (1, 2, ... in order), converged is neither 0
+/// nor 1, or a memory value is not finite (or the accumulated slip negative).
 RestartState readRestart(const std::string& file, const Scene& scene, const feti::ConstraintMatrix& B);
+
+/// readRestart on rank 0 of `comm`, its state on every rank (issue 44: each rank read the file
+/// itself, and a file replaced while they started gave ranks different states: hangs, or exit 0
+/// with a result matching neither file). An error on rank 0 ends every rank (core::onEveryRankOrNone).
+/// Collective.
+RestartState readRestartOnRoot(const std::string& file, const Scene& scene, const feti::ConstraintMatrix& B,
+                               MPI_Comm comm);
 
 }  // namespace tribos::stack
