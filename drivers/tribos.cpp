@@ -113,6 +113,10 @@ void writeOutput(const std::string& path, const stack::Scene& scene, const Outpu
     if (data.contact) addContactFields(*data.contact, step);
     step.element.push_back(subdomain);
     step.global = data.globals;
+    if (data.contact)  // the restart's check of the memory (stack::contactMemorySum)
+      step.global.push_back({"contact_memory_sum",
+                             stack::contactMemorySum(data.contact->contactTangentialT1, data.contact->contactTangentialT2,
+                                                     data.contact->contactAccumulatedSlip)});
     steps.push_back(std::move(step));
   }
   mesh::writeExodus(path, scene.mesh, steps, data.info);

@@ -7,7 +7,9 @@
 #     factor table before its start);
 #   - contact_tangential_t1 at one node set to NaN, and to 1e300 (exit 3 "check the loads");
 #   - contact_accumulated_slip at one node negative (exit 0);
-#   - the dissipated energy NaN (exit 0).
+#   - the dissipated energy NaN (exit 0);
+#   - the memory of the last step zero at every node from node 3 on, as a file cut inside that
+#     step reads (its contact_memory_sum then disagrees; exit 0 before, the memory lost).
 # The undamaged file restarts (exit 0). With LAUNCHER (e.g. mpiexec -n 2) every run goes through
 # it: rank 0 reads the file and hands its state to the others (stack/Restart.hpp). Needs Debian's
 # python3 with netCDF4; exit 77 (CTest: skipped) without it.
@@ -77,6 +79,12 @@ damage nanMemory "set_nodal('contact_tangential_t1', 1, $slave, float('nan'))" "
 damage hugeMemory "set_nodal('contact_tangential_t1', 1, $slave, 1e300)" "contact_tangential_t1 at node $((slave + 1)) is 1e+300"
 damage negativeSlip "set_nodal('contact_accumulated_slip', 1, $slave, -0.5)" "contact_accumulated_slip at node $((slave + 1)) is -0.5"
 damage nanEnergy "set_global('dissipated_energy', 1, float('nan'))" "global variable dissipated_energy is nan"
+damage cutStep "
+for name in ('contact_tangential_t1', 'contact_tangential_t2', 'contact_accumulated_slip'):
+    values = d.variables['vals_nod_var%d' % (nod.index(name) + 1)]
+    row = values[1, :]
+    row[2:] = 0.0
+    values[1, :] = row" "the file is cut or damaged"
 run 4 "{1, 1, 1, 1}" "{1, 0, -1, 0}" --set "Load Steps/Restart From=$dir/first.exo" --output "$dir/r.exo" ||
   { cat "$dir/out.log"; echo "FAILED: the undamaged file did not restart"; failed=1; }
 exit $failed

@@ -9,6 +9,14 @@
 
 namespace tribos::stack {
 
+double contactMemorySum(const std::vector<double>& tangentialT1, const std::vector<double>& tangentialT2,
+                        const std::vector<double>& accumulatedSlip) {
+  double sum = 0.0;
+  for (size_t n = 0; n < tangentialT1.size(); ++n)
+    sum += std::abs(tangentialT1[n]) + std::abs(tangentialT2[n]) + std::abs(accumulatedSlip[n]);
+  return sum;
+}
+
 // Every contact node's rows belong to one rank, which sends its forces, status and opening;
 // each interface's resultants and extremes are summed from them on rank 0.
 void gatherContactFields(const Scene& scene, const feti::ConstraintMatrix& B,

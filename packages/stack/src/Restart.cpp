@@ -133,6 +133,15 @@ RestartState readRestart(const std::string& file, const Scene& scene, const feti
   requirePlausible(t.contactTangentialT1, "contact_tangential_t1", false, where);
   requirePlausible(t.contactTangentialT2, "contact_tangential_t2", false, where);
   requirePlausible(t.contactAccumulatedSlip, "contact_accumulated_slip", true, where);
+  // A file cut inside its last step reads the missing values as zeros (issue 44: exit 0 with
+  // the friction memory lost); results before this check have no sum, and are taken as they are.
+  if (const double* sum = globalValue(*last, "contact_memory_sum")) {
+    const double now = contactMemorySum(t.contactTangentialT1, t.contactTangentialT2, t.contactAccumulatedSlip);
+    core::requireInput(std::abs(now - *sum) <= 1e-12 * std::abs(*sum),
+                       where + ": load step " + std::to_string(state.step) + "'s contact memory sums to " +
+                           core::formatNumber(now) + ", and the file recorded " + core::formatNumber(*sum) +
+                           " with it: the file is cut or damaged");
+  }
   for (const auto& one : scene.contacts) {
     const std::string name = (one.rows.name.empty() ? std::string("contact") : one.rows.name) + "_dissipated_energy";
     const double* energy = globalValue(*last, name);

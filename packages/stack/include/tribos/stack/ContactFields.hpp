@@ -34,6 +34,12 @@ struct InterfaceResult {
   double stepDissipation = 0.0, dissipatedEnergy = 0.0;
 };
 
+/// The sum of |t1| + |t2| + accumulated slip over the nodes, in node order: written with every
+/// step of a result (global variable contact_memory_sum) and compared by a restart, so that a
+/// file cut inside a step, whose missing values read as zeros, is refused (issue 44).
+double contactMemorySum(const std::vector<double>& tangentialT1, const std::vector<double>& tangentialT2,
+                        const std::vector<double>& accumulatedSlip);
+
 struct ContactFields {
   /// Per global node (rank 0), zero off the slave surface: force of the slave body on the
   /// master body in (nu, t1, t2), status (0 none, 1 stick, 2 slip), pressure (normal force
