@@ -20,6 +20,7 @@
 
 #include "BoxMesh.hpp"
 #include "BoxScene.hpp"
+#include "tribos/core/Errors.hpp"
 #include "tribos/fem/SubdomainSystem.hpp"
 #include "tribos/stack/GlobalFields.hpp"
 
@@ -505,4 +506,34 @@ TEST(nonmatchingPatch, anInterferenceGivenAsAParameterIsClosedLikeAnOverlap) {
               kInterference, first, last, p);
   EXPECT_LE(first, 1e-10);
   EXPECT_LE(last, 1e-10);
+}
+
+// A contact surface of interior faces (issue 44: accepted, and the solve ended as exit 3 with a
+// friction-capacity message): the faces of the lower body at z = 0.5, inside it, given as the
+// master surface, are an input error naming the interface, the set and a face.
+TEST(nonmatchingPatch, aContactSurfaceOfInteriorFacesIsAnInputError) {
+  auto mesh = patchMesh({5, 5, 3}, CellElements::Hexahedron, CellElements::Hexahedron);
+  mesh::SideSet inside{"lower_middle", 99, {}, {}};
+  for (LO e = 0; e < mesh.numElements(); ++e) {
+    bool upperLayer = false;  // the lower body's cells in 0.5 <= z <= 1: their bottom faces
+    for (LO n : mesh.elementNodes(e)) upperLayer = upperLayer || mesh.coords[n][2] == 1.0;
+    if (mesh.blockOf(e) != 0 || !upperLayer) continue;
+    for (int side = 0; side < mesh.numSides(e); ++side) {
+      const mesh::FaceNodes face = mesh.faceNodes(e, side);
+      bool atMiddle = true;
+      for (LO n : face.vertices()) atMiddle = atMiddle && mesh.coords[n][2] == 0.5;
+      if (!atMiddle) continue;
+      inside.elements.push_back(e);
+      inside.sides.push_back(side);
+    }
+  }
+  ASSERT_EQ(inside.elements.size(), 16u);
+  mesh.sideSets.push_back(inside);
+  try {
+    test::solveBoxScene(mesh, with(patchScene(), {"Contact/Slave Side Set=upper_z0", "Contact/Master Side Set=lower_middle"}));
+    FAIL() << "an interior contact surface was accepted";
+  } catch (const core::InputError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("in side set \"lower_middle\" is interior to the mesh"), std::string::npos) << message;
+  }
 }

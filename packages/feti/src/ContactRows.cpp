@@ -13,6 +13,7 @@
 #include "tribos/geometry/ContactSearch.hpp"
 #include "tribos/geometry/MortarCoupling.hpp"
 #include "tribos/geometry/SurfaceNormals.hpp"
+#include "tribos/mesh/BoundaryFaces.hpp"
 
 namespace tribos::feti::rows {
 
@@ -267,6 +268,28 @@ void refuseContactsModelledTwice(const mesh::Mesh& mesh, const std::vector<Conta
     }
 }
 
+/// Every face of every contact surface lies on the mesh's boundary (issue 44: a side set of
+/// interior faces was accepted and ended as exit 3 with a friction-capacity message). Also what
+/// bodies that share their interface nodes make of their contact faces.
+void refuseInteriorContactFaces(const mesh::Mesh& mesh, const std::vector<ContactInterfaceSpec>& interfaces) {
+  if (interfaces.empty()) return;
+  const mesh::SideSet boundary = mesh::boundaryFaces(mesh);
+  std::vector<std::pair<LO, int>> onBoundary;
+  for (size_t f = 0; f < boundary.elements.size(); ++f) onBoundary.push_back({boundary.elements[f], boundary.sides[f]});
+  for (const auto& spec : interfaces)
+    for (const std::string* name : {&spec.slaveSideSet, &spec.masterSideSet}) {
+      const mesh::SideSet& set = mesh.sideSet(*name);
+      for (size_t f = 0; f < set.elements.size(); ++f)
+        core::requireInput(std::binary_search(onBoundary.begin(), onBoundary.end(),
+                                              std::make_pair(set.elements[f], set.sides[f])),
+                           spec.label() + ": side " + std::to_string(set.sides[f] + 1) + " of element " +
+                               std::to_string(set.elements[f] + 1) + " in side set \"" + *name +
+                               "\" is interior to the mesh (another element shares it): a contact surface lies on "
+                               "a body's boundary (bodies meshed with shared interface nodes: give each its own, "
+                               "tribos-msh2exo --split-bodies)");
+    }
+}
+
 /// The master side of every pair of an interface (dual mortar or node-to-surface weights).
 /// `unsettledProjections` counts the mortar quadrature points whose projection did not settle.
 std::vector<geometry::MortarRow> masterSidesOf(const mesh::Mesh& mesh, const ContactInterfaceSpec& spec,
@@ -418,6 +441,7 @@ void addContactRows(const mesh::Mesh& mesh, const ConstraintSpec& all, int index
 void addAllContactRows(const mesh::Mesh& mesh, const ConstraintSpec& spec, const RowContext& ctx, RowList& list,
                        ConstraintMatrix& B) {
   refuseContactsModelledTwice(mesh, spec.interfaces);
+  refuseInteriorContactFaces(mesh, spec.interfaces);
   std::vector<InterfacePairs> found;
   for (const auto& one : spec.interfaces) found.push_back(pairsOf(mesh, one));
   const std::vector<int> owner = slaveOwners(mesh.numNodes(), found);
