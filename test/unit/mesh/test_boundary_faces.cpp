@@ -93,3 +93,45 @@ TEST(BoundaryFaces, requireSideSetFallsBackToTheNodeSetAndNamesWhatIsMissing) {
   m.nodeSets.push_back({"single", 99, {0}});
   EXPECT_THROW(mesh::addSideSetFromNodeSet(m, "single"), core::InputError);
 }
+
+// A hexahedron whose top face meets two tetrahedra's faces on its own four vertices (the cube
+// above it in Kuhn's 6 tetrahedra, split along the diagonal 4-6): a non-conforming junction,
+// which tribos-msh2exo refuses, read through Exodus ran to exit 0 with the strain energy 2.7 %
+// off (issue 44). Mesh::validate refuses it, naming the face and the hexahedron; the same
+// column of tetrahedra only (a conforming mesh) passes.
+TEST(BoundaryFaces, aQuadrilateralFaceCoveredByTwoTrianglesIsAnError) {
+  auto column = [](bool withHexahedron) {
+    tribos::mesh::Mesh m;
+    for (int z = 0; z <= 2; ++z)
+      for (const auto& [x, y] : {std::pair{0, 0}, {1, 0}, {1, 1}, {0, 1}})
+        m.coords.push_back({double(x), double(y), double(z)});
+    using tribos::mesh::ElementType;
+    if (withHexahedron) m.elements.add(ElementType::Hex8, {0, 1, 2, 3, 4, 5, 6, 7});
+    const std::vector<std::array<LO, 4>> tets = {{4, 5, 6, 10}, {4, 5, 9, 10}, {4, 7, 6, 10},
+                                                 {4, 7, 11, 10}, {4, 8, 9, 10}, {4, 8, 11, 10}};
+    for (auto t : tets) {
+      const auto& a = m.coords[t[0]];
+      std::array<std::array<double, 3>, 3> e;
+      for (int k = 0; k < 3; ++k)
+        for (int c = 0; c < 3; ++c) e[k][c] = m.coords[t[k + 1]][c] - a[c];
+      const double volume = e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
+                            e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+                            e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
+      if (volume < 0) std::swap(t[1], t[2]);  // positively oriented
+      m.elements.add(ElementType::Tet4, {t[0], t[1], t[2], t[3]});
+    }
+    const LO first = withHexahedron ? 1 : 0;
+    if (withHexahedron) m.blocks.push_back({"hex", 1, 0, 1});
+    m.blocks.push_back({"tets", 2, first, 6});
+    return m;
+  };
+  try {
+    column(true).validate("column.exo");
+    FAIL() << "a non-conforming hexahedron-tetrahedron junction was accepted";
+  } catch (const tribos::core::InputError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("column.exo: the quadrilateral face (nodes 5, 6, 7, 8)"), std::string::npos) << message;
+    EXPECT_NE(message.find("meets two triangular faces on its vertices"), std::string::npos) << message;
+  }
+  EXPECT_NO_THROW(column(false).validate("tets.exo"));
+}

@@ -28,7 +28,9 @@ std::vector<BlockIslands> blockIslands(const Mesh& mesh);
 
 /// Both checks above, from one sort of the faces. Throws core::InputError naming `source`:
 /// the elements and their shared face if a face bounds three or more elements or two
-/// elements lie on the same side of it; the block and its number of islands (with their
+/// elements lie on the same side of it; the face and its element if a quadrilateral face is
+/// covered by two triangular faces on its vertices (a non-conforming hexahedron-tetrahedron
+/// junction); the block and its number of islands (with their
 /// sizes and first elements) if a block is not one piece. Expects node ids in range and
 /// positively oriented elements (whose face normals point outwards).
 void requireSoundTopology(const Mesh& mesh, const std::string& source);
