@@ -278,6 +278,9 @@ SetUpScene setUpScene(int rank, const RunStart& start) {
     set.scene = buildSceneOnEveryRank(params, cl.input, meshFile);
   }
   deadline.check("reading the mesh", MPI_COMM_WORLD);
+  if (!cl.dryRun)
+    stack::requireHistoryFitsInMemory(set.scene.loadSteps, set.scene.mesh.numNodes(), set.scene.mesh.numElements(),
+                                      MPI_COMM_WORLD);
   {
     core::ScopedPhase assembly("Set-up: assembly");
     set.report = stack::assembleOwnedSubdomains(set.scene, MPI_COMM_WORLD, set.systems);

@@ -7,6 +7,8 @@
 
 #include <string>
 
+#include "tribos/core/Types.hpp"
+
 namespace Teuchos {
 class ParameterList;
 }
@@ -35,5 +37,17 @@ SceneSize estimateSceneSize(const Teuchos::ParameterList& tribos);
 /// the same verdict.
 void requireSceneFitsInMemory(const Teuchos::ParameterList& tribos, const std::string& source, MPI_Comm comm,
                               bool solving = true);
+
+/// Doubles a load history keeps per mesh node and per element for every step until the result
+/// file is written at its end, on rank 0: the step's fields (displacement, reactions, the
+/// contact fields), its stresses, and their copy for the Exodus writer.
+inline constexpr double kHeldDoublesPerNodeAndStep = 70.0;
+inline constexpr double kHeldDoublesPerElementAndStep = 14.0;
+
+/// Throws core::InputError (naming Load Steps/Number Of Steps and the numbers) when a load
+/// history's results, held on rank 0 until the end, would take more than half the memory rank 0
+/// has (physical memory, its cgroup's limit, its address-space limit): issue 44, 100 000 steps
+/// under a 2 GB limit ran out of memory after 45 s. Collective over `comm`.
+void requireHistoryFitsInMemory(int loadSteps, LO numNodes, LO numElements, MPI_Comm comm);
 
 }  // namespace tribos::stack
