@@ -332,6 +332,20 @@ TimeStep ExodusReader::readStep(int stepIndex, double time, const Mesh& mesh, co
 }
 }  // namespace
 
+namespace {
+// Debian's Exodus library (6.02) leaves a coordinate array unread, all zero, when it is the
+// file's first netCDF variable (valid netCDF; ncgen and scipy write files so). Every node in one
+// plane is no 3D mesh either way: said as what it is, not as a degenerate element (issue 44).
+// After the blocks, whose check names a truncated file (also read as zeros) first.
+void requireNoZeroCoordinateArray(const Mesh& mesh, const std::string& path) {
+  for (int axis = 0; axis < 3; ++axis)
+    if (std::all_of(mesh.coords.begin(), mesh.coords.end(), [&](const auto& x) { return x[axis] == 0.0; }))
+      throw core::InputError(path + ": every node has " + "xyz"[axis] + " = 0: a flat mesh, or coordinates this " +
+                             "Exodus library could not read (it misreads a coordinate array stored as the file's " +
+                             "first netCDF variable); rewrite the file with tribos-msh2exo or meshio");
+}
+}  // namespace
+
 ExodusData readExodus(const std::string& path) {
   ExodusReader reader(path);
   reader.readHeader();
@@ -339,6 +353,7 @@ ExodusData readExodus(const std::string& path) {
   Mesh& mesh = data.mesh;
   reader.readCoordinates(mesh);
   reader.readBlocks(mesh);
+  requireNoZeroCoordinateArray(mesh, path);
   reader.readNodeSets(mesh);
   reader.readSideSets(mesh);
   mesh.file = path;
