@@ -47,7 +47,7 @@
 #include "tribos/core/Parameters.hpp"
 #include "tribos/core/XmlParameters.hpp"
 #include "tribos/feti/ConstraintMatrix.hpp"
-#include "tribos/feti/DualTpetraOperators.hpp"
+#include "tribos/feti/DualOperators.hpp"
 #include "tribos/feti/ProjectedCg.hpp"
 #include "tribos/feti/TotalFeti.hpp"
 #include "tribos/stack/FetiSettings.hpp"
@@ -108,7 +108,7 @@ Run solveBelos(const feti::TotalFeti& feti, const feti::ProjectedCgSettings& cg,
     feti.project(*h, *h);
   }
   auto mu = Teuchos::rcp(new MV(feti.dualMap(), 1));  // mu_0 = 0
-  // The library's P F P (feti/DualTpetraOperators.hpp), or P F alone (x in Ker G already).
+  // The library's P F P (feti/DualOperators.hpp: the objects SMALSE-M runs on), or P F alone (x in Ker G already).
   auto A = strict ? feti::makeDualOperator(feti, feti::DualOperatorKind::PFP)
                   : feti::wrapDualOperator(
                         feti, [&feti](const DualVector& x, DualVector& y) { feti.applyPF(x, y); }, "P F");

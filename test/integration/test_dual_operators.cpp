@@ -23,7 +23,7 @@
 #include "tribos/core/Parameters.hpp"
 #include "tribos/fem/SubdomainSystem.hpp"
 #include "tribos/feti/ConstraintMatrix.hpp"
-#include "tribos/feti/DualTpetraOperators.hpp"
+#include "tribos/feti/DualOperators.hpp"
 #include "tribos/feti/ProjectedCg.hpp"
 #include "tribos/feti/TotalFeti.hpp"
 #include "tribos/mesh/Decomposition.hpp"

@@ -5,10 +5,10 @@
 
 #include "ContactRecovery.hpp"
 #include "DualContactProblem.hpp"
-#include "DualOperators.hpp"
 #include "SlipBoundStrategy.hpp"
 #include "tribos/core/Errors.hpp"
 #include "tribos/core/PhaseTimer.hpp"
+#include "tribos/feti/DualOperators.hpp"
 
 #include <Teuchos_TestForException.hpp>
 #include <Tpetra_Vector.hpp>
@@ -134,11 +134,11 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
   // Every KKT residual of the result must be below this for "converged" (step (6)); the
   // status tests use it as their relative tolerance too.
   const double kktTolerance = std::max(100.0 * eps, 1e-8);
-  ProjectedDualOperator A(feti);
-  CoarseSpaceProjector Q(feti);
-  std::unique_ptr<ProjectedDualPreconditioner> M;
+  const feti::ProjectedDualOperator A(feti);
+  const feti::CoarseSpaceProjector Q(feti);
+  std::unique_ptr<feti::ProjectedDualPreconditioner> M;
   if (preconditioner != feti::DualPreconditioner::None)
-    M = std::make_unique<ProjectedDualPreconditioner>(feti, preconditioner == feti::DualPreconditioner::Dirichlet);
+    M = std::make_unique<feti::ProjectedDualPreconditioner>(feti, preconditioner);
   RunTally tally(result.counters);
   qp::SmalseSettings settings = smalseSettingsFor(smalseSettings, friction, M.get(), tally, problem, result);
   settings.rightHandSideScale = problem.stoppingScale();

@@ -16,7 +16,13 @@ class PenalisedOperator : public SymmetricOperator {
  public:
   PenalisedOperator(const SymmetricOperator& A, const EqualityProjector& Q, double rho, const Teuchos::RCP<const Map>& map,
                     double& seconds)
-      : A_(A), projected_(dynamic_cast<const ProjectedOperator*>(&A)), Q_(Q), rho_(rho), tmp_(map), seconds_(seconds) {}
+      : SymmetricOperator(map, "A + rho Q"),
+        A_(A),
+        projected_(dynamic_cast<const ProjectedOperator*>(&A)),
+        Q_(Q),
+        rho_(rho),
+        tmp_(map),
+        seconds_(seconds) {}
   void setRho(double rho) { rho_ = rho; }
   void apply(const Vector& x, Vector& y) const override {
     ScopedSeconds timed(seconds_);
@@ -49,7 +55,13 @@ class PenalisedPreconditioner : public SymmetricOperator {
  public:
   PenalisedPreconditioner(const SymmetricOperator& M, const EqualityProjector& Q, double rho,
                           const Teuchos::RCP<const Map>& map, double& seconds)
-      : M_(M), projected_(dynamic_cast<const ProjectedOperator*>(&M)), Q_(Q), rho_(rho), tmp_(map), seconds_(seconds) {}
+      : SymmetricOperator(map, "M^-1 + Q / rho"),
+        M_(M),
+        projected_(dynamic_cast<const ProjectedOperator*>(&M)),
+        Q_(Q),
+        rho_(rho),
+        tmp_(map),
+        seconds_(seconds) {}
   void setRho(double rho) { rho_ = rho; }
   void apply(const Vector& x, Vector& y) const override {
     ScopedSeconds timed(seconds_);

@@ -14,7 +14,8 @@ using core::ScopedSeconds;
 /// A with the time of its products added to `seconds`.
 class TimedOperator : public SymmetricOperator {
  public:
-  TimedOperator(const SymmetricOperator& A, double& seconds) : A_(A), seconds_(seconds) {}
+  TimedOperator(const SymmetricOperator& A, double& seconds)
+      : SymmetricOperator(A.getDomainMap(), A.name()), A_(A), seconds_(seconds) {}
   void apply(const Vector& x, Vector& y) const override {
     ScopedSeconds timed(seconds_);
     A_.apply(x, y);

@@ -3,8 +3,10 @@
 /// What qp/ sees of the world: distributed vectors (Tpetra, each entry owned by one rank)
 /// and symmetric operators on them. qp/ knows nothing of meshes or FETI.
 #include <Tpetra_Map_decl.hpp>
+#include <Tpetra_Operator.hpp>
 #include <Tpetra_Vector_decl.hpp>
 
+#include <string>
 #include <vector>
 
 namespace tribos::qp {
@@ -13,10 +15,36 @@ using Map = Tpetra::Map<int, long long>;
 using Vector = Tpetra::Vector<double, int, long long>;
 
 /// y = A x for a symmetric positive semidefinite A. Implementations count their applications.
-class SymmetricOperator {
+/// The one operator family of Tribos: the solvers here call the one-vector apply(x, y) (and,
+/// where an operator offers them, the fused products of ProjectedOperator); the same object is
+/// a Tpetra::Operator, so that Belos, Anasazi or a user's Tpetra code applies it as it is
+/// (T-FETI's F, P F P, P and P D P: feti/DualOperators.hpp). Its Tpetra apply computes
+/// Y = alpha A X + beta Y column by column with the one-vector apply (beta = 0 ignores Y's old
+/// values), after checking that X and Y live on the operator's map (the same map, or one with
+/// the same global ids on every rank; collective): a vector of another map is
+/// std::invalid_argument naming the operator, never a silent product. An operator made
+/// without a map (a test's dense matrix) serves the solvers here only: its Tpetra apply throws.
+class SymmetricOperator : public Tpetra::Operator<double, int, long long> {
  public:
-  virtual ~SymmetricOperator() = default;
+  using MultiVector = Tpetra::MultiVector<double, int, long long>;
+  explicit SymmetricOperator(Teuchos::RCP<const Map> map = Teuchos::null, std::string name = "operator")
+      : map_(std::move(map)), name_(std::move(name)) {}
+  /// y = A x.
   virtual void apply(const Vector& x, Vector& y) const = 0;
+  /// Tpetra's contract: Y = alpha A X + beta Y (A symmetric, so every mode is the same).
+  void apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp mode = Teuchos::NO_TRANS, double alpha = 1.0,
+             double beta = 0.0) const final;
+  Teuchos::RCP<const Map> getDomainMap() const final { return map_; }
+  Teuchos::RCP<const Map> getRangeMap() const final { return map_; }
+  bool hasTransposeApply() const final { return true; }
+  const std::string& name() const { return name_; }
+
+ private:
+  /// Throws std::invalid_argument unless V lives on map_ (collective: Map::isSameAs).
+  void requireOwnMap(const MultiVector& V, const char* which) const;
+  Teuchos::RCP<const Map> map_;
+  std::string name_;
+  mutable Teuchos::RCP<Vector> column_;  ///< A X_j before it is scaled into Y_j
 };
 
 /// Coordinates of Q x that are linear in x (EqualityProjector::coordinates): ||Q x||^2 = u^T w.
@@ -29,6 +57,7 @@ struct EqualityCoordinates {
 /// (A_rho = A + rho Q and the preconditioner M^-1 + Q / rho save one projection per product).
 class ProjectedOperator : public SymmetricOperator {
  public:
+  using SymmetricOperator::SymmetricOperator;
   /// y = A x + s Q x. With `ofX` (may be null): also the coordinates of Q x that computing P x
   /// gives on the way (the bits of EqualityProjector::coordinates(x)); returns whether it gave
   /// them.
