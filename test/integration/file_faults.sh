@@ -75,8 +75,14 @@ outputsThatAreDevicesOrFifos)
   expect_status 2 "a FIFO nobody reads"; expect_text noReader "no process reads it"; expect_within 20 "a FIFO nobody reads"
   cat summary.fifo >received.json &
   reader=$!
-  # tribos checks for a reader when it starts: wait until cat holds the FIFO open.
-  for _ in $(seq 1 3000); do ls -l /proc/$reader/fd 2>/dev/null | grep -q summary.fifo && break; sleep 0.01; done
+  # tribos checks for a reader when it starts: wait until cat is blocked opening the FIFO (it
+  # counts as a reader from then on; its descriptor appears only once a writer opens it):
+  # the process is cat and sleeping.
+  for _ in $(seq 1 2000); do
+    [ "$(tr '\0' ' ' </proc/$reader/cmdline 2>/dev/null)" = "cat summary.fifo " ] &&
+      [ "$(awk '{print $3}' /proc/$reader/stat 2>/dev/null)" = S ] && break
+    sleep 0.01
+  done
   run reader --input "$scene" --summary summary.fifo
   [ "$status" -eq 0 ] || : >summary.fifo  # a refused run never opened it: release the reader
   wait $reader
