@@ -467,13 +467,17 @@ TEST(nonmatchingPatch, anInterferenceIsPairedAtTheDefaultSearchDistance) {
 // No run ends "converged" with bodies inside each other (issue 41). The upper body 0.01 above the
 // lower one, the default Search Distance (no pairs), and pressed down by 0.05 at its top: nothing
 // holds it, and the solve alone would end converged with every node of the lower surface 0.04
-// inside it. The check after the solve names the interface and the depth, and the run is not
-// converged (exit 3). With Search Distance 0.1 the gap is paired and closes: converged, no overlap.
+// inside it. Pairing on the reference mesh alone (Solver/Pairing Updates = 0), the check after the
+// solve names the interface and the depth, and the run is not converged (exit 3). With Search
+// Distance 0.1 the gap is paired and closes: converged, no overlap. With the default pairing
+// updates the nodes found inside are paired on the deformed bodies and the problem solved again:
+// converged, every slave node paired, the uniaxial pressure 0.04 / (1/E1 + 1/E2) of both to 1e-10.
 TEST(nonmatchingPatch, aSlaveNodeInsideTheMasterAfterTheSolveIsNotConverged) {
   auto scene = with(heldAtTheirFarFaces(patchScene()),
                     displacementCondition("upper_held", "upper_z1", "z", "{0, 0, -0.05}"));
   scene.erase(std::remove(scene.begin(), scene.end(), std::string("Contact/Search Distance=1e-6")), scene.end());
-  const auto unpaired = test::solveBoxScene(overlappingMesh(-0.01, CellElements::Hexahedron), scene);
+  const auto unpaired = test::solveBoxScene(overlappingMesh(-0.01, CellElements::Hexahedron),
+                                            with(scene, {"Solver/Pairing Updates=0"}));
   EXPECT_FALSE(unpaired.contact.contact.converged);
   const std::string& message = unpaired.contact.contact.message;
   EXPECT_NE(message.find("contact check after the solve"), std::string::npos) << message;
@@ -483,6 +487,21 @@ TEST(nonmatchingPatch, aSlaveNodeInsideTheMasterAfterTheSolveIsNotConverged) {
                                           with(scene, {"Contact/Search Distance=0.1"}));
   EXPECT_TRUE(paired.contact.contact.converged) << paired.contact.contact.message;
   if (worldRank() == 0) EXPECT_EQ(paired.B.interfaces.at(0).pairedSlaveNodes, 25);
+  const auto updated = test::solveBoxScene(overlappingMesh(-0.01, CellElements::Hexahedron), scene);
+  EXPECT_TRUE(updated.contact.contact.converged) << updated.contact.contact.message;
+  const auto& updates = updated.contact.pairingUpdates;
+  ASSERT_FALSE(updates.empty());
+  EXPECT_EQ(updates.front().newlyInside, 25);
+  EXPECT_TRUE(updates.front().solvedAgain);
+  EXPECT_FALSE(updates.back().solvedAgain);
+  if (worldRank() != 0) return;
+  const double p = 0.04 / (1.0 / kE1 + 1.0 / kE2);
+  for (const auto* run : {&paired, &updated}) {
+    double deviation = 0.0;
+    for (LO n : run->scene.mesh.nodeSet("lower_z1").nodes)
+      deviation = std::max(deviation, std::abs(run->contact.contactPressure[n] - p) / p);
+    EXPECT_LE(deviation, 1e-10) << (run == &paired ? "Search Distance 0.1" : "pairing updates");
+  }
 }
 
 // Contact/Interference (issue 41): the same fit on nominal geometry, the bodies touching and the

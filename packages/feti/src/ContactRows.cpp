@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "ConstraintRows.hpp"
+#include "ContactPairs.hpp"
 #include "tribos/core/Errors.hpp"
 #include "tribos/geometry/ContactSearch.hpp"
 #include "tribos/geometry/MortarCoupling.hpp"
@@ -350,24 +351,6 @@ ContactInterfaceRows interfaceRows(const mesh::Mesh& mesh, const ContactInterfac
   return found;
 }
 
-/// The pairs of one interface: its search and the master side of each pair.
-struct InterfacePairs {
-  geometry::ContactSearchResult search;
-  std::vector<geometry::MortarRow> masterSides;
-  long long unsettledQuadraturePoints = 0;  ///< mortar quadrature points whose projection did not settle
-};
-
-InterfacePairs pairsOf(const mesh::Mesh& mesh, const ContactInterfaceSpec& spec) {
-  InterfacePairs found;
-  try {
-    found.search = geometry::searchContactPairs(mesh, spec.slaveSideSet, spec.masterSideSet, spec.searchDistance);
-    found.masterSides = masterSidesOf(mesh, spec, found.search, found.unsettledQuadraturePoints);
-  } catch (const core::InputError& e) {
-    throw core::InputError(spec.label() + ": " + e.what());
-  }
-  return found;
-}
-
 /// Per mesh node, the interface whose rows a slave node gets (-1: none pairs it): where several
 /// pair it (a corner of a body on a floor and against a wall), the one with the smallest gap,
 /// the surface it touches or is nearest to (ties: the earlier interface).
@@ -401,6 +384,7 @@ void addContactRows(const mesh::Mesh& mesh, const ConstraintSpec& all, int index
       continue;
     }
     search.pairs[keep] = search.pairs[p];
+    if (!found.deformed.empty()) found.deformed[keep] = found.deformed[p];
     masterSides[keep++] = masterSides[p];
   }
   search.pairs.resize(keep);
@@ -409,11 +393,14 @@ void addContactRows(const mesh::Mesh& mesh, const ConstraintSpec& all, int index
   B.interfaces.back().unsettledProjections = search.unsettledProjections + found.unsettledQuadraturePoints;
   B.interfaces.back().firstUnsettled = search.firstUnsettled;
   B.interfaces.back().sharedSlaveNodes = shared;
+  B.interfaces.back().newlyInside = found.newlyInside;
+  B.interfaces.back().movedOn = found.movedOn;
   const int numDirections = spec.tangentialRows ? 3 : 1;
   list.rows.reserve(numDirections * search.pairs.size());
   for (size_t p = 0; p < search.pairs.size(); ++p) {
     ContactNode node = contactFrame(search.pairs[p], masterSides[p], spec, ctx.prescribed);
     node.interface = index;
+    node.pairedDeformed = !found.deformed.empty() && found.deformed[p];
     const std::vector<std::pair<LO, double>> sides = node.sides();
     // The node's rows are added together, their entries consecutive in the list.
     std::vector<Row> nodeRows;
@@ -438,12 +425,31 @@ void addContactRows(const mesh::Mesh& mesh, const ConstraintSpec& all, int index
 }
 }  // namespace
 
+InterfacePairs pairsOf(const mesh::Mesh& mesh, const ContactInterfaceSpec& spec) {
+  InterfacePairs found;
+  try {
+    found.search = geometry::searchContactPairs(mesh, spec.slaveSideSet, spec.masterSideSet, spec.searchDistance);
+    found.masterSides = masterSidesOf(mesh, spec, found.search, found.unsettledQuadraturePoints);
+  } catch (const core::InputError& e) {
+    throw core::InputError(spec.label() + ": " + e.what());
+  }
+  return found;
+}
+
 void addAllContactRows(const mesh::Mesh& mesh, const ConstraintSpec& spec, const RowContext& ctx, RowList& list,
                        ConstraintMatrix& B) {
   refuseContactsModelledTwice(mesh, spec.interfaces);
   refuseInteriorContactFaces(mesh, spec.interfaces);
   std::vector<InterfacePairs> found;
-  for (const auto& one : spec.interfaces) found.push_back(pairsOf(mesh, one));
+  if (spec.pairingDisplacement) {
+    mesh::Mesh deformed = mesh;  // the bodies at x + u
+    for (size_t n = 0; n < deformed.coords.size(); ++n)
+      for (int c = 0; c < 3; ++c) deformed.coords[n][c] += (*spec.pairingDisplacement)[n][c];
+    for (size_t i = 0; i < spec.interfaces.size(); ++i)
+      found.push_back(pairsOnTheDeformedBodies(mesh, deformed, spec, static_cast<int>(i)));
+  } else {
+    for (const auto& one : spec.interfaces) found.push_back(pairsOf(mesh, one));
+  }
   const std::vector<int> owner = slaveOwners(mesh.numNodes(), found);
   for (size_t i = 0; i < spec.interfaces.size(); ++i)
     addContactRows(mesh, spec, static_cast<int>(i), std::move(found[i]), owner, ctx, list, B);

@@ -1,4 +1,6 @@
 #include "tribos/stack/ContactSolve.hpp"
+
+#include "PairingUpdate.hpp"
 #include "tribos/stack/FetiSettings.hpp"
 #include "tribos/stack/PenetrationCheck.hpp"
 
@@ -370,15 +372,16 @@ void checkPenetration(const Scene& scene, const feti::ConstraintMatrix& B, MPI_C
   MPI_Bcast(&length, 1, MPI_INT, 0, comm);
   message.resize(length);
   MPI_Bcast(message.data(), length, MPI_CHAR, 0, comm);
+  out.penetrated = !message.empty();
   if (message.empty() || !out.contact.converged) return;
   out.contact.converged = false;
   out.contact.message = message;
 }
 }  // namespace
 
-ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
-                                     const feti::ConstraintMatrix& B, const Teuchos::ParameterList& tribos,
-                                     MPI_Comm comm, core::Stopwatch runStart) {
+ContactSolveResult solveOnePairing(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
+                                   const feti::ConstraintMatrix& B, const Teuchos::ParameterList& tribos, MPI_Comm comm,
+                                   core::Stopwatch runStart) {
   ContactSolveResult out;
   int rank = 0;
   MPI_Comm_rank(comm, &rank);

@@ -15,6 +15,7 @@ void keepRankData(Scene& scene, feti::ConstraintMatrix& B, int rank, int numRank
   const int first = mesh::firstSubdomain(rank, numSubdomains, numRanks);
   const int end = mesh::firstSubdomain(rank + 1, numSubdomains, numRanks);
   feti::keepRankRows(B, rank, first, end);
+  if (scene.pairingUpdates > 0) return;  // the rows are built again on the deformed bodies
   for (int s = 0; s < numSubdomains; ++s) {
     release(subdomains[s].elements);
     subdomains[s].localElements.release();

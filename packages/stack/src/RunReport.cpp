@@ -190,6 +190,12 @@ void addContactSummary(const ContactSolveResult& contactSolve, double tolerance,
   summary["interfaces"] = interfaceSummary(contactSolve);
   summary["dissipated_energy"] = contactSolve.dissipatedEnergy;
   if (!contactSolve.steps.empty()) summary["steps"] = stepsJson(contactSolve);
+  // The pairings on the deformed bodies after each solve (Solver/Pairing Updates).
+  summary["pairing_updates"] = nlohmann::json::array();
+  for (const auto& u : contactSolve.pairingUpdates)
+    summary["pairing_updates"].push_back({{"update", u.update}, {"paired", u.paired}, {"newly_inside", u.newlyInside},
+                                          {"moved_on", u.movedOn}, {"relinearised", u.relinearised},
+                                          {"solved_again", u.solvedAgain}});
   if (!contactSolve.restartFile.empty())
     summary["restart"] = {{"file", contactSolve.restartFile}, {"step", contactSolve.restartStep}};
   summary["times"]["factorization_s"] = contactSolve.factorizationSeconds;

@@ -273,6 +273,14 @@ void solverParameters(ParameterList& pl) {
          "ends as not converged (exit 3, results written, the message names the budget); before the solve, exit 3 "
          "with the summary saying so and no results; 0: no budget",
          core::atLeast(0.0));
+  pl.set("Pairing Updates", 3,
+         "contact scenes solved in one step: after a solve the slave nodes are paired again on the deformed bodies "
+         "(search, projections and mortar weights at x + u, gaps still from the reference); where a slave node "
+         "without rows now lies inside the master, or a paired one has slid past its master nodes, the contact rows "
+         "are built on the deformed bodies and the problem is solved again (factorised again), at most this many "
+         "times. Nothing changed: the first result stands, as it was. 0: the reference mesh decides the pairing "
+         "(issue 41; doc/contact_surfaces.md)",
+         core::intRange(0, 20));
   pl.set("Verbose", true, "print the solver chain and one progress line per outer iteration (rank 0)");
   pl.set("Progress Interval", 2.0,
          "Verbose: inside a long inner solve, a progress line (MPGP iterations, ||g^P||, F applications, time) "

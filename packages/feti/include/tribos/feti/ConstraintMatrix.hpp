@@ -79,10 +79,24 @@ struct ContactInterfaceSpec {
   std::string label() const { return list() + " (" + slaveSideSet + " -> " + masterSideSet + ")"; }
 };
 
+struct ConstraintMatrix;
+
 struct ConstraintSpec {
   std::vector<std::string> dirichletNodeSets;  ///< node sets with u = 0 (all components)
   std::vector<DisplacementCondition> displacementConditions;
   std::vector<ContactInterfaceSpec> interfaces;  ///< none: no contact
+  /// A pairing on the deformed bodies (stack/src/PairingUpdate.cpp; issue 41): the displacement
+  /// u of every global node of a solved state, and that state's pairing (its B). Each slave node
+  /// keeps the pairing it had unless the bodies at x + u show it wrong (DeformedPairing.cpp):
+  /// a node without rows there lies inside the master by more than 1e-3 of the master face's
+  /// size (newly inside), or a paired node's nearest master node at x + u is none of its rows'
+  /// master nodes (moved on). Those nodes, and the ones paired so before, take the pairing at
+  /// x + u: search, projections and mortar weights on the deformed coordinates, the gap still
+  /// measured from the reference, d = -sum over the row's nodes of w nu . x (the deformed gap
+  /// plus sum w nu . u), so that N u <= d holds for the total displacement as before. Null:
+  /// the reference mesh decides.
+  const std::vector<std::array<double, 3>>* pairingDisplacement = nullptr;
+  const ConstraintMatrix* solvedPairing = nullptr;
 };
 
 /// One slave contact node r with its projection and frame (DESIGN.md conventions).
@@ -102,6 +116,7 @@ struct ContactNode {
   /// the master nodes (-w); a row is this times its direction and scale.
   std::vector<std::pair<LO, double>> sides() const;
   bool mortar = false;                     ///< weights from the dual mortar integrals
+  bool pairedDeformed = false;             ///< paired on the deformed bodies (ConstraintSpec::pairingDisplacement)
   std::array<double, 3> normal{}, t1{}, t2{};  ///< orthonormal frame, normal from slave to master
   double gap = 0.0;                        ///< d_r: signed distance along normal (< 0: initial overlap)
   /// The interface's Interference, already subtracted from `gap` (a load history ramps this part).
@@ -158,6 +173,9 @@ struct ContactInterfaceRows {
   /// described (empty if only quadrature points failed).
   long long unsettledProjections = 0;
   std::string firstUnsettled;
+  /// A pairing on the deformed bodies (ConstraintSpec::pairingDisplacement): the slave nodes it
+  /// paired anew there, newly inside the master or moved on past their master nodes.
+  GO newlyInside = 0, movedOn = 0;
 };
 
 /// The part of a row's c that one displacement condition's values make (a Dirichlet row's

@@ -61,6 +61,7 @@ class MasterSurface {
   Projection pairingProjection(const Vec3& x, double searchDistance, long long* facesTested = nullptr) const;
   /// The largest distance between two nodes of face f (its size).
   double faceSize(LO face) const { return faceSize_[face]; }
+  double largestFaceSize() const { return largestFaceSize_; }
   /// Unit smoothed normal (outward of the master body) interpolated at a projection.
   Vec3 normalAt(const Projection& p) const;
   const std::string& name() const { return name_; }

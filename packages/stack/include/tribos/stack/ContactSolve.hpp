@@ -62,6 +62,18 @@ struct StepResults : ContactFields {
   double appliedLoadMagnitude = 0.0;    ///< sum of their lengths (loadMagnitude)
 };
 
+/// One pairing on the deformed bodies after a solve (Solver/Pairing Updates; stack/src/PairingUpdate.cpp).
+struct PairingUpdateRecord {
+  int update = 0;              ///< 1, 2, ...
+  long long paired = 0;        ///< contact nodes of the pairing on the deformed bodies
+  long long newlyInside = 0;   ///< slave nodes without rows that the solve left inside the master
+  long long movedOn = 0;       ///< paired slave nodes whose nearest master node is no longer in their rows
+  /// Nodes paired on the deformed bodies that slid since (by more than 2.5 % of their master
+  /// nodes' spread): paired again where the bodies are now.
+  long long relinearised = 0;
+  bool solvedAgain = false;    ///< any count > 0: the problem was built and solved again on this pairing
+};
+
 /// The contact solve, its counts and times, and the results of its last state (StepResults).
 struct ContactSolveResult : StepResults {
   contact::ContactResult contact;   ///< counters, KKT, status counts (node list: this rank's); of the
@@ -80,6 +92,10 @@ struct ContactSolveResult : StepResults {
   double bytesPerFApplication = 0.0;  ///< feti::TotalFeti::bytesPerFApplication
   std::string chain;                ///< the solver chain that was built, for verbose output
   std::vector<OuterIterationRecord> history;  ///< one per outer iteration (rank 0)
+  /// The check after the solve found a slave node without rows inside the master body
+  /// (PenetrationCheck.hpp): not converged, and a pairing on the deformed bodies may hold it.
+  bool penetrated = false;
+  std::vector<PairingUpdateRecord> pairingUpdates;  ///< one per pairing after a solve
 };
 
 /// Solver settings from the validated "Tribos" list and the scene's interfaces (exposed for
@@ -92,7 +108,9 @@ std::string describeContactChain(const Scene& scene, const Teuchos::ParameterLis
 
 /// Solves a contact scene (Friction Model None, Tresca or Coulomb). `owned`: this rank's
 /// assembled systems, consumed. Solver/Max Seconds counts from `runStart` (the start of the
-/// run; by default this call) and covers the factorisation. Collective over `comm`.
+/// run; by default this call) and covers the factorisation. With Scene::pairingUpdates, the
+/// slave nodes are paired again on the deformed bodies after the solve, and the problem solved
+/// again where that changed the pairing (PairingUpdate.cpp). Collective over `comm`.
 ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
                                      const feti::ConstraintMatrix& B, const Teuchos::ParameterList& tribos,
                                      MPI_Comm comm, core::Stopwatch runStart = {});

@@ -17,6 +17,8 @@ namespace tribos::stack {
 ///  - on ranks other than 0 (which writes the results on the global mesh), the global
 ///    connectivity, the element -> subdomain map and the side sets. Coordinates and node
 ///    sets stay (the owned subdomains' coordinates, the reactions' prescribed components).
+/// A scene that may pair again after its solve (Scene::pairingUpdates) keeps its mesh and
+/// decomposition whole on every rank: the contact rows are built again from them.
 void keepRankData(Scene& scene, feti::ConstraintMatrix& B, int rank, int numRanks);
 
 /// Entries (rows, nonzeros) of B's blocks that a rank holds, for tests and doc/measurements/scalability.md.

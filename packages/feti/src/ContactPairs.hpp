@@ -1,0 +1,33 @@
+#pragma once
+// Internal to feti/: the pairs of one contact interface before they become rows (ContactRows.cpp),
+// found on the reference mesh or on the deformed bodies (DeformedPairing.cpp).
+#include <vector>
+
+#include "tribos/feti/ConstraintMatrix.hpp"
+#include "tribos/geometry/ContactSearch.hpp"
+#include "tribos/geometry/MortarCoupling.hpp"
+#include "tribos/mesh/Mesh.hpp"
+
+namespace tribos::feti::rows {
+
+/// The pairs of one interface: its search and the master side of each pair.
+struct InterfacePairs {
+  geometry::ContactSearchResult search;
+  std::vector<geometry::MortarRow> masterSides;
+  long long unsettledQuadraturePoints = 0;  ///< mortar quadrature points whose projection did not settle
+  /// Per pair: found on the deformed bodies (ContactNode::pairedDeformed); empty: none was.
+  std::vector<char> deformed;
+  GO newlyInside = 0, movedOn = 0;  ///< ContactInterfaceRows's counts
+};
+
+/// The search and the master sides of interface `spec` on `mesh` (ContactRows.cpp).
+InterfacePairs pairsOf(const mesh::Mesh& mesh, const ContactInterfaceSpec& spec);
+
+/// The pairs of interface `index` of `spec` when the pairing follows the deformed bodies
+/// (ConstraintSpec::pairingDisplacement, solvedPairing): each slave node keeps its pairing or
+/// takes the one at x + u (`deformed`: the mesh at x + u), by the rules of
+/// ConstraintSpec::pairingDisplacement (DeformedPairing.cpp).
+InterfacePairs pairsOnTheDeformedBodies(const mesh::Mesh& mesh, const mesh::Mesh& deformed, const ConstraintSpec& spec,
+                                        int index);
+
+}  // namespace tribos::feti::rows
