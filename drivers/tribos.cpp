@@ -22,6 +22,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -32,6 +33,7 @@
 
 #include "CommandLine.hpp"
 #include "RunFiles.hpp"
+#include "ResultFile.hpp"
 #include "RunOutcome.hpp"
 #include "tribos/stack/SubdomainSetup.hpp"
 #include "tribos/core/Deadline.hpp"
@@ -53,110 +55,11 @@
 
 namespace {
 using namespace tribos;
-
-/// One time step of the Exodus result; null pointers: not computed (dry run).
-struct OutputStep {
-  double time = 0.0;
-  const std::vector<std::array<double, 3>>* displacement = nullptr;
-  const std::vector<std::array<double, 3>>* reaction = nullptr;
-  const stack::StressResults* stress = nullptr;
-  const stack::ContactFields* contact = nullptr;  ///< scenes with contact interfaces
-  std::vector<mesh::GlobalValue> globals;
-};
-
-/// Everything the Exodus result shows besides the mesh: one time step, or one per load step.
-struct OutputData {
-  std::vector<OutputStep> steps{1};
-  std::vector<std::string> info;
-};
-
-/// Three nodal fields <prefix>x, <prefix>y, <prefix>z from one vector per node.
-void addVectorField(const std::string& prefix, const std::vector<std::array<double, 3>>& v, mesh::TimeStep& step) {
-  for (int c = 0; c < 3; ++c) {
-    mesh::Field f{prefix + "xyz"[c], std::vector<double>(v.size())};
-    for (size_t n = 0; n < v.size(); ++n) f.values[n] = v[n][c];
-    step.nodal.push_back(std::move(f));
-  }
-}
-
-void addStressFields(const stack::StressResults& stress, mesh::TimeStep& step) {
-  for (int k = 0; k < 6; ++k) {
-    step.element.push_back({std::string("stress_") + stack::kStressComponents[k], stress.element[k]});
-    step.nodal.push_back({std::string("nodal_stress_") + stack::kStressComponents[k], stress.nodal[k]});
-  }
-  step.element.push_back({"von_mises", stress.elementVonMises});
-  step.nodal.push_back({"nodal_von_mises", stress.nodalVonMises});
-}
-
-void addContactFields(const stack::ContactFields& c, mesh::TimeStep& step) {
-  const std::pair<const char*, const std::vector<double>*> fields[] = {
-      {"contact_normal", &c.contactNormal}, {"contact_t1", &c.contactT1},         {"contact_t2", &c.contactT2},
-      {"contact_status", &c.contactStatus}, {"contact_pressure", &c.contactPressure}, {"contact_gap", &c.contactGap},
-      {"contact_opening", &c.contactOpening}, {"contact_nx", &c.contactNx},       {"contact_ny", &c.contactNy},
-      {"contact_nz", &c.contactNz},         {"contact_master", &c.contactMaster},
-      {"contact_slip_t1", &c.contactSlipT1}, {"contact_slip_t2", &c.contactSlipT2},
-      {"contact_tangential_t1", &c.contactTangentialT1}, {"contact_tangential_t2", &c.contactTangentialT2},
-      {"contact_accumulated_slip", &c.contactAccumulatedSlip}};
-  for (const auto& [name, values] : fields) step.nodal.push_back({name, *values});
-}
-
-void writeOutput(const std::string& path, const stack::Scene& scene, const OutputData& data) {
-  mesh::Field subdomain{"subdomain", std::vector<double>(scene.mesh.numElements())};
-  for (LO e = 0; e < scene.mesh.numElements(); ++e) subdomain.values[e] = scene.decomposition.elementPart[e];
-  std::vector<mesh::TimeStep> steps;
-  for (const auto& data : data.steps) {
-    mesh::TimeStep step;
-    step.time = data.displacement ? data.time : 0.0;
-    if (data.displacement) addVectorField("displ_", *data.displacement, step);
-    if (data.reaction) addVectorField("reaction_", *data.reaction, step);
-    if (data.stress) addStressFields(*data.stress, step);
-    if (data.contact) addContactFields(*data.contact, step);
-    step.element.push_back(subdomain);
-    step.global = data.globals;
-    if (data.contact)  // the restart's check of the memory (stack::contactMemorySum)
-      step.global.push_back({"contact_memory_sum",
-                             stack::contactMemorySum(data.contact->contactTangentialT1, data.contact->contactTangentialT2,
-                                                     data.contact->contactAccumulatedSlip)});
-    steps.push_back(std::move(step));
-  }
-  mesh::writeExodus(path, scene.mesh, steps, data.info);
-}
-
-/// The result file says how it was made: the command line and the effective parameter list
-/// (defaults filled in) as XML, one info record per line.
-std::vector<std::string> infoRecords(int argc, char** argv, const Teuchos::ParameterList& params) {
-  std::string command = "tribos";
-  for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
-  std::vector<std::string> info = {"Tribos result", command};
-  std::istringstream lines(core::parameterListToXml(params));
-  for (std::string line; std::getline(lines, line);) info.push_back(line);
-  return info;
-}
-
-/// Per-step global variables: the summary's counts and KKT residuals (numbers only).
-std::vector<mesh::GlobalValue> globalValues(const nlohmann::json& summary) {
-  std::vector<mesh::GlobalValue> out;
-  for (const char* key : {"converged", "outer_iterations", "inner_iterations", "pfp_applications",
-                          "fixed_point_iterations", "strain_energy", "force_balance", "dissipated_energy"})
-    if (summary.contains(key))
-      out.push_back({key, summary[key].is_boolean() ? double(summary[key].get<bool>()) : summary[key].get<double>()});
-  if (summary.contains("step")) out.push_back({"load_step", summary["step"].get<double>()});  // a load history's
-  if (summary.contains("kkt"))
-    for (const auto& [name, value] : summary["kkt"].items())
-      if (value.is_number()) out.push_back({"kkt_" + name, value.get<double>()});
-  // Per contact interface: "<name>_normal_force", ... ("contact_..." for the flat Contact list).
-  if (summary.contains("interfaces"))
-    for (const auto& i : summary["interfaces"]) {
-      const std::string name = i.value("name", std::string());
-      const std::string prefix = (name.empty() ? std::string("contact") : name) + "_";
-      for (const char* key : {"normal_force", "friction_force", "no_contact", "stick", "slip", "peak_pressure",
-                              "largest_opening", "largest_overlap", "dissipated_energy"})
-        if (i.contains(key) && i[key].is_number()) out.push_back({prefix + key, i[key].get<double>()});
-      if (i.contains("contact_force"))
-        for (int c = 0; c < 3; ++c) out.push_back({prefix + "force_" + "xyz"[c], i["contact_force"][c].get<double>()});
-    }
-  return out;
-}
+using driver::globalValues;
+using driver::infoRecords;
+using driver::OutputData;
+using driver::OutputStep;
+using driver::writeOutput;
 
 // This process's peak resident set size in KiB (getrusage: ru_maxrss is in KiB on Linux).
 long peakRssKb() {
@@ -400,7 +303,16 @@ int solveAndReport(int argc, char** argv, int rank, const RunStart& start) {
     if (rank == 0 && stack::isContactProblem(set.scene))
       std::cout << "  solver chain: " << stack::describeSolverChain(set.scene, params) << "\n";
     core::ScopedPhase phase("Solve");
-    solve = stack::solveScene(set.scene, std::move(set.systems), set.B, params, MPI_COMM_WORLD, total);
+    // A load history with a result file writes checkpoints as it goes (Load Steps/Checkpoint Seconds).
+    std::optional<driver::Checkpoints> checkpoints;
+    stack::StepObserver afterStep;
+    if (set.scene.loadHistory && resultFiles.exodus) {
+      checkpoints.emplace(set.scene, *resultFiles.exodus, params.sublist("Load Steps").get<double>("Checkpoint Seconds"),
+                          infoRecords(argc, argv, params), rank);
+      afterStep = std::ref(*checkpoints);
+    }
+    solve = stack::solveScene(set.scene, std::move(set.systems), set.B, params, MPI_COMM_WORLD, total, afterStep);
+    if (checkpoints) summary["checkpoints"] = checkpoints->written();
     status = solve.converged() ? core::kExitOk : core::kExitNotConverged;
     stack::addSolveSummary(solve, params, summary);
     if (rank == 0) std::cout << stack::solveReport(solve);

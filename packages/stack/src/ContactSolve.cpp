@@ -329,7 +329,7 @@ void setAppliedLoad(const std::vector<std::vector<double>>& f, MPI_Comm comm, St
 const ContactFields* solveHistory(const Scene& scene, const feti::ConstraintMatrix& B,
                                   const Teuchos::ParameterList& stepsList, feti::TotalFeti& feti,
                                   const ContactChain& chain, LoadHistory& loads, const RestartState& restart,
-                                  MPI_Comm comm, ContactSolveResult& out) {
+                                  MPI_Comm comm, ContactSolveResult& out, const StepObserver& afterStep) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   HistoryRun run{comm, scene.stepTimes, stepsList.get<bool>("Warm Start"), 1, stepsList.get<int>("Max Cutbacks")};
@@ -350,6 +350,7 @@ const ContactFields* solveHistory(const Scene& scene, const feti::ConstraintMatr
     addStatusChange(gatherStateResults(scene, B, feti, step, comm, before, results), out.steps.back().statusCounts);
     if (before) addEarlierSteps(*before, results);
     out.earlierSteps.push_back(std::move(results));
+    if (afterStep) afterStep(out);
   };
   out.contact = solveLoadHistory(feti, B, chain, loads, run, rank, out.steps, everyStep);
   setAppliedLoad(loads.loads(out.steps.back().step), comm, out);  // the last step solved (B2)
@@ -381,7 +382,7 @@ void checkPenetration(const Scene& scene, const feti::ConstraintMatrix& B, MPI_C
 
 ContactSolveResult solveOnePairing(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
                                    const feti::ConstraintMatrix& B, const Teuchos::ParameterList& tribos, MPI_Comm comm,
-                                   core::Stopwatch runStart) {
+                                   core::Stopwatch runStart, const StepObserver& afterStep) {
   ContactSolveResult out;
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
@@ -418,7 +419,7 @@ ContactSolveResult solveOnePairing(const Scene& scene, std::vector<fem::Subdomai
   core::Stopwatch watch;
   const ContactFields* totalsBefore = nullptr;  // a history's totals before its last state
   if (history)
-    totalsBefore = solveHistory(scene, B, stepsList, feti, chain, *loads, restart, comm, out);
+    totalsBefore = solveHistory(scene, B, stepsList, feti, chain, *loads, restart, comm, out, afterStep);
   else
     out.contact = contact::solveContact(feti, B, chain.friction, chain.smalse, chain.preconditioner);
   out.solveSeconds = watch.seconds();

@@ -81,8 +81,9 @@ void reportUpdate(const PairingUpdateRecord& r, int rank, bool verbose) {
 
 ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
                                      const feti::ConstraintMatrix& B, const Teuchos::ParameterList& tribos,
-                                     MPI_Comm comm, core::Stopwatch runStart) {
-  if (scene.pairingUpdates == 0) return solveOnePairing(scene, std::move(owned), B, tribos, comm, runStart);
+                                     MPI_Comm comm, core::Stopwatch runStart, const StepObserver& afterStep) {
+  // A load history (pairingUpdates 0) is the one kind with steps to observe.
+  if (scene.pairingUpdates == 0) return solveOnePairing(scene, std::move(owned), B, tribos, comm, runStart, afterStep);
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   ContactSolveResult out = solveOnePairing(scene, std::move(owned), B, tribos, comm, runStart);

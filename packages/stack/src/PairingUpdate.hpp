@@ -19,6 +19,6 @@ namespace tribos::stack {
 /// One solve on one pairing (ContactSolve.cpp): solveContactScene without pairing updates.
 ContactSolveResult solveOnePairing(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
                                    const feti::ConstraintMatrix& B, const Teuchos::ParameterList& tribos, MPI_Comm comm,
-                                   core::Stopwatch runStart);
+                                   core::Stopwatch runStart, const StepObserver& afterStep = {});
 
 }  // namespace tribos::stack

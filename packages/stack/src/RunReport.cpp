@@ -121,28 +121,7 @@ nlohmann::json factorsJson(const std::vector<std::pair<std::string, double>>& fa
 /// earlierSteps, then of the last state).
 nlohmann::json stepsJson(const ContactSolveResult& c) {
   nlohmann::json list = nlohmann::json::array();
-  for (size_t i = 0; i < c.steps.size(); ++i) {
-    const auto& k = c.steps[i];
-    const ContactFields& fields = i < c.earlierSteps.size() ? c.earlierSteps[i] : c;
-    list.push_back({{"step", k.step},
-                    {"time", k.time},
-                    {"ramp", k.factor},
-                    {"factors", factorsJson(k.factors)},
-                    {"converged", k.converged},
-                    {"attempts", k.attempts},
-                    {"cutbacks", k.cutbacks},
-                    {"reached", k.reached},
-                    {"outer_iterations", k.outerIterations},
-                    {"pfp_applications", k.pfpApplications},
-                    {"fixed_point_iterations", k.fixedPointIterations},
-                    {"no_contact", k.statusCounts[0]},
-                    {"stick", k.statusCounts[1]},
-                    {"slip", k.statusCounts[2]},
-                    {"message", k.message},
-                    {"kkt", contactKktJson(k.kkt, k.kktTolerance)},
-                    {"interfaces", interfaceSummary(fields)},
-                    {"dissipated_energy", fields.dissipatedEnergy}});
-  }
+  for (size_t i = 0; i < c.steps.size(); ++i) list.push_back(stepSummary(c, i));
   return list;
 }
 
@@ -270,6 +249,29 @@ std::string linearReport(const LinearFetiResult& linear) {
   return out.str();
 }
 }  // namespace
+
+nlohmann::json stepSummary(const ContactSolveResult& c, size_t i) {
+  const auto& k = c.steps[i];
+  const ContactFields& fields = i < c.earlierSteps.size() ? c.earlierSteps[i] : c;
+  return {{"step", k.step},
+          {"time", k.time},
+          {"ramp", k.factor},
+          {"factors", factorsJson(k.factors)},
+          {"converged", k.converged},
+          {"attempts", k.attempts},
+          {"cutbacks", k.cutbacks},
+          {"reached", k.reached},
+          {"outer_iterations", k.outerIterations},
+          {"pfp_applications", k.pfpApplications},
+          {"fixed_point_iterations", k.fixedPointIterations},
+          {"no_contact", k.statusCounts[0]},
+          {"stick", k.statusCounts[1]},
+          {"slip", k.statusCounts[2]},
+          {"message", k.message},
+          {"kkt", contactKktJson(k.kkt, k.kktTolerance)},
+          {"interfaces", interfaceSummary(fields)},
+          {"dissipated_energy", fields.dissipatedEnergy}};
+}
 
 nlohmann::json setupSummary(const Scene& scene, const SetupReport& report, const feti::ConstraintMatrix& B,
                             const std::string& input, bool dryRun) {

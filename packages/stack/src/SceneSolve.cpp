@@ -18,13 +18,13 @@ std::string describeSolverChain(const Scene& scene, const Teuchos::ParameterList
 
 SceneSolveResult solveScene(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
                             const feti::ConstraintMatrix& B, const Teuchos::ParameterList& tribos, MPI_Comm comm,
-                            core::Stopwatch runStart) {
+                            core::Stopwatch runStart, const StepObserver& afterStep) {
   SceneSolveResult result;
   result.contactProblem = isContactProblem(scene);
   result.chain = describeSolverChain(scene, tribos);
   const auto& solver = tribos.sublist("Solver");
   if (result.contactProblem) {
-    result.contactSolve = solveContactScene(scene, std::move(owned), B, tribos, comm, runStart);
+    result.contactSolve = solveContactScene(scene, std::move(owned), B, tribos, comm, runStart, afterStep);
   } else {
     result.linear = solveLinearFeti(scene, std::move(owned), B, tribos.sublist("FETI"), solver.get<double>("Tolerance"),
                                     comm, solver.get<double>("Max Seconds"), runStart);

@@ -5,6 +5,7 @@
 /// back onto the user's global mesh.
 #include <mpi.h>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -98,6 +99,11 @@ struct ContactSolveResult : StepResults {
   std::vector<PairingUpdateRecord> pairingUpdates;  ///< one per pairing after a solve
 };
 
+/// Called on every rank after each converged step of a load history but the last, with the
+/// result so far (ContactSolveResult::steps and earlierSteps up to that step): the driver writes
+/// its checkpoints with it (Load Steps/Checkpoint Seconds).
+using StepObserver = std::function<void(const ContactSolveResult&)>;
+
 /// Solver settings from the validated "Tribos" list and the scene's interfaces (exposed for
 /// tests and perf tools).
 contact::FrictionSettings frictionSettings(const Scene& scene, const Teuchos::ParameterList& tribos);
@@ -113,6 +119,6 @@ std::string describeContactChain(const Scene& scene, const Teuchos::ParameterLis
 /// again where that changed the pairing (PairingUpdate.cpp). Collective over `comm`.
 ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
                                      const feti::ConstraintMatrix& B, const Teuchos::ParameterList& tribos,
-                                     MPI_Comm comm, core::Stopwatch runStart = {});
+                                     MPI_Comm comm, core::Stopwatch runStart = {}, const StepObserver& afterStep = {});
 
 }  // namespace tribos::stack

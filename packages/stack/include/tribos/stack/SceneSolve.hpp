@@ -46,9 +46,10 @@ bool isContactProblem(const Scene& scene);
 std::string describeSolverChain(const Scene& scene, const Teuchos::ParameterList& tribos);
 
 /// Builds the stack the scene needs and solves it. `owned`: this rank's assembled systems,
-/// consumed. Solver/Max Seconds counts from `runStart`. Collective over `comm`.
+/// consumed. Solver/Max Seconds counts from `runStart`. `afterStep`: called after each
+/// converged step of a load history but the last (StepObserver). Collective over `comm`.
 SceneSolveResult solveScene(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
                             const feti::ConstraintMatrix& B, const Teuchos::ParameterList& tribos, MPI_Comm comm,
-                            core::Stopwatch runStart);
+                            core::Stopwatch runStart, const StepObserver& afterStep = {});
 
 }  // namespace tribos::stack

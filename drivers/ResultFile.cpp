@@ -1,0 +1,148 @@
+// The Exodus result of a run and the checkpoints of a load history (ResultFile.hpp).
+#include "ResultFile.hpp"
+
+#include <iostream>
+#include <sstream>
+
+#include "tribos/core/Errors.hpp"
+#include "tribos/core/XmlParameters.hpp"
+#include "tribos/stack/RunReport.hpp"
+
+namespace tribos::driver {
+
+namespace {
+/// Three nodal fields <prefix>x, <prefix>y, <prefix>z from one vector per node.
+void addVectorField(const std::string& prefix, const std::vector<std::array<double, 3>>& v, mesh::TimeStep& step) {
+  for (int c = 0; c < 3; ++c) {
+    mesh::Field f{prefix + "xyz"[c], std::vector<double>(v.size())};
+    for (size_t n = 0; n < v.size(); ++n) f.values[n] = v[n][c];
+    step.nodal.push_back(std::move(f));
+  }
+}
+
+void addStressFields(const stack::StressResults& stress, mesh::TimeStep& step) {
+  for (int k = 0; k < 6; ++k) {
+    step.element.push_back({std::string("stress_") + stack::kStressComponents[k], stress.element[k]});
+    step.nodal.push_back({std::string("nodal_stress_") + stack::kStressComponents[k], stress.nodal[k]});
+  }
+  step.element.push_back({"von_mises", stress.elementVonMises});
+  step.nodal.push_back({"nodal_von_mises", stress.nodalVonMises});
+}
+
+void addContactFields(const stack::ContactFields& c, mesh::TimeStep& step) {
+  const std::pair<const char*, const std::vector<double>*> fields[] = {
+      {"contact_normal", &c.contactNormal}, {"contact_t1", &c.contactT1},         {"contact_t2", &c.contactT2},
+      {"contact_status", &c.contactStatus}, {"contact_pressure", &c.contactPressure}, {"contact_gap", &c.contactGap},
+      {"contact_opening", &c.contactOpening}, {"contact_nx", &c.contactNx},       {"contact_ny", &c.contactNy},
+      {"contact_nz", &c.contactNz},         {"contact_master", &c.contactMaster},
+      {"contact_slip_t1", &c.contactSlipT1}, {"contact_slip_t2", &c.contactSlipT2},
+      {"contact_tangential_t1", &c.contactTangentialT1}, {"contact_tangential_t2", &c.contactTangentialT2},
+      {"contact_accumulated_slip", &c.contactAccumulatedSlip}};
+  for (const auto& [name, values] : fields) step.nodal.push_back({name, *values});
+}
+
+}  // namespace
+
+void writeOutput(const std::string& path, const stack::Scene& scene, const OutputData& data) {
+  mesh::Field subdomain{"subdomain", std::vector<double>(scene.mesh.numElements())};
+  for (LO e = 0; e < scene.mesh.numElements(); ++e) subdomain.values[e] = scene.decomposition.elementPart[e];
+  std::vector<mesh::TimeStep> steps;
+  for (const auto& data : data.steps) {
+    mesh::TimeStep step;
+    step.time = data.displacement ? data.time : 0.0;
+    if (data.displacement) addVectorField("displ_", *data.displacement, step);
+    if (data.reaction) addVectorField("reaction_", *data.reaction, step);
+    if (data.stress) addStressFields(*data.stress, step);
+    if (data.contact) addContactFields(*data.contact, step);
+    step.element.push_back(subdomain);
+    step.global = data.globals;
+    if (data.contact)  // the restart's check of the memory (stack::contactMemorySum)
+      step.global.push_back({"contact_memory_sum",
+                             stack::contactMemorySum(data.contact->contactTangentialT1, data.contact->contactTangentialT2,
+                                                     data.contact->contactAccumulatedSlip)});
+    steps.push_back(std::move(step));
+  }
+  mesh::writeExodus(path, scene.mesh, steps, data.info);
+}
+
+/// The result file says how it was made: the command line and the effective parameter list
+/// (defaults filled in) as XML, one info record per line.
+std::vector<std::string> infoRecords(int argc, char** argv, const Teuchos::ParameterList& params) {
+  std::string command = "tribos";
+  for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
+  std::vector<std::string> info = {"Tribos result", command};
+  std::istringstream lines(core::parameterListToXml(params));
+  for (std::string line; std::getline(lines, line);) info.push_back(line);
+  return info;
+}
+
+/// Per-step global variables: the summary's counts and KKT residuals (numbers only).
+std::vector<mesh::GlobalValue> globalValues(const nlohmann::json& summary) {
+  std::vector<mesh::GlobalValue> out;
+  for (const char* key : {"converged", "outer_iterations", "inner_iterations", "pfp_applications",
+                          "fixed_point_iterations", "strain_energy", "force_balance", "dissipated_energy"})
+    if (summary.contains(key))
+      out.push_back({key, summary[key].is_boolean() ? double(summary[key].get<bool>()) : summary[key].get<double>()});
+  if (summary.contains("step")) out.push_back({"load_step", summary["step"].get<double>()});  // a load history's
+  if (summary.contains("kkt"))
+    for (const auto& [name, value] : summary["kkt"].items())
+      if (value.is_number()) out.push_back({"kkt_" + name, value.get<double>()});
+  // Per contact interface: "<name>_normal_force", ... ("contact_..." for the flat Contact list).
+  if (summary.contains("interfaces"))
+    for (const auto& i : summary["interfaces"]) {
+      const std::string name = i.value("name", std::string());
+      const std::string prefix = (name.empty() ? std::string("contact") : name) + "_";
+      for (const char* key : {"normal_force", "friction_force", "no_contact", "stick", "slip", "peak_pressure",
+                              "largest_opening", "largest_overlap", "dissipated_energy"})
+        if (i.contains(key) && i[key].is_number()) out.push_back({prefix + key, i[key].get<double>()});
+      if (i.contains("contact_force"))
+        for (int c = 0; c < 3; ++c) out.push_back({prefix + "force_" + "xyz"[c], i["contact_force"][c].get<double>()});
+    }
+  return out;
+}
+
+
+Checkpoints::Checkpoints(const stack::Scene& scene, core::OutputFile& exodus, double seconds,
+                         std::vector<std::string> info, int rank)
+    : scene_(scene), exodus_(exodus), seconds_(seconds), info_(std::move(info)), rank_(rank) {}
+
+void Checkpoints::operator()(const stack::ContactSolveResult& soFar) {
+  if (rank_ != 0 || since_.seconds() < seconds_) return;
+  try {
+    write(soFar);
+    ++written_;
+  } catch (const core::IoError& e) {
+    std::cout << "  warning: no checkpoint after step " << soFar.steps.back().step << ": " << e.what() << "\n";
+  }
+  since_ = core::Stopwatch();
+}
+
+void Checkpoints::write(const stack::ContactSolveResult& soFar) {
+  OutputData data;
+  data.steps.clear();
+  data.info = info_;
+  for (size_t i = stress_.size(); i < soFar.earlierSteps.size(); ++i) {  // steps not written before
+    const auto& step = soFar.earlierSteps[i];
+    stress_.push_back(stack::evaluateStresses(scene_, step.displacement.value));
+    nlohmann::json entry = stack::stepSummary(soFar, i);
+    const auto balance = stack::forceBalance(scene_, step.reaction, step.appliedLoad, step.appliedLoadMagnitude);
+    stack::addResultsToSummary(stress_[i], balance, entry);
+    globals_.push_back(globalValues(entry));
+  }
+  for (size_t i = 0; i < soFar.earlierSteps.size(); ++i) {  // stress_ no longer grows: its addresses hold
+    const auto& step = soFar.earlierSteps[i];
+    OutputStep out;
+    out.time = soFar.steps[i].time;
+    out.displacement = &step.displacement.value;
+    out.reaction = &step.reaction;
+    out.stress = &stress_[i];
+    out.contact = &step;
+    out.globals = globals_[i];
+    data.steps.push_back(std::move(out));
+  }
+  exodus_.writeWith([&](const std::string& path) { writeOutput(path, scene_, data); });
+  std::cout << "  checkpoint: wrote steps 1 to " << soFar.steps[soFar.earlierSteps.size() - 1].step << " of the history to "
+            << exodus_.path() << "\n";
+}
+
+}  // namespace tribos::driver
