@@ -382,7 +382,8 @@ void checkPenetration(const Scene& scene, const feti::ConstraintMatrix& B, MPI_C
 
 ContactSolveResult solveOnePairing(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
                                    const feti::ConstraintMatrix& B, const Teuchos::ParameterList& tribos, MPI_Comm comm,
-                                   core::Stopwatch runStart, const StepObserver& afterStep) {
+                                   core::Stopwatch runStart, const StepObserver& afterStep,
+                                   const RestartState* continueFrom) {
   ContactSolveResult out;
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
@@ -405,7 +406,9 @@ ContactSolveResult solveOnePairing(const Scene& scene, std::vector<fem::Subdomai
   const bool history = scene.loadHistory;  // several steps, or a table on one step too
   const auto& stepsList = tribos.sublist("Load Steps");
   RestartState restart;  // read before the factorisation: a file that cannot serve costs nothing
-  if (history && !stepsList.get<std::string>("Restart From").empty())
+  if (continueFrom)
+    restart = *continueFrom;
+  else if (history && !stepsList.get<std::string>("Restart From").empty())
     restart = readRestartOnRoot(stepsList.get<std::string>("Restart From"), scene, B, comm);
   std::optional<LoadHistory> loads;
   if (history) {

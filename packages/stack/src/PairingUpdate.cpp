@@ -13,27 +13,13 @@
 
 namespace tribos::stack {
 
-namespace {
-/// Rank 0's global displacement on every rank.
-std::vector<std::array<double, 3>> displacementOnEveryRank(const ContactSolveResult& out, LO numNodes, MPI_Comm comm) {
-  std::vector<std::array<double, 3>> u = out.displacement.value;
+std::vector<std::array<double, 3>> onEveryRank(std::vector<std::array<double, 3>> u, LO numNodes, MPI_Comm comm) {
   u.resize(numNodes);
   MPI_Bcast(u.data(), 3 * numNodes, MPI_DOUBLE, 0, comm);
   return u;
 }
 
-/// The contact rows on the deformed bodies, this rank's part: each slave node keeps its pairing
-/// in `solved` unless the bodies at x + u show it wrong (feti::ConstraintSpec::pairingDisplacement).
-feti::ConstraintMatrix rowsAt(const Scene& scene, const std::vector<std::array<double, 3>>& u,
-                              const feti::ConstraintMatrix& solved, MPI_Comm comm) {
-  int rank = 0, numRanks = 1;
-  MPI_Comm_rank(comm, &rank);
-  MPI_Comm_size(comm, &numRanks);
-  feti::ConstraintSpec spec = constraintSpec(scene);
-  spec.pairingDisplacement = &u;
-  spec.solvedPairing = &solved;
-  return feti::buildConstraintMatrix(scene.mesh, scene.decomposition, spec, numRanks, rank);
-}
+namespace {
 
 /// Contact nodes paired on the deformed bodies whose slave node has slid along its master,
 /// since the state `pairedAt` they were paired at, by more than kRelinearise of the spread of
@@ -69,6 +55,8 @@ long long movedSincePairing(const mesh::Mesh& mesh, const feti::ConstraintMatrix
   return moved;
 }
 
+}  // namespace
+
 /// The update's line (rank 0, Solver/Verbose; the summary's pairing_updates hold them all).
 void reportUpdate(const PairingUpdateRecord& r, int rank, bool verbose) {
   if (rank != 0 || !verbose) return;
@@ -77,13 +65,32 @@ void reportUpdate(const PairingUpdateRecord& r, int rank, bool verbose) {
             << r.relinearised << " moved since they were paired there"
             << (r.solvedAgain ? ": solving again on this pairing" : ": the pairing stands") << "\n";
 }
-}  // namespace
+
+feti::ConstraintMatrix rowsAt(const Scene& scene, const std::vector<std::array<double, 3>>& u,
+                              const feti::ConstraintMatrix& solved, MPI_Comm comm) {
+  int rank = 0, numRanks = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &numRanks);
+  feti::ConstraintSpec spec = constraintSpec(scene);
+  spec.pairingDisplacement = &u;
+  spec.solvedPairing = &solved;
+  return feti::buildConstraintMatrix(scene.mesh, scene.decomposition, spec, numRanks, rank);
+}
+
+
+PairingUpdateRecord changesOf(const feti::ConstraintMatrix& rows, int update) {
+  PairingUpdateRecord record{update, static_cast<long long>(rows.contact.size())};
+  for (const auto& i : rows.interfaces) record.newlyInside += i.newlyInside, record.movedOn += i.movedOn;
+  record.solvedAgain = record.newlyInside + record.movedOn > 0;
+  return record;
+}
 
 ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
                                      const feti::ConstraintMatrix& B, const Teuchos::ParameterList& tribos,
                                      MPI_Comm comm, core::Stopwatch runStart, const StepObserver& afterStep) {
-  // A load history (pairingUpdates 0) is the one kind with steps to observe.
   if (scene.pairingUpdates == 0) return solveOnePairing(scene, std::move(owned), B, tribos, comm, runStart, afterStep);
+  if (scene.loadHistory)
+    return solveHistoryPairedAsItGoes(scene, std::move(owned), B, tribos, comm, runStart, afterStep);
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   ContactSolveResult out = solveOnePairing(scene, std::move(owned), B, tribos, comm, runStart);
@@ -91,12 +98,11 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
   std::unique_ptr<feti::ConstraintMatrix> current;  // the pairing of `out` when not B
   std::vector<std::array<double, 3>> pairedAt;        // the state `current` was paired at
   for (int k = 1; k <= scene.pairingUpdates && (out.contact.converged || out.penetrated); ++k) {
-    const auto u = displacementOnEveryRank(out, scene.mesh.numNodes(), comm);
+    const auto u = onEveryRank(out.displacement.value, scene.mesh.numNodes(), comm);
     auto next = std::make_unique<feti::ConstraintMatrix>(rowsAt(scene, u, current ? *current : B, comm));
-    PairingUpdateRecord record{k, static_cast<long long>(next->contact.size())};
-    for (const auto& i : next->interfaces) record.newlyInside += i.newlyInside, record.movedOn += i.movedOn;
+    PairingUpdateRecord record = changesOf(*next, k);
     if (current) record.relinearised = movedSincePairing(scene.mesh, *current, pairedAt, u);
-    record.solvedAgain = record.newlyInside + record.movedOn + record.relinearised > 0;
+    record.solvedAgain = record.solvedAgain || record.relinearised > 0;
     records.push_back(record);
     reportUpdate(record, rank, tribos.sublist("Solver").get<bool>("Verbose"));
     if (!record.solvedAgain) break;

@@ -12,13 +12,38 @@
 #include <array>
 #include <vector>
 
+#include "Restart.hpp"
 #include "tribos/stack/ContactSolve.hpp"
 
 namespace tribos::stack {
 
-/// One solve on one pairing (ContactSolve.cpp): solveContactScene without pairing updates.
+/// One solve on one pairing (ContactSolve.cpp): solveContactScene without pairing updates. A
+/// load history continues from `continueFrom` where given (a state in memory, every rank),
+/// else from Load Steps/Restart From or step 1.
 ContactSolveResult solveOnePairing(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
                                    const feti::ConstraintMatrix& B, const Teuchos::ParameterList& tribos, MPI_Comm comm,
-                                   core::Stopwatch runStart, const StepObserver& afterStep = {});
+                                   core::Stopwatch runStart, const StepObserver& afterStep = {},
+                                   const RestartState* continueFrom = nullptr);
+
+/// A load history paired again as it goes (HistoryPairing.cpp): after the history is solved on
+/// the pairing `B`, its first converged step whose state changes the pairing (newly inside,
+/// moved on) is solved again, from the step before it, on the pairing of that state; and so on,
+/// at most Scene::pairingUpdates times at one step. The result's pairingUpdates get one entry
+/// per check that changed the pairing, and one for the check that found it standing.
+ContactSolveResult solveHistoryPairedAsItGoes(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
+                                              const feti::ConstraintMatrix& B, const Teuchos::ParameterList& tribos,
+                                              MPI_Comm comm, core::Stopwatch runStart, const StepObserver& afterStep);
+
+/// The contact rows at the displacement `u` (every rank), this rank's part: each slave node keeps
+/// its pairing in `solved` unless the bodies at x + u show it wrong (feti::ConstraintSpec::
+/// pairingDisplacement), and the record of what changed.
+feti::ConstraintMatrix rowsAt(const Scene& scene, const std::vector<std::array<double, 3>>& u,
+                              const feti::ConstraintMatrix& solved, MPI_Comm comm);
+/// Rank 0's displacement per global node (`u`, empty elsewhere) on every rank of `comm`.
+std::vector<std::array<double, 3>> onEveryRank(std::vector<std::array<double, 3>> u, LO numNodes, MPI_Comm comm);
+/// What a pairing at the deformed bodies changed (rows' interfaces' counts), as update `update`.
+PairingUpdateRecord changesOf(const feti::ConstraintMatrix& rows, int update);
+/// The update's line on rank 0 when `verbose`.
+void reportUpdate(const PairingUpdateRecord& r, int rank, bool verbose);
 
 }  // namespace tribos::stack

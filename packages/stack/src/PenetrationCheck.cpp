@@ -79,7 +79,7 @@ std::string describe(const Penetration& p) {
          (p.heldByRow ? "having slid off the master faces its contact rows hold it to"
                       : "with no contact rows (out of reach of Search Distance when the rows were built)") +
          ": the bodies overlap, the result is not a contact solution (Solver/Pairing Updates pairs the nodes again "
-         "on the deformed bodies; a load history pairs on the reference mesh only)";
+         "on the deformed bodies)";
 }
 
 }  // namespace tribos::stack

@@ -175,6 +175,13 @@ RestartState readRestartOnRoot(const std::string& file, const Scene& scene, cons
   core::onEveryRankOrNone([&] { if (rank == 0) state = readRestart(file, scene, B); },
                           "Load Steps/Restart From: " + file + " could not serve as a restart (rank 0 read it)", comm);
   state.file = file;
+  broadcastRestartState(state, scene, comm);
+  return state;
+}
+
+void broadcastRestartState(RestartState& state, const Scene& scene, MPI_Comm comm) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
   MPI_Bcast(&state.step, 1, MPI_INT, 0, comm);
   ContactFields& t = state.totals;
   broadcast(t.contactTangentialT1, comm);
@@ -189,7 +196,6 @@ RestartState readRestartOnRoot(const std::string& file, const Scene& scene, cons
       t.interfaces.push_back({one.rows.name, one.rows.slaveSideSet + " -> " + one.rows.masterSideSet, one.law});
   for (size_t i = 0; i < t.interfaces.size(); ++i) t.interfaces[i].dissipatedEnergy = energies[i];
   t.dissipatedEnergy = energies.back();
-  return state;
 }
 
 }  // namespace tribos::stack

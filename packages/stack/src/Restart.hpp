@@ -38,4 +38,9 @@ RestartState readRestart(const std::string& file, const Scene& scene, const feti
 RestartState readRestartOnRoot(const std::string& file, const Scene& scene, const feti::ConstraintMatrix& B,
                                MPI_Comm comm);
 
+/// Rank 0's `state` (its step and totals: tangential displacements, accumulated slip, dissipated
+/// energies) on every rank of `comm`: readRestartOnRoot's, and a history continued in memory
+/// after a pairing update (PairingUpdate.cpp). Collective.
+void broadcastRestartState(RestartState& state, const Scene& scene, MPI_Comm comm);
+
 }  // namespace tribos::stack

@@ -348,7 +348,7 @@ Scene buildScene(const ParameterList& tribos, const std::string& source, MPI_Com
   core::requireInput(!scene.loadHistory || !linear,
                      source + ": Load Steps: the scene is linear (no contact, or only Bonded interfaces), so its "
                               "answer does not depend on the load path: give the last step's loads in one step");
-  scene.pairingUpdates = linear || scene.loadHistory ? 0 : tribos.sublist("Solver").get<int>("Pairing Updates");
+  scene.pairingUpdates = linear ? 0 : tribos.sublist("Solver").get<int>("Pairing Updates");
   for (const auto& one : scene.contacts)
     for (const auto* name : {&one.rows.slaveSideSet, &one.rows.masterSideSet}) {
       try {

@@ -274,12 +274,13 @@ void solverParameters(ParameterList& pl) {
          "with the summary saying so and no results; 0: no budget",
          core::atLeast(0.0));
   pl.set("Pairing Updates", 3,
-         "contact scenes solved in one step: after a solve the slave nodes are paired again on the deformed bodies "
-         "(search, projections and mortar weights at x + u, gaps still from the reference); where a slave node "
-         "without rows now lies inside the master, or a paired one has slid past its master nodes, the contact rows "
-         "are built on the deformed bodies and the problem is solved again (factorised again), at most this many "
-         "times. Nothing changed: the first result stands, as it was. 0: the reference mesh decides the pairing "
-         "(issue 41; doc/contact_surfaces.md)",
+         "contact scenes: after a solve the slave nodes are paired again on the deformed bodies (search, "
+         "projections and mortar weights at x + u, gaps still from the reference); where a slave node without rows "
+         "now lies inside the master, or a paired one has slid past its master nodes, the contact rows are built on "
+         "the deformed bodies and the problem is solved again (factorised again), at most this many times (a load "
+         "history: at each step, from the first step whose state changed the pairing on). Nothing changed: the "
+         "first result stands, as it was. 0: the reference mesh decides the pairing (issue 41; "
+         "doc/contact_surfaces.md)",
          core::intRange(0, 20));
   pl.set("Verbose", true, "print the solver chain and one progress line per outer iteration (rank 0)");
   pl.set("Progress Interval", 2.0,

@@ -60,8 +60,7 @@ struct Scene {
   /// Load Steps/Times: the time of each step in the results (default: the ramp k / N).
   std::vector<double> stepTimes;
   std::vector<ContactInterface> contacts;  ///< none: no contact
-  /// Solver/Pairing Updates for a contact problem solved in one step; 0 otherwise (a linear
-  /// scene, a load history: the reference mesh pairs).
+  /// Solver/Pairing Updates for a contact problem; 0 for a linear scene.
   int pairingUpdates = 0;
   double meshSeconds = 0.0, decompositionSeconds = 0.0;
 };
