@@ -401,6 +401,9 @@ void addContactRows(const mesh::Mesh& mesh, const ConstraintSpec& all, int index
     ContactNode node = contactFrame(search.pairs[p], masterSides[p], spec, ctx.prescribed);
     node.interface = index;
     node.pairedDeformed = !found.deformed.empty() && found.deformed[p];
+    if (node.pairedDeformed)
+      for (const auto& [n, w] : node.sides())
+        for (int c = 0; c < 3; ++c) node.pairedAt[c] += w * (*all.pairingDisplacement)[n][c];
     const std::vector<std::pair<LO, double>> sides = node.sides();
     // The node's rows are added together, their entries consecutive in the list.
     std::vector<Row> nodeRows;

@@ -43,15 +43,26 @@ std::map<LO, size_t> bySlaveNode(const InterfacePairs& found) {
 
 enum class Source { None, Reference, Deformed };
 
+/// How far a contact node has slid along its master since its rows were built: the tangential
+/// part (to its normal) of its row's weighted displacement now less then (ContactNode::pairedAt).
+double slidSincePairing(const ContactNode& node, const std::vector<std::array<double, 3>>& u) {
+  Vec3 shift{-node.pairedAt[0], -node.pairedAt[1], -node.pairedAt[2]};
+  for (const auto& [n, w] : node.sides())
+    for (int c = 0; c < 3; ++c) shift[c] += w * u[n][c];
+  const double along = dot(shift, node.normal);
+  return norm(minus(shift, scaled(node.normal, along)));
+}
+
 /// Where slave node n takes its pair from (ConstraintSpec::pairingDisplacement's rules).
 /// `solved`: its contact node in the solved state's pairing (null: no rows there);
-/// `deformed`: its pair at x + u (null: none) with `inside` whether that lies inside the master.
+/// `deformed`: its pair at x + u (null: none) with `inside` whether that lies inside the master
+/// and `slid` whether the node slid by more than half that pair's face since it was paired.
 Source sourceOf(const ContactNode* solved, bool reference, const geometry::ContactPair* deformed, bool inside,
-                InterfacePairs& out) {
+                bool slid, InterfacePairs& out) {
   if (solved) {
     if (deformed) {
       const auto& masters = solved->masterNodes;
-      if (!std::binary_search(masters.begin(), masters.end(), deformed->nearestMasterNode())) {
+      if (slid || !std::binary_search(masters.begin(), masters.end(), deformed->nearestMasterNode())) {
         ++out.movedOn;
         return Source::Deformed;
       }
@@ -92,8 +103,10 @@ InterfacePairs pairsOnTheDeformedBodies(const mesh::Mesh& mesh, const mesh::Mesh
     const auto r = atReference.find(n), d = atMoved.find(n);
     const auto s = solved.find(n);
     const geometry::ContactPair* pair = d == atMoved.end() ? nullptr : &moved.search.pairs[d->second];
-    const bool inside = pair && pair->gap < -1e-3 * faceSize(deformed, *pair);
-    switch (sourceOf(s == solved.end() ? nullptr : s->second, r != atReference.end(), pair, inside, out)) {
+    const double size = pair ? faceSize(deformed, *pair) : 0.0;
+    const bool inside = pair && pair->gap < -1e-3 * size;
+    const bool slid = pair && s != solved.end() && slidSincePairing(*s->second, u) > 0.5 * size;
+    switch (sourceOf(s == solved.end() ? nullptr : s->second, r != atReference.end(), pair, inside, slid, out)) {
       case Source::None: out.search.unpaired.push_back(n); break;
       case Source::Reference:
         out.search.pairs.push_back(reference.search.pairs[r->second]);

@@ -8,6 +8,7 @@
 #include <iostream>
 #include <memory>
 
+#include "tribos/core/PhaseTimer.hpp"
 #include "tribos/stack/LinearFetiSolve.hpp"
 #include "tribos/stack/SubdomainSetup.hpp"
 
@@ -74,6 +75,7 @@ feti::ConstraintMatrix rowsAt(const Scene& scene, const std::vector<std::array<d
   feti::ConstraintSpec spec = constraintSpec(scene);
   spec.pairingDisplacement = &u;
   spec.solvedPairing = &solved;
+  core::ScopedPhase phase("Contact: pairing on the deformed bodies");  // the summary's timers
   return feti::buildConstraintMatrix(scene.mesh, scene.decomposition, spec, numRanks, rank);
 }
 

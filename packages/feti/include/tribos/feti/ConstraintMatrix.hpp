@@ -90,7 +90,8 @@ struct ConstraintSpec {
   /// keeps the pairing it had unless the bodies at x + u show it wrong (DeformedPairing.cpp):
   /// a node without rows there lies inside the master by more than 1e-3 of the master face's
   /// size (newly inside), or a paired node's nearest master node at x + u is none of its rows'
-  /// master nodes (moved on). Those nodes, and the ones paired so before, take the pairing at
+  /// master nodes, or it has slid along its master by more than half the master face's size since
+  /// its rows were built (moved on). Those nodes, and the ones paired so before, take the pairing at
   /// x + u: search, projections and mortar weights on the deformed coordinates, the gap still
   /// measured from the reference, d = -sum over the row's nodes of w nu . x (the deformed gap
   /// plus sum w nu . u), so that N u <= d holds for the total displacement as before. Null:
@@ -117,6 +118,9 @@ struct ContactNode {
   std::vector<std::pair<LO, double>> sides() const;
   bool mortar = false;                     ///< weights from the dual mortar integrals
   bool pairedDeformed = false;             ///< paired on the deformed bodies (ConstraintSpec::pairingDisplacement)
+  /// The row's weighted displacement sum over sides() of w u at the state it was paired at
+  /// (zero for the reference mesh): how far the node has slid since is measured from it.
+  std::array<double, 3> pairedAt{0.0, 0.0, 0.0};
   std::array<double, 3> normal{}, t1{}, t2{};  ///< orthonormal frame, normal from slave to master
   double gap = 0.0;                        ///< d_r: signed distance along normal (< 0: initial overlap)
   /// The interface's Interference, already subtracted from `gap` (a load history ramps this part).
