@@ -27,6 +27,9 @@ InterfacePairs pairsOf(const mesh::Mesh& mesh, const ContactInterfaceSpec& spec)
 /// (ConstraintSpec::pairingDisplacement, solvedPairing): each slave node keeps its pairing or
 /// takes the one at x + u (`deformed`: the mesh at x + u), by the rules of
 /// ConstraintSpec::pairingDisplacement (DeformedPairing.cpp).
+/// The mesh at x + u.
+mesh::Mesh deformedMesh(const mesh::Mesh& mesh, const std::vector<std::array<double, 3>>& u);
+
 InterfacePairs pairsOnTheDeformedBodies(const mesh::Mesh& mesh, const mesh::Mesh& deformed, const ConstraintSpec& spec,
                                         int index);
 

@@ -445,9 +445,7 @@ void addAllContactRows(const mesh::Mesh& mesh, const ConstraintSpec& spec, const
   refuseInteriorContactFaces(mesh, spec.interfaces);
   std::vector<InterfacePairs> found;
   if (spec.pairingDisplacement) {
-    mesh::Mesh deformed = mesh;  // the bodies at x + u
-    for (size_t n = 0; n < deformed.coords.size(); ++n)
-      for (int c = 0; c < 3; ++c) deformed.coords[n][c] += (*spec.pairingDisplacement)[n][c];
+    const mesh::Mesh deformed = deformedMesh(mesh, *spec.pairingDisplacement);
     for (size_t i = 0; i < spec.interfaces.size(); ++i)
       found.push_back(pairsOnTheDeformedBodies(mesh, deformed, spec, static_cast<int>(i)));
   } else {

@@ -7,6 +7,7 @@
 
 #include "ConstraintRows.hpp"
 #include "ContactPairs.hpp"
+#include "tribos/core/Errors.hpp"
 #include "tribos/geometry/MasterSurface.hpp"
 
 namespace tribos::feti::rows {
@@ -76,22 +77,49 @@ Source sourceOf(const ContactNode* solved, bool reference, const geometry::Conta
   }
   return reference ? Source::Reference : Source::None;
 }
+/// The interface searched at x + u: its search reaches at least a master face's size, so that a
+/// node the solve left touching, or slightly open, beyond a small Search Distance keeps a pair to
+/// compare and re-pair.
+ContactInterfaceSpec widened(const mesh::Mesh& deformed, const ContactInterfaceSpec& one) {
+  ContactInterfaceSpec wide = one;
+  wide.searchDistance = std::max(one.searchDistance, geometry::MasterSurface(deformed, one.masterSideSet).largestFaceSize());
+  return wide;
+}
+
+/// The contact nodes of interface `index` in the solved state's pairing, by slave node.
+std::map<LO, const ContactNode*> solvedNodes(const ConstraintSpec& spec, int index) {
+  std::map<LO, const ContactNode*> solved;
+  if (spec.solvedPairing)
+    for (const auto& node : spec.solvedPairing->contact)
+      if (node.interface == index) solved[node.slaveNode] = &node;
+  return solved;
+}
+
+/// Where slave node n takes its pair from, given its pair at x + u (null: none).
+Source decide(LO n, const std::map<LO, const ContactNode*>& solved, bool reference, const geometry::ContactPair* pair,
+              const mesh::Mesh& deformed, const std::vector<std::array<double, 3>>& u, InterfacePairs& out) {
+  const auto s = solved.find(n);
+  const double size = pair ? faceSize(deformed, *pair) : 0.0;
+  const bool inside = pair && pair->gap < -1e-3 * size;
+  const bool slid = pair && s != solved.end() && slidSincePairing(*s->second, u) > 0.5 * size;
+  return sourceOf(s == solved.end() ? nullptr : s->second, reference, pair, inside, slid, out);
+}
 }  // namespace
+
+mesh::Mesh deformedMesh(const mesh::Mesh& mesh, const std::vector<std::array<double, 3>>& u) {
+  mesh::Mesh deformed = mesh;
+  for (size_t n = 0; n < deformed.coords.size(); ++n)
+    for (int c = 0; c < 3; ++c) deformed.coords[n][c] += u[n][c];
+  return deformed;
+}
 
 InterfacePairs pairsOnTheDeformedBodies(const mesh::Mesh& mesh, const mesh::Mesh& deformed, const ConstraintSpec& spec,
                                         int index) {
   const ContactInterfaceSpec& one = spec.interfaces[index];
   const auto& u = *spec.pairingDisplacement;
   const InterfacePairs reference = pairsOf(mesh, one);
-  // At x + u the search reaches at least a master face's size: a node the solve left touching,
-  // or slightly open, beyond a small Search Distance keeps a pair to compare and re-pair.
-  ContactInterfaceSpec wide = one;
-  wide.searchDistance = std::max(one.searchDistance, geometry::MasterSurface(deformed, one.masterSideSet).largestFaceSize());
-  const InterfacePairs moved = pairsOf(deformed, wide);
-  std::map<LO, const ContactNode*> solved;
-  if (spec.solvedPairing)
-    for (const auto& node : spec.solvedPairing->contact)
-      if (node.interface == index) solved[node.slaveNode] = &node;
+  const InterfacePairs moved = pairsOf(deformed, widened(deformed, one));
+  const auto solved = solvedNodes(spec, index);
   const auto atReference = bySlaveNode(reference), atMoved = bySlaveNode(moved);
   std::set<LO> slaveNodes(reference.search.unpaired.begin(), reference.search.unpaired.end());
   for (const auto& [n, p] : atReference) slaveNodes.insert(n);
@@ -101,12 +129,8 @@ InterfacePairs pairsOnTheDeformedBodies(const mesh::Mesh& mesh, const mesh::Mesh
   out.unsettledQuadraturePoints = reference.unsettledQuadraturePoints + moved.unsettledQuadraturePoints;
   for (LO n : slaveNodes) {
     const auto r = atReference.find(n), d = atMoved.find(n);
-    const auto s = solved.find(n);
     const geometry::ContactPair* pair = d == atMoved.end() ? nullptr : &moved.search.pairs[d->second];
-    const double size = pair ? faceSize(deformed, *pair) : 0.0;
-    const bool inside = pair && pair->gap < -1e-3 * size;
-    const bool slid = pair && s != solved.end() && slidSincePairing(*s->second, u) > 0.5 * size;
-    switch (sourceOf(s == solved.end() ? nullptr : s->second, r != atReference.end(), pair, inside, slid, out)) {
+    switch (decide(n, solved, r != atReference.end(), pair, deformed, u, out)) {
       case Source::None: out.search.unpaired.push_back(n); break;
       case Source::Reference:
         out.search.pairs.push_back(reference.search.pairs[r->second]);
@@ -125,3 +149,26 @@ InterfacePairs pairsOnTheDeformedBodies(const mesh::Mesh& mesh, const mesh::Mesh
 }
 
 }  // namespace tribos::feti::rows
+
+namespace tribos::feti {
+
+std::array<GO, 2> pairingChanges(const mesh::Mesh& mesh, const ConstraintSpec& spec) {
+  using namespace rows;
+  const mesh::Mesh deformed = deformedMesh(mesh, *spec.pairingDisplacement);
+  InterfacePairs counts;
+  for (size_t i = 0; i < spec.interfaces.size(); ++i) {
+    const auto& one = widened(deformed, spec.interfaces[i]);
+    geometry::ContactSearchResult moved;
+    try {
+      moved = geometry::searchContactPairs(deformed, one.slaveSideSet, one.masterSideSet, one.searchDistance);
+    } catch (const core::InputError& e) {
+      throw core::InputError(one.label() + ": " + e.what());
+    }
+    const auto solved = solvedNodes(spec, static_cast<int>(i));
+    for (const auto& pair : moved.pairs)
+      decide(pair.slaveNode, solved, true, &pair, deformed, *spec.pairingDisplacement, counts);
+  }
+  return {counts.newlyInside, counts.movedOn};
+}
+
+}  // namespace tribos::feti

@@ -38,9 +38,11 @@ std::optional<PairingChangePoint> firstChange(const Scene& scene, const ContactS
                                               MPI_Comm comm, PairingUpdateRecord& standing) {
   for (size_t i = firstIndex; i < result.steps.size() && result.steps[i].converged; ++i) {
     const Displacement u = stepDisplacement(result, i, scene.mesh.numNodes(), comm);
+    standing = changesAt(scene, u, rows, update);
+    if (!standing.solvedAgain) continue;
     auto next = std::make_unique<feti::ConstraintMatrix>(rowsAt(scene, u, rows, comm));
-    standing = changesOf(*next, update);
-    if (standing.solvedAgain) return PairingChangePoint{i, std::move(next), standing};
+    standing.paired = static_cast<long long>(next->contact.size());
+    return PairingChangePoint{i, std::move(next), standing};
   }
   return std::nullopt;
 }

@@ -75,15 +75,20 @@ feti::ConstraintMatrix rowsAt(const Scene& scene, const std::vector<std::array<d
   feti::ConstraintSpec spec = constraintSpec(scene);
   spec.pairingDisplacement = &u;
   spec.solvedPairing = &solved;
-  core::ScopedPhase phase("Contact: pairing on the deformed bodies");  // the summary's timers
+  core::ScopedPhase phase("Contact: rows on the deformed bodies");  // the summary's timers
   return feti::buildConstraintMatrix(scene.mesh, scene.decomposition, spec, numRanks, rank);
 }
 
 
-PairingUpdateRecord changesOf(const feti::ConstraintMatrix& rows, int update) {
-  PairingUpdateRecord record{update, static_cast<long long>(rows.contact.size())};
-  for (const auto& i : rows.interfaces) record.newlyInside += i.newlyInside, record.movedOn += i.movedOn;
-  record.solvedAgain = record.newlyInside + record.movedOn > 0;
+PairingUpdateRecord changesAt(const Scene& scene, const std::vector<std::array<double, 3>>& u,
+                              const feti::ConstraintMatrix& solved, int update) {
+  feti::ConstraintSpec spec = constraintSpec(scene);
+  spec.pairingDisplacement = &u;
+  spec.solvedPairing = &solved;
+  core::ScopedPhase phase("Contact: pairing check on the deformed bodies");  // the summary's timers
+  const auto [newlyInside, movedOn] = feti::pairingChanges(scene.mesh, spec);
+  PairingUpdateRecord record{update, static_cast<long long>(solved.contact.size()), newlyInside, movedOn};
+  record.solvedAgain = newlyInside + movedOn > 0;
   return record;
 }
 
@@ -101,10 +106,15 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
   std::vector<std::array<double, 3>> pairedAt;        // the state `current` was paired at
   for (int k = 1; k <= scene.pairingUpdates && (out.contact.converged || out.penetrated); ++k) {
     const auto u = onEveryRank(out.displacement.value, scene.mesh.numNodes(), comm);
-    auto next = std::make_unique<feti::ConstraintMatrix>(rowsAt(scene, u, current ? *current : B, comm));
-    PairingUpdateRecord record = changesOf(*next, k);
+    const feti::ConstraintMatrix& solved = current ? *current : B;
+    PairingUpdateRecord record = changesAt(scene, u, solved, k);
     if (current) record.relinearised = movedSincePairing(scene.mesh, *current, pairedAt, u);
     record.solvedAgain = record.solvedAgain || record.relinearised > 0;
+    std::unique_ptr<feti::ConstraintMatrix> next;
+    if (record.solvedAgain) {  // only then are the rows built
+      next = std::make_unique<feti::ConstraintMatrix>(rowsAt(scene, u, solved, comm));
+      record.paired = static_cast<long long>(next->contact.size());
+    }
     records.push_back(record);
     reportUpdate(record, rank, tribos.sublist("Solver").get<bool>("Verbose"));
     if (!record.solvedAgain) break;

@@ -41,8 +41,10 @@ feti::ConstraintMatrix rowsAt(const Scene& scene, const std::vector<std::array<d
                               const feti::ConstraintMatrix& solved, MPI_Comm comm);
 /// Rank 0's displacement per global node (`u`, empty elsewhere) on every rank of `comm`.
 std::vector<std::array<double, 3>> onEveryRank(std::vector<std::array<double, 3>> u, LO numNodes, MPI_Comm comm);
-/// What a pairing at the deformed bodies changed (rows' interfaces' counts), as update `update`.
-PairingUpdateRecord changesOf(const feti::ConstraintMatrix& rows, int update);
+/// What a pairing at the displacement `u` would change against `solved` (feti::pairingChanges:
+/// the searches alone), as update `update`; `paired` is the standing pairing's count.
+PairingUpdateRecord changesAt(const Scene& scene, const std::vector<std::array<double, 3>>& u,
+                              const feti::ConstraintMatrix& solved, int update);
 /// The update's line on rank 0 when `verbose`.
 void reportUpdate(const PairingUpdateRecord& r, int rank, bool verbose);
 

@@ -224,6 +224,12 @@ struct ConstraintMatrix {
 ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decomposition& decomposition,
                                        const ConstraintSpec& spec, int numRanks, int keepForRank = -1);
 
+/// What buildConstraintMatrix with `spec` (its pairingDisplacement and solvedPairing given) would
+/// pair anew, over every interface: the slave nodes newly inside and moved on
+/// (ContactInterfaceRows::newlyInside, movedOn), from the searches at x + u alone, no row built:
+/// a check after each solve that costs a contact search where the pairing stands.
+std::array<GO, 2> pairingChanges(const mesh::Mesh& mesh, const ConstraintSpec& spec);
+
 /// Keeps of B what rank `rank` needs during the solve (issue 11): the blocks of its own
 /// subdomains [firstOwned, endOwned) whole, and of every other subdomain only the rows this
 /// rank owns (the entries g_{s,r} of G on its owned rows need them, TotalFeti). The row data
