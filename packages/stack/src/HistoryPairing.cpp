@@ -95,8 +95,14 @@ ContactSolveResult solveHistoryPairedAsItGoes(const Scene& scene, std::vector<fe
   MPI_Comm_rank(comm, &rank);
   const bool verbose = tribos.sublist("Solver").get<bool>("Verbose");
   ContactSolveResult done;  // the steps before the pairing last changed
-  // Checkpoints see the steps kept so far and the part now being solved.
+  const feti::ConstraintMatrix* rows = &B;  // the pairing the part is solved on
+  // Checkpoints see the steps kept so far and the part now being solved, up to its first step
+  // whose state changes the pairing: that step will be solved again, and no checkpoint holds it.
+  bool stale = false;
   const StepObserver observe = !afterStep ? StepObserver() : [&](const ContactSolveResult& part) {
+    if (stale) return;
+    const Displacement u = stepDisplacement(part, part.earlierSteps.size() - 1, scene.mesh.numNodes(), comm);
+    if ((stale = changesAt(scene, u, *rows, 0).solvedAgain)) return;
     ContactSolveResult all = done;
     all.steps.insert(all.steps.end(), part.steps.begin(), part.steps.end());
     all.earlierSteps.insert(all.earlierSteps.end(), part.earlierSteps.begin(), part.earlierSteps.end());
@@ -105,7 +111,6 @@ ContactSolveResult solveHistoryPairedAsItGoes(const Scene& scene, std::vector<fe
   ContactSolveResult part = solveOnePairing(scene, std::move(owned), B, tribos, comm, runStart, observe);
   const std::string restartFile = part.restartFile;  // Load Steps/Restart From's, as the summary shows it
   const int restartStep = part.restartStep;
-  const feti::ConstraintMatrix* rows = &B;
   std::unique_ptr<feti::ConstraintMatrix> held;
   std::optional<RestartState> from;  // the state `part` started from, when in memory
   // A part restarted from a file checks from its second step on: the file's state is its own.
@@ -130,6 +135,7 @@ ContactSolveResult solveHistoryPairedAsItGoes(const Scene& scene, std::vector<fe
     if (!done.steps.empty()) from = stateAfter(done, *rows, scene, comm);
     std::vector<fem::SubdomainSystem> systems;
     assembleOwnedSubdomains(scene, comm, systems);
+    stale = false;
     part = solveOnePairing(scene, std::move(systems), *rows, tribos, comm, runStart, observe, from ? &*from : nullptr);
     firstIndex = 0;
   }
