@@ -48,10 +48,11 @@ std::vector<mesh::GlobalValue> globalValues(const nlohmann::json& summary);
 /// converged step, once the interval has passed since the run started or the last checkpoint,
 /// rank 0 writes the result file with every step converged so far, as the final write would
 /// show them (their stresses computed once each). A write that fails is a warning, not the end
-/// of the run: the final write reports its own failure. Called on every rank (StepObserver).
+/// of the run: the final write reports its own failure. Given on every rank (StepObserver).
 class Checkpoints {
  public:
-  Checkpoints(const stack::Scene& scene, core::OutputFile& exodus, double seconds, std::vector<std::string> info,
+  /// `exodus`: the result file on rank 0, null elsewhere.
+  Checkpoints(const stack::Scene& scene, core::OutputFile* exodus, double seconds, std::vector<std::string> info,
               int rank);
   void operator()(const stack::ContactSolveResult& soFar);
   int written() const { return written_; }
@@ -59,7 +60,7 @@ class Checkpoints {
  private:
   void write(const stack::ContactSolveResult& soFar);
   const stack::Scene& scene_;
-  core::OutputFile& exodus_;
+  core::OutputFile* exodus_;
   double seconds_;
   std::vector<std::string> info_;
   int rank_;

@@ -304,10 +304,12 @@ int solveAndReport(int argc, char** argv, int rank, const RunStart& start) {
       std::cout << "  solver chain: " << stack::describeSolverChain(set.scene, params) << "\n";
     core::ScopedPhase phase("Solve");
     // A load history with a result file writes checkpoints as it goes (Load Steps/Checkpoint Seconds).
+    // The observer is given on every rank (the stack's calls of it may be collective); only rank
+    // 0 holds the file and writes.
     std::optional<driver::Checkpoints> checkpoints;
     stack::StepObserver afterStep;
-    if (set.scene.loadHistory && resultFiles.exodus) {
-      checkpoints.emplace(set.scene, *resultFiles.exodus, params.sublist("Load Steps").get<double>("Checkpoint Seconds"),
+    if (set.scene.loadHistory && !cl.output.empty()) {
+      checkpoints.emplace(set.scene, resultFiles.exodus.get(), params.sublist("Load Steps").get<double>("Checkpoint Seconds"),
                           infoRecords(argc, argv, params), rank);
       afterStep = std::ref(*checkpoints);
     }

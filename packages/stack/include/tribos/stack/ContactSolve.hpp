@@ -101,7 +101,8 @@ struct ContactSolveResult : StepResults {
 
 /// Called on every rank after each converged step of a load history but the last, with the
 /// result so far (ContactSolveResult::steps and earlierSteps up to that step): the driver writes
-/// its checkpoints with it (Load Steps/Checkpoint Seconds).
+/// its checkpoints with it (Load Steps/Checkpoint Seconds). Give it on every rank or on none:
+/// the stack's work around it may be collective (HistoryPairing.cpp checks each step's pairing).
 using StepObserver = std::function<void(const ContactSolveResult&)>;
 
 /// Solver settings from the validated "Tribos" list and the scene's interfaces (exposed for
