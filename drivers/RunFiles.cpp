@@ -1,6 +1,13 @@
 #include "RunFiles.hpp"
 
 #include <mpi.h>
+#include <sys/resource.h>
+#include <sys/statvfs.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
 
 #include <functional>
 
@@ -76,6 +83,45 @@ ResultFiles prepareResultFiles(const CommandLine& cl, const std::vector<std::str
     }
   });
   return files;
+}
+
+
+namespace {
+// Bytes the file system of `path` has left for it (statvfs of its directory, the space an
+// unprivileged user may take), and the file size limit (ulimit -f); HUGE_VAL where there is no
+// bound or the file system does not say (a pseudo file system reports no blocks).
+double roomFor(const std::string& path) {
+  std::filesystem::path dir = std::filesystem::path(path).parent_path();
+  if (dir.empty()) dir = ".";
+  double room = HUGE_VAL;
+  struct statvfs fs {};
+  if (statvfs(dir.c_str(), &fs) == 0 && fs.f_blocks > 0)
+    room = static_cast<double>(fs.f_bavail) * static_cast<double>(fs.f_frsize);
+  struct rlimit limit {};
+  if (getrlimit(RLIMIT_FSIZE, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
+    room = std::min(room, static_cast<double>(limit.rlim_cur));
+  return room;
+}
+
+std::string megabytes(double bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g MB", bytes / 1e6);
+  return text;
+}
+}  // namespace
+
+void requireRoomForTheResult(const ResultFiles& files, int loadSteps, LO numNodes, LO numElements, int rank) {
+  onRootForEveryRank(rank, [&] {
+    if (!files.exodus) return;
+    const double needed = 8.0 * std::max(loadSteps, 1) *
+                          (kWrittenDoublesPerNodeAndStep * numNodes + kWrittenDoublesPerElementAndStep * numElements);
+    const double room = roomFor(files.exodus->path());
+    core::requireInput(needed <= room,
+                       files.exodus->path() + " (--output): the result of " + std::to_string(std::max(loadSteps, 1)) +
+                           " step(s) of " + std::to_string(numNodes) + " nodes and " + std::to_string(numElements) +
+                           " elements takes at least " + megabytes(needed) + ", and only " + megabytes(room) +
+                           " can be written there (the file system's free space or ulimit -f); nothing was solved");
+  });
 }
 
 }  // namespace tribos::driver

@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "CommandLine.hpp"
+#include "ProcessStart.hpp"
 #include "RunFiles.hpp"
 #include "ResultFile.hpp"
 #include "RunOutcome.hpp"
@@ -184,6 +185,9 @@ SetUpScene setUpScene(int rank, const RunStart& start) {
   if (!cl.dryRun)
     stack::requireHistoryFitsInMemory(set.scene.loadSteps, set.scene.mesh.numNodes(), set.scene.mesh.numElements(),
                                       MPI_COMM_WORLD);
+  if (!cl.dryRun)
+    requireRoomForTheResult(resultFiles, set.scene.loadSteps, set.scene.mesh.numNodes(), set.scene.mesh.numElements(),
+                            rank);
   {
     core::ScopedPhase assembly("Set-up: assembly");
     set.report = stack::assembleOwnedSubdomains(set.scene, MPI_COMM_WORLD, set.systems);
@@ -338,20 +342,6 @@ int solveAndReport(int argc, char** argv, int rank, const RunStart& start) {
   return status;
 }
 
-// Idle OpenMP threads must sleep, not spin: with more ranks x threads than free cores the
-// spinning threads starve the working ones (input/two_bricks.xml, 2 threads, the other core
-// busy: 3.1 s median, up to 20 s, against 0.7 s when they sleep). libgomp reads
-// OMP_WAIT_POLICY once, in its load-time constructor, before main runs; so when the user
-// has not chosen a policy, set PASSIVE and execute this binary
-// again (before MPI_Init, so mpirun sees one process; it costs about 0.05 s). One thread
-// never waits, so OMP_NUM_THREADS=1 skips it. If the exec fails, run as we are.
-void sleepWhileWaiting(char** argv) {
-  if (std::getenv("OMP_WAIT_POLICY") != nullptr) return;
-  if (const char* threads = std::getenv("OMP_NUM_THREADS"); threads && std::string(threads) == "1") return;
-  if (setenv("OMP_WAIT_POLICY", "PASSIVE", 0) != 0) return;
-  execv("/proc/self/exe", argv);
-}
-
 // Progress must reach a log file as it happens (the header at once, then every line): line
 // buffering when stdout is not a terminal (a terminal is line-buffered already).
 void lineBufferedOutput() {
@@ -384,7 +374,7 @@ int startKokkos(std::optional<Tpetra::ScopeGuard>& guard, int& kokkosArgc, char*
 }  // namespace
 
 int main(int argc, char** argv) {
-  sleepWhileWaiting(argv);
+  if (const int refused = driver::prepareProcess(argv); refused != 0) return refused;
   lineBufferedOutput();
   // A file size limit (ulimit -f) makes a write fail with EFBIG, an I/O error the run reports
   // (exit 4, nothing partial left), instead of killing the process in the middle of a write.
