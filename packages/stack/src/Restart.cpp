@@ -48,7 +48,7 @@ void requireSameContactNodes(const mesh::TimeStep& step, const feti::ConstraintM
     slave[n] = 1;
     core::requireInput(master[n] != 0.0, where + ": node " + std::to_string(n + 1) +
                                              ", a slave node of this scene, is none there (a result of other contact "
-                                             "interfaces)");
+                                             "interfaces, or a file cut or damaged)");
     core::requireInput(master[n] == static_cast<double>(node.masterNode + 1),
                        where + ": slave node " + std::to_string(n + 1) + " faces master node " +
                            core::formatNumber(master[n]) + " there and node " + std::to_string(node.masterNode + 1) +
