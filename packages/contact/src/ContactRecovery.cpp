@@ -239,16 +239,30 @@ ContactNodeResult contactNodeResult(const NodeContext& x, const feti::ContactNod
   return out;
 }
 
-/// ||u||_inf over all subdomains (1 when u = 0), and the equilibrium and equality residuals.
+/// The displacement scale of the residuals that measure displacements: ||u||_inf over all
+/// subdomains, at least ||B K^+ f||_inf (= d~ + c), the jumps the loads alone open between the
+/// floating subdomains, which the solver's accuracy is relative to; 1 when both are 0. Without
+/// that floor a solution that is zero (a pressed block gripped at its top: the grip carries the
+/// load, nothing moves) read its round-off as a relative error of 0.79. Also the equilibrium and
+/// equality residuals (the latter over ||u||_2, at least ||B K^+ f||_2).
 double equalityResiduals(const feti::TotalFeti& feti, const feti::ConstraintMatrix& B, const feti::DualVector& lambda,
                          const HostView& bu, ContactResult& result) {
   const auto& comm = *feti.comm();
   const int rank = comm.getRank();
   const GO first = B.firstRowOfRank[rank];
-  double uInf = 0.0;
+  double uInf = 0.0, loadInf = 0.0;
   for (const auto& us : result.displacement)
     for (double v : us) uInf = std::max(uInf, std::abs(v));
-  uInf = globalMax(comm, uInf);
+  std::vector<double> loadJump2;  // (B K^+ f)_r^2 over the owned rows
+  {
+    const auto d = feti.dTilde().getLocalViewHost(Tpetra::Access::ReadOnly);
+    for (size_t r = 0; r < feti.ownedC().size(); ++r) {
+      const double jump = d(r, 0) + feti.ownedC()[r];
+      loadInf = std::max(loadInf, std::abs(jump));
+      loadJump2.push_back(jump * jump);
+    }
+  }
+  uInf = std::max(globalMax(comm, uInf), globalMax(comm, loadInf));
   std::vector<double> equality, uNorm2;  // terms of the sums
   for (const auto& us : result.displacement)
     for (double v : us) uNorm2.push_back(v * v);
@@ -262,7 +276,8 @@ double equalityResiduals(const feti::TotalFeti& feti, const feti::ConstraintMatr
   double forceScale = 0.0;
   const double equilibrium = feti.equilibriumResidual(lambda, result.displacement, &forceScale);
   result.kkt.equilibrium = forceScale > 0.0 ? equilibrium / forceScale : equilibrium;
-  const double uNorm = std::sqrt(globalSum(comm, uNorm2, feti.primalDofs()));
+  const double uNorm = std::max(std::sqrt(globalSum(comm, uNorm2, feti.primalDofs())),
+                                std::sqrt(globalSum(comm, loadJump2, B.numRows)));
   result.kkt.equality = std::sqrt(globalSum(comm, equality, B.numRows)) / (uNorm > 0.0 ? uNorm : 1.0);
   return uInf > 0.0 ? uInf : 1.0;
 }

@@ -217,6 +217,11 @@ Teuchos::any parseAs(const Teuchos::any& valid, const std::string& text, const s
     return Teuchos::any(text == "true");
   }
   if (valid.type() == typeid(std::string)) return Teuchos::any(text);
+  if (valid.type() == typeid(Teuchos::Array<int>)) {
+    Teuchos::Array<int> a;
+    for (const auto& item : splitArray(text)) a.push_back(parseInt(item, context));
+    return Teuchos::any(a);
+  }
   if (valid.type() == typeid(Teuchos::Array<double>)) {
     Teuchos::Array<double> a;
     for (const auto& item : splitArray(text)) a.push_back(parseDouble(item, context));

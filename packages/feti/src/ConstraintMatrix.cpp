@@ -60,11 +60,15 @@ Prescribed prescribedComponents(const mesh::Mesh& mesh, const ConstraintSpec& sp
     conditions.push_back({"Dirichlet Node Sets (" + name + ")", name, {true, true, true}, {0.0, 0.0, 0.0}});
   conditions.insert(conditions.end(), spec.displacementConditions.begin(), spec.displacementConditions.end());
   const size_t n3 = 3 * static_cast<size_t>(mesh.numNodes());
-  Prescribed p{std::vector<char>(n3, 0), std::vector<double>(n3, 0.0), std::vector<int>(n3, -1)};
+  Prescribed p{std::vector<char>(n3, 0), std::vector<double>(n3, 0.0), std::vector<double>(n3, 0.0),
+               std::vector<int>(n3, -1)};
   const int firstCondition = static_cast<int>(spec.dirichletNodeSets.size());
   std::vector<int> by(n3, -1);
   for (size_t k = 0; k < conditions.size(); ++k) {
     const auto& condition = conditions[k];
+    const int j = static_cast<int>(k) - firstCondition;  // its index in spec.displacementConditions
+    if (j >= 0 && static_cast<size_t>(j) < spec.presentConditions.size() && !spec.presentConditions[j]) continue;
+    const auto* base = j >= 0 && static_cast<size_t>(j) < spec.conditionBase.size() ? spec.conditionBase[j] : nullptr;
     for (double v : condition.value)
       core::requireInput(std::isfinite(v), "Boundary/" + condition.name + ": Displacement is not finite");
     for (LO n : mesh.nodeSet(condition.nodeSet).nodes)
@@ -80,6 +84,7 @@ Prescribed prescribedComponents(const mesh::Mesh& mesh, const ConstraintSpec& sp
           p.overlapping.insert({shared, static_cast<int>(k) - firstCondition});
         p.fixed[i] = 1;
         p.value[i] = condition.value[c];
+        p.base[i] = base ? (*base)[static_cast<size_t>(n)][c] : 0.0;
         by[i] = static_cast<int>(k);
         p.condition[i] = static_cast<int>(k) - firstCondition;
       }
@@ -108,8 +113,8 @@ void addGluingAndDirichletRows(LO numNodes, const RowContext& ctx, RowList& list
           Row row = list.begin();
           row.kind = RowKind::Dirichlet;
           list.append({cp.subdomain, 3 * cp.localNode + c, 1.0});
-          row.c = ctx.prescribed.value[3 * n + c];
-          list.addPart(row, ctx.prescribed.condition[3 * n + c], row.c);
+          row.c = ctx.prescribed.base[3 * n + c] + ctx.prescribed.value[3 * n + c];
+          list.addPart(row, ctx.prescribed.condition[3 * n + c], ctx.prescribed.value[3 * n + c]);
           row.key = {2, n, j, c};
           row.owner = mesh::ownerRank(cp.subdomain, ctx.numSubdomains, ctx.numRanks);
           list.add(row);

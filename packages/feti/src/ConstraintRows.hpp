@@ -100,6 +100,9 @@ struct RowList {
 struct Prescribed {
   std::vector<char> fixed;     ///< 3 * numNodes
   std::vector<double> value;   ///< 3 * numNodes
+  /// 3 * numNodes: where the condition's rows start from (ConstraintSpec::conditionBase; 0 for
+  /// the reference): the row's c is base + value, its part (which factors scale) the value.
+  std::vector<double> base;
   /// 3 * numNodes: index into ConstraintSpec::displacementConditions (-1: none, or a
   /// Dirichlet Node Set, whose value 0 no factor scales).
   std::vector<int> condition;

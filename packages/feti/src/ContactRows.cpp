@@ -158,7 +158,7 @@ bool contactRow(int d, bool tied, ContactNode& node, const std::vector<std::pair
       freeDirection2 = 0.0;
       for (int c = 0; c < 3; ++c)
         if (prescribed.fixed[3 * global + c]) {
-          known += weight * dir[c] * prescribed.value[3 * global + c];
+          known += weight * dir[c] * (prescribed.base[3 * global + c] + prescribed.value[3 * global + c]);
           knownBy.push_back({prescribed.condition[3 * global + c], weight * dir[c] * prescribed.value[3 * global + c]});
         }
         else freeDirection2 += dir[c] * dir[c];

@@ -326,13 +326,22 @@ void setAppliedLoad(const std::vector<std::vector<double>>& f, MPI_Comm comm, St
 /// restart file's last step: each step's record and results (out.steps, out.earlierSteps), the
 /// last state's contact result and applied load in `out`. Returns the totals before the last
 /// state (accumulated slip, dissipated energy): the last earlier step's, the file's, or none.
+/// Where a history solve starts (a restart file's state, or one in memory; none: step 1) and its
+/// last step (0: the scene's last).
+struct HistorySpan {
+  const RestartState& restart;
+  int lastStep = 0;
+};
+
 const ContactFields* solveHistory(const Scene& scene, const feti::ConstraintMatrix& B,
                                   const Teuchos::ParameterList& stepsList, feti::TotalFeti& feti,
-                                  const ContactChain& chain, LoadHistory& loads, const RestartState& restart,
+                                  const ContactChain& chain, LoadHistory& loads, const HistorySpan& span,
                                   MPI_Comm comm, ContactSolveResult& out, const StepObserver& afterStep) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
-  HistoryRun run{comm, scene.stepTimes, stepsList.get<bool>("Warm Start"), 1, stepsList.get<int>("Max Cutbacks")};
+  const RestartState& restart = span.restart;
+  HistoryRun run{comm, scene.stepTimes, stepsList.get<bool>("Warm Start"), 1, stepsList.get<int>("Max Cutbacks"),
+                 span.lastStep};
   if (!restart.file.empty()) {
     loads.restore(B, rank, restart.totals.contactTangentialT1, restart.totals.contactTangentialT2);
     run.firstStep = restart.step + 1;
@@ -383,7 +392,7 @@ void checkPenetration(const Scene& scene, const feti::ConstraintMatrix& B, MPI_C
 ContactSolveResult solveOnePairing(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
                                    const feti::ConstraintMatrix& B, const Teuchos::ParameterList& tribos, MPI_Comm comm,
                                    core::Stopwatch runStart, const StepObserver& afterStep,
-                                   const RestartState* continueFrom) {
+                                   const HistoryPart& part) {
   ContactSolveResult out;
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
@@ -406,8 +415,8 @@ ContactSolveResult solveOnePairing(const Scene& scene, std::vector<fem::Subdomai
   const bool history = scene.loadHistory;  // several steps, or a table on one step too
   const auto& stepsList = tribos.sublist("Load Steps");
   RestartState restart;  // read before the factorisation: a file that cannot serve costs nothing
-  if (continueFrom)
-    restart = *continueFrom;
+  if (part.continueFrom)
+    restart = *part.continueFrom;
   else if (history && !stepsList.get<std::string>("Restart From").empty())
     restart = readRestartOnRoot(stepsList.get<std::string>("Restart From"), scene, B, comm);
   std::optional<LoadHistory> loads;
@@ -422,7 +431,8 @@ ContactSolveResult solveOnePairing(const Scene& scene, std::vector<fem::Subdomai
   core::Stopwatch watch;
   const ContactFields* totalsBefore = nullptr;  // a history's totals before its last state
   if (history)
-    totalsBefore = solveHistory(scene, B, stepsList, feti, chain, *loads, restart, comm, out, afterStep);
+    totalsBefore = solveHistory(scene, B, stepsList, feti, chain, *loads, {restart, part.lastStep}, comm, out,
+                                afterStep);
   else
     out.contact = contact::solveContact(feti, B, chain.friction, chain.smalse, chain.preconditioner);
   out.solveSeconds = watch.seconds();

@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "PairingUpdate.hpp"
+#include "tribos/stack/LinearFetiSolve.hpp"
 #include "tribos/stack/SubdomainSetup.hpp"
 
 namespace tribos::stack {
@@ -25,42 +26,23 @@ struct PairingChangePoint {
   PairingUpdateRecord record;
 };
 
-/// Step i's displacement (rank 0's: an earlier step's, or the last state's), on every rank.
-Displacement stepDisplacement(const ContactSolveResult& result, size_t i, LO numNodes, MPI_Comm comm) {
-  const bool earlier = i < result.earlierSteps.size();
-  return onEveryRank(earlier ? result.earlierSteps[i].displacement.value : result.displacement.value, numNodes, comm);
-}
-
 /// The first converged step of `result`, from `firstIndex` on, whose state changes the pairing
 /// `rows`; none where every one keeps it (`standing` gets the last check's record).
-std::optional<PairingChangePoint> firstChange(const Scene& scene, const ContactSolveResult& result,
-                                              const feti::ConstraintMatrix& rows, size_t firstIndex, int update,
-                                              MPI_Comm comm, PairingUpdateRecord& standing) {
+std::optional<PairingChangePoint> firstChange(const Scene& scene, const feti::ConstraintSpec& spec,
+                                              const ContactSolveResult& result, const feti::ConstraintMatrix& rows,
+                                              size_t firstIndex, int update, MPI_Comm comm,
+                                              PairingUpdateRecord& standing) {
   for (size_t i = firstIndex; i < result.steps.size() && result.steps[i].converged; ++i) {
     const Displacement u = stepDisplacement(result, i, scene.mesh.numNodes(), comm);
-    standing = changesAt(scene, u, rows, update);
+    standing = changesAt(scene, spec, u, rows, update);
     if (!standing.solvedAgain) continue;
-    auto next = std::make_unique<feti::ConstraintMatrix>(rowsAt(scene, u, rows, comm));
+    auto next = std::make_unique<feti::ConstraintMatrix>(rowsAt(scene, spec, u, rows, comm));
     standing.paired = static_cast<long long>(next->contact.size());
     return PairingChangePoint{i, std::move(next), standing};
   }
   return std::nullopt;
 }
 
-/// The tangential displacement each contact node of `rows` has reached at `u`, u_slave - chi
-/// u_master along t1 and t2 (per global node, every rank): what the next step's friction
-/// measures its slip from, for rows whose frames and weights the update changed.
-void tangentialReached(const feti::ConstraintMatrix& rows, const Displacement& u, ContactFields& totals) {
-  totals.contactTangentialT1.assign(u.size(), 0.0);
-  totals.contactTangentialT2.assign(u.size(), 0.0);
-  for (const auto& node : rows.contact) {
-    double t1 = 0.0, t2 = 0.0;
-    for (const auto& [n, w] : node.sides())
-      for (int c = 0; c < 3; ++c) t1 += w * node.t1[c] * u[n][c], t2 += w * node.t2[c] * u[n][c];
-    totals.contactTangentialT1[node.slaveNode] = t1;
-    totals.contactTangentialT2[node.slaveNode] = t2;
-  }
-}
 
 /// Moves the steps [0, count) of `result` (records and results) to the end of `done`, with the
 /// counts of the solve that made them.
@@ -74,26 +56,44 @@ void keepSteps(ContactSolveResult& result, size_t count, ContactSolveResult& don
   done.solveSeconds += result.solveSeconds;
 }
 
-/// The state a history continues from after the steps kept in `done` (its last one), measured
-/// with the new rows; the caller keeps the state it had when `done` holds no step.
+}  // namespace
+
+Displacement stepDisplacement(const ContactSolveResult& result, size_t i, LO numNodes, MPI_Comm comm) {
+  const bool earlier = i < result.earlierSteps.size();
+  return onEveryRank(earlier ? result.earlierSteps[i].displacement.value : result.displacement.value, numNodes, comm);
+}
+
+void tangentialReached(const feti::ConstraintMatrix& rows, const Displacement& u, ContactFields& totals) {
+  totals.contactTangentialT1.assign(u.size(), 0.0);
+  totals.contactTangentialT2.assign(u.size(), 0.0);
+  for (const auto& node : rows.contact) {
+    double t1 = 0.0, t2 = 0.0;
+    for (const auto& [n, w] : node.sides())
+      for (int c = 0; c < 3; ++c) t1 += w * node.t1[c] * u[n][c], t2 += w * node.t2[c] * u[n][c];
+    totals.contactTangentialT1[node.slaveNode] = t1;
+    totals.contactTangentialT2[node.slaveNode] = t2;
+  }
+}
+
 RestartState stateAfter(const ContactSolveResult& done, const feti::ConstraintMatrix& rows, const Scene& scene,
                         MPI_Comm comm) {
   RestartState state;
-  state.file = "(pairing update)";
+  state.file = "(in memory)";
   state.step = done.steps.back().step;
   state.totals = static_cast<const ContactFields&>(done.earlierSteps.back());
   tangentialReached(rows, stepDisplacement(done, done.steps.size() - 1, scene.mesh.numNodes(), comm), state.totals);
   broadcastRestartState(state, scene, comm);
   return state;
 }
-}  // namespace
 
 ContactSolveResult solveHistoryPairedAsItGoes(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
                                               const feti::ConstraintMatrix& B, const Teuchos::ParameterList& tribos,
-                                              MPI_Comm comm, core::Stopwatch runStart, const StepObserver& afterStep) {
+                                              MPI_Comm comm, core::Stopwatch runStart, const StepObserver& afterStep,
+                                              const HistoryPart& span) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   const bool verbose = tribos.sublist("Solver").get<bool>("Verbose");
+  const feti::ConstraintSpec spec = span.spec ? *span.spec : constraintSpec(scene);
   ContactSolveResult done;  // the steps before the pairing last changed
   const feti::ConstraintMatrix* rows = &B;  // the pairing the part is solved on
   // Checkpoints see the steps kept so far and the part now being solved, up to its first step
@@ -102,24 +102,25 @@ ContactSolveResult solveHistoryPairedAsItGoes(const Scene& scene, std::vector<fe
   const StepObserver observe = !afterStep ? StepObserver() : [&](const ContactSolveResult& part) {
     if (stale) return;
     const Displacement u = stepDisplacement(part, part.earlierSteps.size() - 1, scene.mesh.numNodes(), comm);
-    if ((stale = changesAt(scene, u, *rows, 0).solvedAgain)) return;
+    if ((stale = changesAt(scene, spec, u, *rows, 0).solvedAgain)) return;
     ContactSolveResult all = done;
     all.steps.insert(all.steps.end(), part.steps.begin(), part.steps.end());
     all.earlierSteps.insert(all.earlierSteps.end(), part.earlierSteps.begin(), part.earlierSteps.end());
     afterStep(all);
   };
-  ContactSolveResult part = solveOnePairing(scene, std::move(owned), B, tribos, comm, runStart, observe);
+  ContactSolveResult part = solveOnePairing(scene, std::move(owned), B, tribos, comm, runStart, observe, span);
   const std::string restartFile = part.restartFile;  // Load Steps/Restart From's, as the summary shows it
   const int restartStep = part.restartStep;
   std::unique_ptr<feti::ConstraintMatrix> held;
   std::optional<RestartState> from;  // the state `part` started from, when in memory
+  if (span.continueFrom) from = *span.continueFrom;
   // A part restarted from a file checks from its second step on: the file's state is its own.
-  size_t firstIndex = tribos.sublist("Load Steps").get<std::string>("Restart From").empty() ? 0 : 1;
+  size_t firstIndex = span.continueFrom || tribos.sublist("Load Steps").get<std::string>("Restart From").empty() ? 0 : 1;
   std::vector<PairingUpdateRecord> records;
   int changedStep = 0, atThatStep = 0;  // Pairing Updates counts the changes at one step
   for (int k = 1;; ++k) {
     PairingUpdateRecord standing{k};
-    auto change = firstChange(scene, part, *rows, firstIndex, k, comm, standing);
+    auto change = firstChange(scene, spec, part, *rows, firstIndex, k, comm, standing);
     if (change) {
       const int step = part.steps[change->index].step;
       atThatStep = step == changedStep ? atThatStep + 1 : 1;
@@ -136,7 +137,8 @@ ContactSolveResult solveHistoryPairedAsItGoes(const Scene& scene, std::vector<fe
     std::vector<fem::SubdomainSystem> systems;
     assembleOwnedSubdomains(scene, comm, systems);
     stale = false;
-    part = solveOnePairing(scene, std::move(systems), *rows, tribos, comm, runStart, observe, from ? &*from : nullptr);
+    part = solveOnePairing(scene, std::move(systems), *rows, tribos, comm, runStart, observe,
+                           {from ? &*from : nullptr, span.lastStep, &spec});
     firstIndex = 0;
   }
   // The result: the steps kept, then the last part's.

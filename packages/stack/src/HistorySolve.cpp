@@ -74,7 +74,7 @@ contact::ContactResult solveLoadHistory(feti::TotalFeti& feti, const feti::Const
                                         const ContactChain& chain, LoadHistory& history, const HistoryRun& run,
                                         int rank, std::vector<LoadStepRecord>& records,
                                         const std::function<void(int, const contact::ContactResult&)>& everyStep) {
-  const int steps = history.steps();
+  const int steps = run.lastStep > 0 ? run.lastStep : history.steps();
   feti.keepCoarseFactor(true);  // G G^T is the same in every step: factorised once
   contact::ContactResult result, last;  // the last try; the last converged state
   qp::SmalseCounters total;             // the counts over every try

@@ -36,6 +36,7 @@ struct HistoryRun {
   bool warmStart = true;
   int firstStep = 1;
   int maxCutbacks = 0;
+  int lastStep = 0;  ///< the last step solved (0: the history's last; ConditionSteps.hpp's parts end before)
 };
 
 /// The sum of the loads `f` (owned subdomains) in x, y, z. Collective.

@@ -22,6 +22,8 @@ feti::ConstraintSpec constraintSpec(const Scene& scene) {
   feti::ConstraintSpec spec;
   spec.dirichletNodeSets = scene.dirichletNodeSets;
   spec.displacementConditions = scene.displacementConditions;
+  // The conditions of step 1 (Load Steps/<name>/Active; later steps: ConditionSteps.hpp).
+  for (const auto& active : scene.conditionActive) spec.presentConditions.push_back(active.front());
   for (const auto& one : scene.contacts) spec.interfaces.push_back(one.rows);
   return spec;
 }

@@ -24,6 +24,8 @@ LoadHistory::LoadHistory(const feti::ConstraintMatrix& B, int rank, const Scene&
     // A condition of zero values (a clamp, a symmetry plane) has no factor worth naming.
     nonZero_.push_back(std::any_of(condition.value.begin(), condition.value.end(), [](double v) { return v != 0.0; }));
   }
+  for (const auto& active : scene.conditionActive)
+    switched_.push_back(std::count(active.begin(), active.end(), 0) > 0 ? active : std::vector<char>());
   for (const auto& [i, j] : B.overlappingConditions)
     core::requireInput(displacementFactors_[i] == displacementFactors_[j],
                        "Load Steps: Boundary/" + conditionNames_[i] + " and Boundary/" + conditionNames_[j] +
@@ -65,10 +67,15 @@ std::vector<std::pair<std::string, double>> LoadHistory::factors(int k) const {
 }
 
 std::string LoadHistory::label(int k) const {
-  if (proportional_) return "ramp " + core::formatNumber(ramp(k));
   std::string text;
-  for (const auto& [name, factor] : factors(k))
-    text += (text.empty() ? "" : ", ") + name + " " + core::formatNumber(factor);
+  if (proportional_) text = "ramp " + core::formatNumber(ramp(k));
+  else
+    for (const auto& [name, factor] : factors(k))
+      text += (text.empty() ? "" : ", ") + name + " " + core::formatNumber(factor);
+  // A condition switched between steps (Load Steps/<name>/Active): whether it holds.
+  for (size_t j = 0; j < switched_.size(); ++j)
+    if (!switched_[j].empty())
+      text += (text.empty() ? "" : ", ") + conditionNames_[j] + (switched_[j][static_cast<size_t>(k - 1)] ? " on" : " off");
   return text;
 }
 

@@ -39,7 +39,8 @@ class LoadHistory {
   /// Each load's and displacement condition's factor in step k, by name (Loads/<name>,
   /// Boundary/<name>); conditions of zero values (clamps, symmetry planes) are left out.
   std::vector<std::pair<std::string, double>> factors(int k) const;
-  /// Step k in words: "ramp r" for a proportional history, else each factor ("press 1, shear -1").
+  /// Step k in words: "ramp r" for a proportional history, else each factor ("press 1, shear -1"),
+  /// and whether each condition switched between steps holds ("grip on", "grip off").
   std::string label(int k) const;
   /// f_s at `position` in steps: step k at k (1-based); between steps k - 1 and k (a cut-back
   /// sub-step) every factor interpolated linearly, from 0 before step 1.
@@ -58,6 +59,7 @@ class LoadHistory {
   std::vector<std::vector<std::vector<double>>> loadVectors_;
   std::vector<std::string> loadNames_, conditionNames_;
   std::vector<char> nonZero_;  ///< per condition: some Displacement component is not zero
+  std::vector<std::vector<char>> switched_;  ///< per condition: its Active flags, empty when it holds throughout
   std::vector<std::vector<double>> factors_;
   std::vector<std::vector<double>> displacementFactors_;
   std::vector<size_t> dofs_;

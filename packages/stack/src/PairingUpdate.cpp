@@ -8,6 +8,8 @@
 #include <iostream>
 #include <memory>
 
+#include "ConditionSteps.hpp"
+
 #include "tribos/core/PhaseTimer.hpp"
 #include "tribos/stack/LinearFetiSolve.hpp"
 #include "tribos/stack/SubdomainSetup.hpp"
@@ -67,12 +69,13 @@ void reportUpdate(const PairingUpdateRecord& r, int rank, bool verbose) {
             << (r.solvedAgain ? ": solving again on this pairing" : ": the pairing stands") << "\n";
 }
 
-feti::ConstraintMatrix rowsAt(const Scene& scene, const std::vector<std::array<double, 3>>& u,
-                              const feti::ConstraintMatrix& solved, MPI_Comm comm) {
+feti::ConstraintMatrix rowsAt(const Scene& scene, const feti::ConstraintSpec& of,
+                              const std::vector<std::array<double, 3>>& u, const feti::ConstraintMatrix& solved,
+                              MPI_Comm comm) {
   int rank = 0, numRanks = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &numRanks);
-  feti::ConstraintSpec spec = constraintSpec(scene);
+  feti::ConstraintSpec spec = of;
   spec.pairingDisplacement = &u;
   spec.solvedPairing = &solved;
   core::ScopedPhase phase("Contact: rows on the deformed bodies");  // the summary's timers
@@ -80,9 +83,10 @@ feti::ConstraintMatrix rowsAt(const Scene& scene, const std::vector<std::array<d
 }
 
 
-PairingUpdateRecord changesAt(const Scene& scene, const std::vector<std::array<double, 3>>& u,
-                              const feti::ConstraintMatrix& solved, int update) {
-  feti::ConstraintSpec spec = constraintSpec(scene);
+PairingUpdateRecord changesAt(const Scene& scene, const feti::ConstraintSpec& of,
+                              const std::vector<std::array<double, 3>>& u, const feti::ConstraintMatrix& solved,
+                              int update) {
+  feti::ConstraintSpec spec = of;
   spec.pairingDisplacement = &u;
   spec.solvedPairing = &solved;
   core::ScopedPhase phase("Contact: pairing check on the deformed bodies");  // the summary's timers
@@ -95,11 +99,14 @@ PairingUpdateRecord changesAt(const Scene& scene, const std::vector<std::array<d
 ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
                                      const feti::ConstraintMatrix& B, const Teuchos::ParameterList& tribos,
                                      MPI_Comm comm, core::Stopwatch runStart, const StepObserver& afterStep) {
+  if (scene.loadHistory && conditionRuns(scene).size() > 1)  // conditions switched between steps
+    return solveConditionRuns(scene, std::move(owned), B, tribos, comm, runStart, afterStep);
   if (scene.pairingUpdates == 0) return solveOnePairing(scene, std::move(owned), B, tribos, comm, runStart, afterStep);
   if (scene.loadHistory)
     return solveHistoryPairedAsItGoes(scene, std::move(owned), B, tribos, comm, runStart, afterStep);
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
+  const feti::ConstraintSpec spec = constraintSpec(scene);
   ContactSolveResult out = solveOnePairing(scene, std::move(owned), B, tribos, comm, runStart);
   std::vector<PairingUpdateRecord> records;
   std::unique_ptr<feti::ConstraintMatrix> current;  // the pairing of `out` when not B
@@ -107,12 +114,12 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
   for (int k = 1; k <= scene.pairingUpdates && (out.contact.converged || out.penetrated); ++k) {
     const auto u = onEveryRank(out.displacement.value, scene.mesh.numNodes(), comm);
     const feti::ConstraintMatrix& solved = current ? *current : B;
-    PairingUpdateRecord record = changesAt(scene, u, solved, k);
+    PairingUpdateRecord record = changesAt(scene, spec, u, solved, k);
     if (current) record.relinearised = movedSincePairing(scene.mesh, *current, pairedAt, u);
     record.solvedAgain = record.solvedAgain || record.relinearised > 0;
     std::unique_ptr<feti::ConstraintMatrix> next;
     if (record.solvedAgain) {  // only then are the rows built
-      next = std::make_unique<feti::ConstraintMatrix>(rowsAt(scene, u, solved, comm));
+      next = std::make_unique<feti::ConstraintMatrix>(rowsAt(scene, spec, u, solved, comm));
       record.paired = static_cast<long long>(next->contact.size());
     }
     records.push_back(record);

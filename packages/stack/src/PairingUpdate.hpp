@@ -17,34 +17,59 @@
 
 namespace tribos::stack {
 
-/// One solve on one pairing (ContactSolve.cpp): solveContactScene without pairing updates. A
-/// load history continues from `continueFrom` where given (a state in memory, every rank),
-/// else from Load Steps/Restart From or step 1.
+/// The part of a load history one solve covers (HistoryPairing.cpp, ConditionSteps.cpp).
+struct HistoryPart {
+  /// The state it continues from (in memory, every rank); null: Load Steps/Restart From, or step 1.
+  const RestartState* continueFrom = nullptr;
+  int lastStep = 0;  ///< its last step; 0: the scene's last
+  /// The constraints its B was built from, which a pairing update builds its rows from again;
+  /// null: constraintSpec(scene).
+  const feti::ConstraintSpec* spec = nullptr;
+};
+
+/// One solve on one pairing (ContactSolve.cpp): solveContactScene without pairing updates; a
+/// load history over the steps of `part`.
 ContactSolveResult solveOnePairing(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
                                    const feti::ConstraintMatrix& B, const Teuchos::ParameterList& tribos, MPI_Comm comm,
                                    core::Stopwatch runStart, const StepObserver& afterStep = {},
-                                   const RestartState* continueFrom = nullptr);
+                                   const HistoryPart& part = {});
 
 /// A load history paired again as it goes (HistoryPairing.cpp): after the history is solved on
 /// the pairing `B`, its first converged step whose state changes the pairing (newly inside,
 /// moved on) is solved again, from the step before it, on the pairing of that state; and so on,
 /// at most Scene::pairingUpdates times at one step. The result's pairingUpdates get one entry
 /// per check that changed the pairing, and one for the check that found it standing.
+/// Over the steps of `part` (its spec: what the rows are built from).
 ContactSolveResult solveHistoryPairedAsItGoes(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
                                               const feti::ConstraintMatrix& B, const Teuchos::ParameterList& tribos,
-                                              MPI_Comm comm, core::Stopwatch runStart, const StepObserver& afterStep);
+                                              MPI_Comm comm, core::Stopwatch runStart, const StepObserver& afterStep,
+                                              const HistoryPart& part = {});
 
-/// The contact rows at the displacement `u` (every rank), this rank's part: each slave node keeps
-/// its pairing in `solved` unless the bodies at x + u show it wrong (feti::ConstraintSpec::
-/// pairingDisplacement), and the record of what changed.
-feti::ConstraintMatrix rowsAt(const Scene& scene, const std::vector<std::array<double, 3>>& u,
-                              const feti::ConstraintMatrix& solved, MPI_Comm comm);
+/// The contact rows at the displacement `u` (every rank), this rank's part, of the constraints
+/// `spec`: each slave node keeps its pairing in `solved` unless the bodies at x + u show it wrong
+/// (feti::ConstraintSpec::pairingDisplacement), and the record of what changed.
+feti::ConstraintMatrix rowsAt(const Scene& scene, const feti::ConstraintSpec& spec,
+                              const std::vector<std::array<double, 3>>& u, const feti::ConstraintMatrix& solved,
+                              MPI_Comm comm);
 /// Rank 0's displacement per global node (`u`, empty elsewhere) on every rank of `comm`.
 std::vector<std::array<double, 3>> onEveryRank(std::vector<std::array<double, 3>> u, LO numNodes, MPI_Comm comm);
 /// What a pairing at the displacement `u` would change against `solved` (feti::pairingChanges:
 /// the searches alone), as update `update`; `paired` is the standing pairing's count.
-PairingUpdateRecord changesAt(const Scene& scene, const std::vector<std::array<double, 3>>& u,
-                              const feti::ConstraintMatrix& solved, int update);
+PairingUpdateRecord changesAt(const Scene& scene, const feti::ConstraintSpec& spec,
+                              const std::vector<std::array<double, 3>>& u, const feti::ConstraintMatrix& solved,
+                              int update);
+/// Step i's displacement (rank 0's: an earlier step's, or the last state's), on every rank.
+std::vector<std::array<double, 3>> stepDisplacement(const ContactSolveResult& result, size_t i, LO numNodes,
+                                                    MPI_Comm comm);
+/// The tangential displacement each contact node of `rows` has reached at `u`, u_slave - chi
+/// u_master along t1 and t2 (per global node, every rank): what the next step's friction
+/// measures its slip from, for rows whose frames and weights changed.
+void tangentialReached(const feti::ConstraintMatrix& rows, const std::vector<std::array<double, 3>>& u,
+                       ContactFields& totals);
+/// The state a history continues from after the steps of `done` (its last one), measured with
+/// the rows it continues on (this rank's part; the state is rank 0's, on every rank). Collective.
+RestartState stateAfter(const ContactSolveResult& done, const feti::ConstraintMatrix& rows, const Scene& scene,
+                        MPI_Comm comm);
 /// The update's line on rank 0 when `verbose`.
 void reportUpdate(const PairingUpdateRecord& r, int rank, bool verbose);
 

@@ -1,5 +1,7 @@
 #include "tribos/stack/RankData.hpp"
 
+#include "ConditionSteps.hpp"
+
 namespace tribos::stack {
 
 namespace {
@@ -15,7 +17,8 @@ void keepRankData(Scene& scene, feti::ConstraintMatrix& B, int rank, int numRank
   const int first = mesh::firstSubdomain(rank, numSubdomains, numRanks);
   const int end = mesh::firstSubdomain(rank + 1, numSubdomains, numRanks);
   feti::keepRankRows(B, rank, first, end);
-  if (scene.pairingUpdates > 0) return;  // the rows are built again on the deformed bodies
+  // The rows are built again on the deformed bodies, or for conditions switched between steps.
+  if (scene.pairingUpdates > 0 || conditionRuns(scene).size() > 1) return;
   for (int s = 0; s < numSubdomains; ++s) {
     release(subdomains[s].elements);
     subdomains[s].localElements.release();

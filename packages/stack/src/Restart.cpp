@@ -84,6 +84,23 @@ void requirePlausible(double value, const std::string& name, const std::string& 
                                                   expected(false) + ": the file is damaged or not tribos's");
 }
 
+// The displacement of every node at step k of the file (1 <= k <= the last converged step).
+std::vector<std::array<double, 3>> fileDisplacement(const mesh::ExodusData& data, int k, int last,
+                                                    const std::string& where) {
+  core::requireInput(k >= 1 && k <= last, where + ": the displacement of step " + std::to_string(k) +
+                                              " is needed (a condition holds its nodes where that step left them), "
+                                              "and the file's last converged step is " + std::to_string(last));
+  const mesh::TimeStep& step = data.steps[static_cast<size_t>(k - 1)];
+  std::vector<std::array<double, 3>> u(data.mesh.coords.size());
+  for (int c = 0; c < 3; ++c) {
+    const std::string name = std::string("displ_") + "xyz"[c];
+    const auto& values = nodalField(step, name, where);
+    requirePlausible(values, name, false, where);
+    for (size_t n = 0; n < u.size(); ++n) u[n][c] = values[n];
+  }
+  return u;
+}
+
 // Step k of a history is load_step k: 1, 2, ... in order (issue 44: -1 read the factor table
 // before its start, 1.5 was taken as 1).
 void requireStepNumber(double number, int expected, const std::string& where) {
@@ -94,7 +111,8 @@ void requireStepNumber(double number, int expected, const std::string& where) {
 }
 }  // namespace
 
-RestartState readRestart(const std::string& file, const Scene& scene, const feti::ConstraintMatrix& B) {
+RestartState readRestart(const std::string& file, const Scene& scene, const feti::ConstraintMatrix& B,
+                         const std::vector<int>& displacementSteps) {
   const std::string where = "Load Steps/Restart From: " + file;
   mesh::ExodusData data;
   try {
@@ -155,6 +173,8 @@ RestartState readRestart(const std::string& file, const Scene& scene, const feti
   core::requireInput(total != nullptr, where + ": no global variable dissipated_energy");
   t.dissipatedEnergy = *total;
   requirePlausible(*total, "dissipated_energy", where);
+  for (int k : displacementSteps)
+    if (k >= 1 && k <= state.step) state.displacements.push_back({k, fileDisplacement(data, k, state.step, where)});
   return state;
 }
 
@@ -168,11 +188,11 @@ void broadcast(std::vector<double>& values, MPI_Comm comm) {
 }  // namespace
 
 RestartState readRestartOnRoot(const std::string& file, const Scene& scene, const feti::ConstraintMatrix& B,
-                               MPI_Comm comm) {
+                               MPI_Comm comm, const std::vector<int>& displacementSteps) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   RestartState state;
-  core::onEveryRankOrNone([&] { if (rank == 0) state = readRestart(file, scene, B); },
+  core::onEveryRankOrNone([&] { if (rank == 0) state = readRestart(file, scene, B, displacementSteps); },
                           "Load Steps/Restart From: " + file + " could not serve as a restart (rank 0 read it)", comm);
   state.file = file;
   broadcastRestartState(state, scene, comm);
@@ -196,6 +216,19 @@ void broadcastRestartState(RestartState& state, const Scene& scene, MPI_Comm com
       t.interfaces.push_back({one.rows.name, one.rows.slaveSideSet + " -> " + one.rows.masterSideSet, one.law});
   for (size_t i = 0; i < t.interfaces.size(); ++i) t.interfaces[i].dissipatedEnergy = energies[i];
   t.dissipatedEnergy = energies.back();
+  int count = static_cast<int>(state.displacements.size());
+  MPI_Bcast(&count, 1, MPI_INT, 0, comm);
+  state.displacements.resize(static_cast<size_t>(count));
+  for (auto& [step, u] : state.displacements) {
+    MPI_Bcast(&step, 1, MPI_INT, 0, comm);
+    std::vector<double> flat(3 * u.size());
+    for (size_t n = 0; n < u.size(); ++n)
+      for (int c = 0; c < 3; ++c) flat[3 * n + c] = u[n][c];
+    broadcast(flat, comm);
+    u.resize(flat.size() / 3);
+    for (size_t n = 0; n < u.size(); ++n)
+      for (int c = 0; c < 3; ++c) u[n][c] = flat[3 * n + c];
+  }
 }
 
 }  // namespace tribos::stack

@@ -6,7 +6,10 @@
 // energy); the multipliers are not in the file, so the first step after a restart starts cold.
 #include <mpi.h>
 
+#include <array>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "tribos/stack/ContactFields.hpp"
 #include "tribos/stack/Scene.hpp"
@@ -20,6 +23,9 @@ struct RestartState {
   /// contactTangentialT1/T2, contactAccumulatedSlip, interfaces[i].dissipatedEnergy and
   /// dissipatedEnergy; the other fields are empty.
   ContactFields totals;
+  /// The displacement of every global node at the steps asked for (readRestart's
+  /// displacementSteps; ConditionSteps.cpp: where conditions that took hold hold their nodes).
+  std::vector<std::pair<int, std::vector<std::array<double, 3>>>> displacements;
 };
 
 /// Reads `file` (an Exodus result of a load history of this scene, whose contact nodes are B's).
@@ -28,18 +34,20 @@ struct RestartState {
 /// B's slave nodes), lacks an interface of the scene, holds no converged step, or has solved
 /// every step of the scene.
 /// Also when a step's load_step is not its number (1, 2, ... in order), converged is neither 0
-/// nor 1, or a memory value is not finite (or the accumulated slip negative).
-RestartState readRestart(const std::string& file, const Scene& scene, const feti::ConstraintMatrix& B);
+/// nor 1, or a memory value is not finite (or the accumulated slip negative). With
+/// `displacementSteps`, the displacements of those up to the last converged step too.
+RestartState readRestart(const std::string& file, const Scene& scene, const feti::ConstraintMatrix& B,
+                         const std::vector<int>& displacementSteps = {});
 
 /// readRestart on rank 0 of `comm`, its state on every rank (issue 44: each rank read the file
 /// itself, and a file replaced while they started gave ranks different states: hangs, or exit 0
 /// with a result matching neither file). An error on rank 0 ends every rank (core::onEveryRankOrNone).
 /// Collective.
 RestartState readRestartOnRoot(const std::string& file, const Scene& scene, const feti::ConstraintMatrix& B,
-                               MPI_Comm comm);
+                               MPI_Comm comm, const std::vector<int>& displacementSteps = {});
 
 /// Rank 0's `state` (its step and totals: tangential displacements, accumulated slip, dissipated
-/// energies) on every rank of `comm`: readRestartOnRoot's, and a history continued in memory
+/// energies; its displacements) on every rank of `comm`: readRestartOnRoot's, and a history continued in memory
 /// after a pairing update (PairingUpdate.cpp). Collective.
 void broadcastRestartState(RestartState& state, const Scene& scene, MPI_Comm comm);
 

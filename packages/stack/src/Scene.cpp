@@ -239,6 +239,7 @@ void readLoadSteps(const ParameterList& list, const std::string& source, Scene& 
   for (int k = 0; k < n; ++k) ramp[k] = static_cast<double>(k + 1) / n;
   scene.loadFactors.assign(scene.namedLoads.size(), ramp);
   scene.displacementFactors.assign(scene.displacementConditions.size(), ramp);
+  scene.conditionActive.assign(scene.displacementConditions.size(), std::vector<char>(static_cast<size_t>(n), 1));
   scene.stepTimes = ramp;
   auto sizeN = [&](const Teuchos::Array<double>& values, const std::string& where) {
     core::requireInput(static_cast<int>(values.size()) == n,
@@ -269,7 +270,26 @@ void readLoadSteps(const ParameterList& list, const std::string& source, Scene& 
     core::requireInput(!(isLoad && isCondition), where + ": both Loads/" + name + " and Boundary/" + name +
                                                      " have that name (rename one so that the table names one)");
     const ParameterList& sub = list.sublist(name);
-    core::requireInput(sub.isParameter("Factors"), where + ": \"Factors\" is required");
+    const bool active = sub.isParameter("Active");
+    core::requireInput(sub.isParameter("Factors") || active,
+                       where + ": \"Factors\" is required" + (isCondition ? std::string(" (or Active)") : ""));
+    core::requireInput(!(active && isLoad), where + "/Active: Loads/" + name + " is a load; Active switches "
+                                                "Boundary conditions (a load is switched off by a factor 0)");
+    if (active) {
+      const auto& flags = sub.get<Teuchos::Array<int>>("Active");
+      core::requireInput(static_cast<int>(flags.size()) == n,
+                         where + "/Active: " + std::to_string(flags.size()) +
+                             " values for Load Steps/Number Of Steps = " + std::to_string(n));
+      auto& target = scene.conditionActive[static_cast<size_t>(condition - scene.displacementConditions.begin())];
+      for (int k = 0; k < n; ++k) {
+        core::requireInput(flags[k] == 0 || flags[k] == 1, where + "/Active: step " + std::to_string(k + 1) +
+                                                               "'s value " + std::to_string(flags[k]) +
+                                                               " (1: holds, 0: does not)");
+        target[static_cast<size_t>(k)] = static_cast<char>(flags[k]);
+      }
+    }
+    scene.loadHistory = true;
+    if (!sub.isParameter("Factors")) continue;
     const auto& factors = sub.get<Teuchos::Array<double>>("Factors");
     sizeN(factors, where + "/Factors");
     auto& target = isLoad ? scene.loadFactors[load - scene.namedLoads.begin()]
@@ -277,7 +297,6 @@ void readLoadSteps(const ParameterList& list, const std::string& source, Scene& 
     target.assign(factors.begin(), factors.end());
     requireFiniteProducts(target, isLoad ? largestValue(load->second) : largestValue(*condition),
                           where + "/Factors", isLoad ? "Loads/" + name : "Boundary/" + name);
-    scene.loadHistory = true;
   }
   scene.loadHistory = scene.loadHistory || n > 1;
   core::requireInput(scene.loadHistory || list.get<std::string>("Restart From").empty(),

@@ -349,11 +349,16 @@ Teuchos::RCP<const Teuchos::ParameterList> sceneValidParameters() {
               core::finiteArray(core::FiniteArrayValidator::kAnyLength, core::kMaxMagnitude));
     steps.sublist("*", false,
                   "one sublist per Loads/<name> or Boundary/<name> (a prescribed displacement) that does not follow "
-                  "the ramp, named after it")
+                  "the ramp or does not hold in every step, named after it")
         .set("Factors", Teuchos::Array<double>(1, 1.0),
              "its factor in each step (Number Of Steps values): e.g. {1, 1} for a normal load held while a shear "
              "{1, 0} is applied and removed; a Boundary/<name>'s Displacement is scaled the same way",
-             core::finiteArray(-1, core::kMaxMagnitude));
+             core::finiteArray(-1, core::kMaxMagnitude))
+        .set("Active", Teuchos::Array<int>(1, 1),
+             "a Boundary/<name> only: whether it holds in each step (Number Of Steps values, 1 or 0), e.g. {0, 1, 1} "
+             "for a grip added after a preload. Where it takes hold after step 1 it holds its nodes where the step "
+             "before left them, then moves them by its Displacement times its factor; where it does not hold, its "
+             "nodes are free. Each change rebuilds the constraints and factorises again. Not given: every step");
     return Teuchos::rcp_const_cast<const ParameterList>(pl);
   }();
   return valid;

@@ -19,8 +19,8 @@ class ParameterList;
 
 namespace tribos::stack {
 
-/// B's description for the scene: its Dirichlet sets, its contact pair (tangential rows
-/// unless the friction model is "None").
+/// B's description for the scene: its Dirichlet sets, the displacement conditions that hold in
+/// step 1, its contact pair (tangential rows unless the friction model is "None").
 feti::ConstraintSpec constraintSpec(const Scene& scene);
 
 /// The linear solve; its contact fields (ContactFields) where the scene's interfaces are all

@@ -57,6 +57,10 @@ struct Scene {
   /// Per displacement condition, its factor in each step (Load Steps/<name>/Factors, else the
   /// ramp k / N).
   std::vector<std::vector<double>> displacementFactors;
+  /// Per displacement condition, whether it holds in each step (Load Steps/<name>/Active, else
+  /// every step): a condition that takes hold after step 1 holds its nodes where the step
+  /// before left them (stack/src/ConditionSteps.hpp).
+  std::vector<std::vector<char>> conditionActive;
   /// Load Steps/Times: the time of each step in the results (default: the ramp k / N).
   std::vector<double> stepTimes;
   std::vector<ContactInterface> contacts;  ///< none: no contact

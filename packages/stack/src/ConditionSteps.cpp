@@ -1,0 +1,158 @@
+#include "ConditionSteps.hpp"
+
+#include <Teuchos_DefaultMpiComm.hpp>
+#include <Teuchos_ParameterList.hpp>
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "PairingUpdate.hpp"
+#include "tribos/core/PhaseTimer.hpp"
+#include "tribos/feti/Solvability.hpp"
+#include "tribos/stack/LinearFetiSolve.hpp"
+#include "tribos/stack/SubdomainSetup.hpp"
+
+namespace tribos::stack {
+
+using Displacement = std::vector<std::array<double, 3>>;
+
+std::vector<ConditionRun> conditionRuns(const Scene& scene) {
+  std::vector<ConditionRun> runs{{1, 1}};
+  for (int k = 2; k <= scene.loadSteps; ++k) {
+    bool same = true;
+    for (const auto& active : scene.conditionActive)
+      same = same && active[static_cast<size_t>(k - 1)] == active[static_cast<size_t>(k - 2)];
+    if (same)
+      runs.back().last = k;
+    else
+      runs.push_back({k, k});
+  }
+  return runs;
+}
+
+std::vector<int> heldSince(const Scene& scene, int k) {
+  std::vector<int> since;
+  for (const auto& active : scene.conditionActive) {
+    if (!active[static_cast<size_t>(k - 1)]) {
+      since.push_back(-1);
+      continue;
+    }
+    int a = k;
+    while (a > 1 && active[static_cast<size_t>(a - 2)]) --a;
+    since.push_back(a - 1);
+  }
+  return since;
+}
+
+feti::ConstraintSpec constraintSpecAt(const Scene& scene, int first, const std::map<int, Displacement>& at) {
+  feti::ConstraintSpec spec = constraintSpec(scene);
+  spec.presentConditions.clear();
+  for (int since : heldSince(scene, first)) {
+    spec.presentConditions.push_back(since >= 0);
+    spec.conditionBase.push_back(since > 0 ? &at.at(since) : nullptr);
+  }
+  return spec;
+}
+
+namespace {
+/// Every step after which some condition takes hold: the states conditions hold their nodes at.
+std::vector<int> holdingStates(const Scene& scene) {
+  std::vector<int> states;
+  for (const auto& run : conditionRuns(scene))
+    for (int since : heldSince(scene, run.first))
+      if (since > 0) states.push_back(since);
+  return states;
+}
+
+/// Appends the steps of a solved run (its records, its earlier steps' results and its last
+/// state's) and its counts to `done`.
+void appendRun(const ContactSolveResult& run, ContactSolveResult& done) {
+  done.steps.insert(done.steps.end(), run.steps.begin(), run.steps.end());
+  done.earlierSteps.insert(done.earlierSteps.end(), run.earlierSteps.begin(), run.earlierSteps.end());
+  done.earlierSteps.push_back(static_cast<const StepResults&>(run));
+  done.fApplications += run.fApplications;
+  done.factorizationSeconds += run.factorizationSeconds;
+  done.solveSeconds += run.solveSeconds;
+  done.pairingUpdates.insert(done.pairingUpdates.end(), run.pairingUpdates.begin(), run.pairingUpdates.end());
+}
+
+/// The B of a run after the first: its conditions; with pairing updates, each slave node paired as
+/// the state before it left the bodies (`previous`'s pairing unless x + u shows it wrong). Checked
+/// for bodies left free (feti::requireRestrainedBodies: exit 2 naming them).
+std::unique_ptr<feti::ConstraintMatrix> runRows(const Scene& scene, feti::ConstraintSpec spec,
+                                                const ContactSolveResult& done, const feti::ConstraintMatrix& previous,
+                                                MPI_Comm comm) {
+  int rank = 0, numRanks = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &numRanks);
+  Displacement u;
+  if (scene.pairingUpdates > 0 && !done.steps.empty()) {
+    u = stepDisplacement(done, done.steps.size() - 1, scene.mesh.numNodes(), comm);
+    spec.pairingDisplacement = &u;
+    spec.solvedPairing = &previous;
+  }
+  core::ScopedPhase phase("Contact: rows of the switched conditions");  // the summary's timers
+  auto rows = std::make_unique<feti::ConstraintMatrix>(
+      feti::buildConstraintMatrix(scene.mesh, scene.decomposition, spec, numRanks, rank));
+  const Teuchos::MpiComm<int> world(comm);
+  feti::requireRestrainedBodies(scene.mesh, scene.decomposition, *rows, &world);
+  return rows;
+}
+}  // namespace
+
+ContactSolveResult solveConditionRuns(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
+                                      const feti::ConstraintMatrix& B, const Teuchos::ParameterList& tribos,
+                                      MPI_Comm comm, core::Stopwatch runStart, const StepObserver& afterStep) {
+  const std::string restartFile = tribos.sublist("Load Steps").get<std::string>("Restart From");
+  std::map<int, Displacement> at;  // the states conditions hold their nodes at
+  std::optional<RestartState> from;
+  int firstStep = 1;
+  if (!restartFile.empty()) {
+    from = readRestartOnRoot(restartFile, scene, B, comm, holdingStates(scene));
+    firstStep = from->step + 1;
+    for (auto& [k, u] : from->displacements) at[k] = std::move(u);
+    from->displacements.clear();
+  }
+  ContactSolveResult done, result;
+  const StepObserver observe = !afterStep ? StepObserver() : [&](const ContactSolveResult& part) {
+    ContactSolveResult all = done;
+    all.steps.insert(all.steps.end(), part.steps.begin(), part.steps.end());
+    all.earlierSteps.insert(all.earlierSteps.end(), part.earlierSteps.begin(), part.earlierSteps.end());
+    afterStep(all);
+  };
+  std::unique_ptr<feti::ConstraintMatrix> rows;  // the run's B after the first
+  for (const auto& run : conditionRuns(scene)) {
+    if (run.last < firstStep) continue;
+    const feti::ConstraintSpec spec = constraintSpecAt(scene, run.first, at);
+    std::vector<fem::SubdomainSystem> systems;
+    if (run.first == 1) {
+      systems = std::move(owned);
+    } else {
+      rows = runRows(scene, spec, done, rows ? *rows : B, comm);
+      assembleOwnedSubdomains(scene, comm, systems);  // the last run's went into its factors
+      if (!done.steps.empty()) from = stateAfter(done, *rows, scene, comm);
+    }
+    const feti::ConstraintMatrix& runB = run.first == 1 ? B : *rows;
+    const HistoryPart part{from ? &*from : nullptr, run.last, &spec};
+    result = scene.pairingUpdates > 0
+                 ? solveHistoryPairedAsItGoes(scene, std::move(systems), runB, tribos, comm, runStart, observe, part)
+                 : solveOnePairing(scene, std::move(systems), runB, tribos, comm, runStart, observe, part);
+    if (run.last == scene.loadSteps || !result.contact.converged) break;
+    at[run.last] = stepDisplacement(result, result.earlierSteps.size(), scene.mesh.numNodes(), comm);
+    appendRun(result, done);
+    if (afterStep) afterStep(done);  // the run's last step, which its own observer does not see
+  }
+  // The result: the steps of the runs before, then the last run's.
+  result.steps.insert(result.steps.begin(), done.steps.begin(), done.steps.end());
+  result.earlierSteps.insert(result.earlierSteps.begin(), done.earlierSteps.begin(), done.earlierSteps.end());
+  result.fApplications += done.fApplications;
+  result.factorizationSeconds += done.factorizationSeconds;
+  result.solveSeconds += done.solveSeconds;
+  result.pairingUpdates.insert(result.pairingUpdates.begin(), done.pairingUpdates.begin(), done.pairingUpdates.end());
+  result.restartFile = restartFile;
+  result.restartStep = restartFile.empty() ? 0 : firstStep - 1;
+  return result;
+}
+
+}  // namespace tribos::stack
