@@ -98,9 +98,16 @@ std::vector<mesh::GlobalValue> globalValues(const nlohmann::json& summary) {
       if (i.contains("contact_force"))
         for (int c = 0; c < 3; ++c) out.push_back({prefix + "force_" + "xyz"[c], i["contact_force"][c].get<double>()});
     }
+  // Per pretension section: "<name>_pretension_force" and "<name>_pretension_shortening" (a
+  // restart takes the shortening a section was locked at from it).
+  if (summary.contains("pretension"))
+    for (const auto& s : summary["pretension"]) {
+      const std::string name = s["name"].get<std::string>() + "_pretension_";
+      out.push_back({name + "force", s["force"].get<double>()});
+      out.push_back({name + "shortening", s["shortening"].get<double>()});
+    }
   return out;
 }
-
 
 Checkpoints::Checkpoints(const stack::Scene& scene, core::OutputFile* exodus, double seconds,
                          std::vector<std::string> info, int rank)

@@ -53,13 +53,6 @@ class RunTally {
   long long applicationsBefore_ = 0;
 };
 
-// Bonded contact alone is a linear problem (stack/LinearFetiSolve), never a contact solve.
-void requireFrictionModel(const FrictionSettings& friction) {
-  if (!friction.uses(FrictionModel::None) && !friction.uses(FrictionModel::Tresca) &&
-      !friction.uses(FrictionModel::Coulomb))
-    throw core::InputError("Contact/Friction Model: \"Bonded\" is not a contact model (None, Tresca, Coulomb)");
-}
-
 /// SMALSE-M's settings for this solve: the preconditioner in face and the progress reports
 /// (with the earlier runs' products and the slip bound's last change).
 qp::SmalseSettings smalseSettingsFor(const qp::SmalseSettings& given, const FrictionSettings& friction,
@@ -123,7 +116,6 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
                            const FrictionSettings& friction, const qp::SmalseSettings& smalseSettings,
                            feti::DualPreconditioner preconditioner, const WarmStart& warm) {
   const std::vector<double>& initialLambda = warm.lambda;
-  requireFrictionModel(friction);
   ContactResult result;
   // (1), (2) The homogenised dual problem (paper (19)) and Omega(g) (DualContactProblem).
   DualContactProblem problem(feti, B, friction);

@@ -344,6 +344,7 @@ const ContactFields* solveHistory(const Scene& scene, const feti::ConstraintMatr
                  span.lastStep};
   if (!restart.file.empty()) {
     loads.restore(B, rank, restart.totals.contactTangentialT1, restart.totals.contactTangentialT2);
+    for (size_t p = 0; p < restart.sectionShortening.size(); ++p) loads.setShortening(p, restart.sectionShortening[p]);
     run.firstStep = restart.step + 1;
     out.restartFile = restart.file;
     out.restartStep = restart.step;

@@ -82,6 +82,7 @@ RestartState stateAfter(const ContactSolveResult& done, const feti::ConstraintMa
   state.step = done.steps.back().step;
   state.totals = static_cast<const ContactFields&>(done.earlierSteps.back());
   tangentialReached(rows, stepDisplacement(done, done.steps.size() - 1, scene.mesh.numNodes(), comm), state.totals);
+  for (const auto& section : done.steps.back().sections) state.sectionShortening.push_back(section.shortening);
   broadcastRestartState(state, scene, comm);
   return state;
 }

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "tribos/stack/GlobalFields.hpp"
+#include "Pretension.hpp"
 
 namespace tribos::stack {
 
@@ -37,9 +38,9 @@ contact::ContactResult solveAt(feti::TotalFeti& feti, const feti::ConstraintMatr
 /// between tries and steps too. Collective, as that request is.
 bool budgetSpent(const ContactChain& chain) { return chain.smalse.stopRequested && chain.smalse.stopRequested(); }
 
-/// Adds the counts of one try to its step's record and to the history's totals.
+/// Adds the counts of one solve to its step's record and to the history's totals.
 void count(const contact::ContactResult& r, LoadStepRecord& record, qp::SmalseCounters& total, int& fixedPoint) {
-  ++record.attempts;
+  ++record.sectionSolves;
   record.outerIterations += r.counters.outerIterations;
   record.pfpApplications += r.counters.operatorApplications;
   record.fixedPointIterations += r.fixedPointIterations;
@@ -59,13 +60,18 @@ void count(const contact::ContactResult& r, LoadStepRecord& record, qp::SmalseCo
 }
 
 /// The console line of one try: the step, where it went (a sub-step: its position), the outcome.
-void printTry(const LoadHistory& history, int k, double position, const contact::ContactResult& r) {
+/// With pretension sections, each one's force and shortening, and the solves of the try.
+void printTry(const LoadHistory& history, int k, double position, const contact::ContactResult& r,
+              const std::vector<SectionState>& sections, int solves) {
   char at[64] = "";
   if (position != k) std::snprintf(at, sizeof at, ", cut back to %.6g of the step", position - (k - 1));
-  std::printf("  load step %d/%d (%s%s): %s, %d outer, %lld PFP; %d no contact, %d stick, %d slip\n", k,
+  std::printf("  load step %d/%d (%s%s): %s, %d outer, %lld PFP; %d no contact, %d stick, %d slip", k,
               history.steps(), history.label(k).c_str(), at, r.converged ? "converged" : "NOT CONVERGED",
               r.counters.outerIterations, r.counters.operatorApplications, r.statusCounts[0], r.statusCounts[1],
               r.statusCounts[2]);
+  for (const auto& s : sections) std::printf("; %s %.6g at shortening %.6g", s.name.c_str(), s.force, s.shortening);
+  if (solves > 1) std::printf(" (%d solves)", solves);
+  std::printf("\n");
   std::fflush(stdout);
 }
 }  // namespace
@@ -87,9 +93,16 @@ contact::ContactResult solveLoadHistory(feti::TotalFeti& feti, const feti::Const
     int depth = 0;  // the increment is 2^-depth of a step
     for (;;) {
       const double position = std::min(static_cast<double>(k), reached + std::ldexp(1.0, -depth));
-      result = solveAt(feti, B, chain, history, run, position, reached, last);
-      count(result, record, total, fixedPointIterations);
-      if (rank == 0) printTry(history, k, position, result);
+      // One try: one solve, or the pretension iterations' solves (Pretension.hpp).
+      int solves = 0;
+      result = solveWithSectionForces(history, position, last, run.comm, [&](const contact::ContactResult& warm) {
+        contact::ContactResult one = solveAt(feti, B, chain, history, run, position, reached, warm);
+        count(one, record, total, fixedPointIterations);
+        return one;
+      }, solves);
+      ++record.attempts;
+      record.sections = sectionStates(history, result.lambda, run.comm);
+      if (rank == 0) printTry(history, k, position, result, record.sections, solves);
       if (result.converged) {
         reached = position;
         if (position == k) break;

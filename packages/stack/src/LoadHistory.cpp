@@ -41,6 +41,7 @@ LoadHistory::LoadHistory(const feti::ConstraintMatrix& B, int rank, const Scene&
     fixed_[static_cast<size_t>(part.row - first)] -= part.value;
     parts_.push_back({part.row - first, part.condition, part.value});
   }
+  addSections(B, first, end, scene);
   tangential_.assign(fixed_.size(), 0);
   slip_.assign(fixed_.size(), 0.0);
   for (const auto& node : B.contact) {
@@ -56,6 +57,31 @@ LoadHistory::LoadHistory(const feti::ConstraintMatrix& B, int rank, const Scene&
     for (int j = 0; j < 2; ++j)
       if (const GO t = node.tangentialRow(j); t >= 0) tangential_[static_cast<size_t>(t - first)] = 1;
   }
+}
+
+void LoadHistory::addSections(const feti::ConstraintMatrix& B, GO first, GO end, const Scene& scene) {
+  sections_ = scene.pretensions;
+  proportional_ = proportional_ && sections_.empty();  // a pretension is no ramped load
+  for (const auto& section : sections_) {
+    std::vector<std::pair<size_t, double>> rows;
+    long long count = 0;
+    for (const auto& node : B.contact) {
+      if (node.interface != static_cast<int>(section.interface)) continue;
+      ++count;
+      if (node.normalRow >= first && node.normalRow < end)
+        rows.push_back({static_cast<size_t>(node.normalRow - first), node.rowScale});
+    }
+    sectionRows_.push_back(std::move(rows));
+    sectionRowCount_.push_back(count);
+  }
+  shortening_.assign(sections_.size(), 0.0);
+  slope_.assign(sections_.size(), 0.0);
+}
+
+void LoadHistory::setSectionsAt(double position) {
+  for (size_t p = 0; p < sections_.size(); ++p)
+    if (!sections_[p].byForce)
+      shortening_[p] = sections_[p].target * std::min(position / sections_[p].steps, 1.0);
 }
 
 std::vector<std::pair<std::string, double>> LoadHistory::factors(int k) const {
@@ -109,6 +135,9 @@ std::vector<double> LoadHistory::prescribedValues(double position) const {
     c[static_cast<size_t>(part.row)] +=
         factorAt(displacementFactors_[static_cast<size_t>(part.condition)], position) * part.value;
   for (const auto& [row, part] : interference_) c[static_cast<size_t>(row)] += ramp(position) * part;
+  // A section's normal rows read (u_s - chi u_m) . nu = shortening (tied rows otherwise 0).
+  for (size_t p = 0; p < sections_.size(); ++p)
+    for (const auto& [row, scale] : sectionRows_[p]) c[row] += scale * shortening_[p];
   return c;
 }
 

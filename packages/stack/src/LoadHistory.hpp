@@ -55,6 +55,24 @@ class LoadHistory {
   /// per global node along each contact node's t1 and t2 (the result's contact_tangential_t1/t2).
   void restore(const feti::ConstraintMatrix& B, int rank, const std::vector<double>& t1, const std::vector<double>& t2);
 
+  /// Pretension sections (Scene::pretensions, Pretension.hpp): their shortening, in c of their
+  /// normal rows (shortening x rowScale). A Shortening section is at its target x min(position /
+  /// steps, 1) by itself (setSectionsAt); a Force section at what the iterations set, kept after
+  /// its steps (locked).
+  size_t sections() const { return sections_.size(); }
+  const PretensionSection& section(size_t p) const { return sections_[p]; }
+  double shortening(size_t p) const { return shortening_[p]; }
+  void setShortening(size_t p, double s) { shortening_[p] = s; }
+  /// dF/ds of section p as the last iterations measured it (0: not yet).
+  double slope(size_t p) const { return slope_[p]; }
+  void setSlope(size_t p, double k) { slope_[p] = k; }
+  /// Sets the Shortening sections' values at `position`.
+  void setSectionsAt(double position);
+  /// The section's normal rows on this rank: (owned row, rowScale).
+  const std::vector<std::pair<size_t, double>>& sectionRows(size_t p) const { return sectionRows_[p]; }
+  /// The number of normal rows of section p over all ranks (a reproducible sum's bound).
+  long long sectionRowCount(size_t p) const { return sectionRowCount_[p]; }
+
  private:
   std::vector<std::vector<std::vector<double>>> loadVectors_;
   std::vector<std::string> loadNames_, conditionNames_;
@@ -65,6 +83,12 @@ class LoadHistory {
   std::vector<size_t> dofs_;
   int steps_ = 1;
   bool proportional_ = true;
+  void addSections(const feti::ConstraintMatrix& B, GO first, GO end, const Scene& scene);
+  std::vector<PretensionSection> sections_;
+  std::vector<std::vector<std::pair<size_t, double>>> sectionRows_;
+  std::vector<long long> sectionRowCount_;
+  std::vector<double> shortening_;  ///< per section, the value c holds now
+  std::vector<double> slope_;       ///< per section, dF/ds
   std::vector<double> fixed_;     ///< the part of B's c that no factor scales (the normal rows' gaps)
   std::vector<feti::PrescribedPart> parts_;  ///< the owned rows' parts, rows counted from the first owned
   /// (owned row, its c's Interference part at the full value): normal rows, ramped (k / N).

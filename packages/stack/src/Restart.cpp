@@ -173,6 +173,14 @@ RestartState readRestart(const std::string& file, const Scene& scene, const feti
   core::requireInput(total != nullptr, where + ": no global variable dissipated_energy");
   t.dissipatedEnergy = *total;
   requirePlausible(*total, "dissipated_energy", where);
+  for (const auto& section : scene.pretensions) {
+    const std::string name = section.name + "_pretension_shortening";
+    const double* shortening = globalValue(*last, name);
+    core::requireInput(shortening != nullptr, where + ": no global variable " + name + " (Pretension/" + section.name +
+                                                  " is not in that result)");
+    requirePlausible(*shortening, name, where);
+    state.sectionShortening.push_back(*shortening);
+  }
   for (int k : displacementSteps)
     if (k >= 1 && k <= state.step) state.displacements.push_back({k, fileDisplacement(data, k, state.step, where)});
   return state;
@@ -216,6 +224,7 @@ void broadcastRestartState(RestartState& state, const Scene& scene, MPI_Comm com
       t.interfaces.push_back({one.rows.name, one.rows.slaveSideSet + " -> " + one.rows.masterSideSet, one.law});
   for (size_t i = 0; i < t.interfaces.size(); ++i) t.interfaces[i].dissipatedEnergy = energies[i];
   t.dissipatedEnergy = energies.back();
+  broadcast(state.sectionShortening, comm);
   int count = static_cast<int>(state.displacements.size());
   MPI_Bcast(&count, 1, MPI_INT, 0, comm);
   state.displacements.resize(static_cast<size_t>(count));

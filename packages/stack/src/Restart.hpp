@@ -26,6 +26,9 @@ struct RestartState {
   /// The displacement of every global node at the steps asked for (readRestart's
   /// displacementSteps; ConditionSteps.cpp: where conditions that took hold hold their nodes).
   std::vector<std::pair<int, std::vector<std::array<double, 3>>>> displacements;
+  /// Per pretension section of the scene, its shortening at that step (global variable
+  /// <name>_pretension_shortening).
+  std::vector<double> sectionShortening;
 };
 
 /// Reads `file` (an Exodus result of a load history of this scene, whose contact nodes are B's).

@@ -248,11 +248,9 @@ std::string linearReport(const LinearFetiResult& linear) {
       << " s, solve " << linear.solveSeconds << " s\n";
   return out.str();
 }
-}  // namespace
 
-nlohmann::json stepSummary(const ContactSolveResult& c, size_t i) {
-  const auto& k = c.steps[i];
-  const ContactFields& fields = i < c.earlierSteps.size() ? c.earlierSteps[i] : c;
+/// A step's entry of the summary's steps.
+nlohmann::json stepEntry(const LoadStepRecord& k, const ContactFields& fields) {
   return {{"step", k.step},
           {"time", k.time},
           {"ramp", k.factor},
@@ -271,6 +269,20 @@ nlohmann::json stepSummary(const ContactSolveResult& c, size_t i) {
           {"kkt", contactKktJson(k.kkt, k.kktTolerance)},
           {"interfaces", interfaceSummary(fields)},
           {"dissipated_energy", fields.dissipatedEnergy}};
+}
+}  // namespace
+
+nlohmann::json stepSummary(const ContactSolveResult& c, size_t i) {
+  const auto& k = c.steps[i];
+  const ContactFields& fields = i < c.earlierSteps.size() ? c.earlierSteps[i] : c;
+  nlohmann::json entry = stepEntry(k, fields);
+  if (k.sections.empty()) return entry;
+  // Pretension sections: each one's tension and shortening at the step's end, and the solves
+  // of the step's tries (more than its attempts where a Force was iterated).
+  entry["solves"] = k.sectionSolves;
+  for (const auto& s : k.sections)
+    entry["pretension"].push_back({{"name", s.name}, {"force", s.force}, {"shortening", s.shortening}});
+  return entry;
 }
 
 nlohmann::json setupSummary(const Scene& scene, const SetupReport& report, const feti::ConstraintMatrix& B,

@@ -1,5 +1,7 @@
 #include "tribos/stack/Scene.hpp"
 
+#include "Pretension.hpp"
+
 #include <Teuchos_Array.hpp>
 #include <Teuchos_ParameterList.hpp>
 
@@ -360,14 +362,17 @@ Scene buildScene(const ParameterList& tribos, const std::string& source, MPI_Com
   readBoundary(tribos.sublist("Boundary"), source, twoBricks, scene);
   readLoadSteps(tribos.sublist("Load Steps"), source, scene);
   scene.contacts = readContactInterfaces(tribos.sublist("Contact"), source);
-  // A linear scene (no contact, or Bonded interfaces only) does not depend on the path.
-  const bool linear = std::all_of(scene.contacts.begin(), scene.contacts.end(), [](const ContactInterface& one) {
+  readPretensions(tribos.sublist("Pretension"), source, scene);
+  // A linear scene (no contact, or Bonded interfaces only) does not depend on the path; a
+  // pretension section is solved as a history whatever the interfaces (its force by iterations).
+  const bool tiedOnly = std::all_of(scene.contacts.begin(), scene.contacts.end(), [](const ContactInterface& one) {
     return one.law.tiesSurfaces();
   });
+  const bool linear = tiedOnly && scene.pretensions.empty();
   core::requireInput(!scene.loadHistory || !linear,
                      source + ": Load Steps: the scene is linear (no contact, or only Bonded interfaces), so its "
                               "answer does not depend on the load path: give the last step's loads in one step");
-  scene.pairingUpdates = linear ? 0 : tribos.sublist("Solver").get<int>("Pairing Updates");
+  scene.pairingUpdates = tiedOnly ? 0 : tribos.sublist("Solver").get<int>("Pairing Updates");
   for (const auto& one : scene.contacts)
     for (const auto* name : {&one.rows.slaveSideSet, &one.rows.masterSideSet}) {
       try {

@@ -294,6 +294,32 @@ void parallelParameters(ParameterList& pl) {
          "threads per MPI rank over its subdomains; 0 = OMP_NUM_THREADS (or all cores)",
          core::intRange(0, 4096));
 }
+
+// One sublist per section (any name), like Abaqus's *PRE-TENSION SECTION or CalculiX's.
+void pretensionParameters(ParameterList& pl) {
+  ParameterList& section = pl.sublist(
+      "*", false,
+      "one pretension section, any name: the two sides of a cut through a bolt (the surfaces of a Contact/<name> "
+      "interface with Friction Model Bonded, e.g. a bolt meshed in two bodies) pulled into each other by a "
+      "shortening, along the interface's normal; the section then carries the bolt's tension");
+  section.set("Interface", std::string(""), "the Contact/<name> (Bonded) whose two surfaces are the cut (required)");
+  section.set("Force", 0.0,
+              "the tension the section carries at the end of its Steps [force; > 0]: its shortening is found by "
+              "secant iterations, each a solve of the step (the solver's accuracy: Pretension/<name>/Force "
+              "Tolerance). Give Force or Shortening",
+              core::atLeast(0.0));
+  section.set("Shortening", 0.0,
+              "the shortening of the section at the end of its Steps [length; > 0]: the cut's two sides pulled "
+              "into each other by this much. Give Force or Shortening",
+              core::atLeast(0.0));
+  section.set("Steps", 1,
+              "the pretension is applied over steps 1 .. Steps (its force or shortening ramped k / Steps), then "
+              "locked: the shortening reached stays, and the section's force follows the other loads",
+              core::intRange(1, 100000));
+  section.set("Force Tolerance", 1e-6,
+              "with Force: the secant iterations end when |section force - target| <= this x Force",
+              core::openClosed(0.0, 1.0));
+}
 }  // namespace
 
 Teuchos::RCP<const Teuchos::ParameterList> sceneValidParameters() {
@@ -359,6 +385,9 @@ Teuchos::RCP<const Teuchos::ParameterList> sceneValidParameters() {
              "for a grip added after a preload. Where it takes hold after step 1 it holds its nodes where the step "
              "before left them, then moves them by its Displacement times its factor; where it does not hold, its "
              "nodes are free. Each change rebuilds the constraints and factorises again. Not given: every step");
+    pretensionParameters(pl->sublist("Pretension", false,
+                                     "bolt pretension sections (contact scenes and load histories): a cut through "
+                                     "a bolt given as a Bonded interface, shortened to a force or by a length"));
     return Teuchos::rcp_const_cast<const ParameterList>(pl);
   }();
   return valid;

@@ -5,6 +5,7 @@
 namespace tribos::stack {
 
 bool isContactProblem(const Scene& scene) {
+  if (!scene.pretensions.empty()) return true;  // solved as a history (Pretension.hpp)
   for (const auto& one : scene.contacts)
     if (!one.law.tiesSurfaces()) return true;
   return false;

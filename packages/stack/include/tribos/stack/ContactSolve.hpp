@@ -33,6 +33,13 @@ struct OuterIterationRecord {
 };
 
 /// One step of a load history (Load Steps), as the summary's `steps` lists it.
+/// A pretension section after a step (Pretension/<name>): the tension it carries and its
+/// shortening.
+struct SectionState {
+  std::string name;
+  double force = 0.0, shortening = 0.0;
+};
+
 struct LoadStepRecord {
   int step = 0;
   double factor = 1.0;          ///< the ramp k / N (prescribed values; loads without a table)
@@ -51,6 +58,8 @@ struct LoadStepRecord {
   std::string message;
   contact::KktReport kkt;
   double kktTolerance = 0.0;
+  std::vector<SectionState> sections;  ///< each pretension section at the step's end
+  int sectionSolves = 0;  ///< solves of its tries (more than its tries where a section's Force is iterated)
 };
 
 /// What the results show of one solved state: the displacement, reactions, applied load and

@@ -40,6 +40,18 @@ struct ContactInterface {
   contact::FrictionLaw law;
 };
 
+/// A bolt pretension section (Pretension/<name>): the two surfaces of a Bonded interface, a cut
+/// through a bolt, pulled into each other along the interface's normal by a shortening s (the
+/// tied normal rows read (u_slave - chi u_master) . nu = s instead of 0; stack/src/Pretension.hpp).
+struct PretensionSection {
+  std::string name;
+  size_t interface = 0;   ///< index into Scene::contacts (Bonded)
+  bool byForce = true;    ///< Force given; else Shortening
+  double target = 0.0;    ///< the force or the shortening at the end of `steps`
+  int steps = 1;          ///< ramped k / steps over steps 1..steps, then locked
+  double forceTolerance = 1e-6;  ///< Force Tolerance (relative to the force)
+};
+
 struct Scene {
   std::string source;                      ///< where the parameters came from (for messages)
   mesh::Mesh mesh;
@@ -64,6 +76,7 @@ struct Scene {
   /// Load Steps/Times: the time of each step in the results (default: the ramp k / N).
   std::vector<double> stepTimes;
   std::vector<ContactInterface> contacts;  ///< none: no contact
+  std::vector<PretensionSection> pretensions;  ///< Pretension/<name> sublists (a load history)
   /// Solver/Pairing Updates for a contact problem; 0 for a linear scene.
   int pairingUpdates = 0;
   double meshSeconds = 0.0, decompositionSeconds = 0.0;

@@ -1,0 +1,153 @@
+#include "Pretension.hpp"
+
+#include <Teuchos_DefaultMpiComm.hpp>
+#include <Teuchos_ParameterList.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include "tribos/core/Errors.hpp"
+#include "tribos/core/Format.hpp"
+#include "tribos/core/ReproducibleSum.hpp"
+
+namespace tribos::stack {
+
+namespace {
+// A "*" sublist's entry, or its default (validation fills in no defaults under "*").
+template <class T>
+T valueOr(const Teuchos::ParameterList& list, const std::string& name, const T& fallback) {
+  return list.isParameter(name) ? list.get<T>(name) : fallback;
+}
+
+/// Pretension/<name>: the section, checked against the scene.
+PretensionSection readSection(const Teuchos::ParameterList& sub, const std::string& name, const std::string& where,
+                              const Scene& scene) {
+  PretensionSection section;
+  section.name = name;
+  const std::string interface = valueOr(sub, "Interface", std::string());
+  core::requireInput(!interface.empty(), where + ": \"Interface\" is required (a Contact/<name> with Friction Model "
+                                                 "Bonded: the two sides of the cut)");
+  const auto it = std::find_if(scene.contacts.begin(), scene.contacts.end(),
+                               [&](const ContactInterface& one) { return one.rows.name == interface; });
+  core::requireInput(it != scene.contacts.end(), where + "/Interface: no Contact/" + interface + " in the scene");
+  core::requireInput(it->law.tiesSurfaces(), where + "/Interface: Contact/" + interface +
+                                                 " is not Bonded (a pretension section is a cut whose sides are "
+                                                 "glued: give it Friction Model Bonded)");
+  section.interface = static_cast<size_t>(it - scene.contacts.begin());
+  const bool force = sub.isParameter("Force"), shortening = sub.isParameter("Shortening");
+  core::requireInput(force != shortening, where + ": give Force or Shortening, one of them");
+  section.byForce = force;
+  section.target = sub.get<double>(force ? "Force" : "Shortening");
+  core::requireInput(section.target > 0.0, where + (force ? "/Force" : "/Shortening") + " must be > 0");
+  section.steps = valueOr(sub, "Steps", 1);
+  core::requireInput(section.steps <= scene.loadSteps,
+                     where + "/Steps = " + std::to_string(section.steps) + " exceeds Load Steps/Number Of Steps = " +
+                         std::to_string(scene.loadSteps));
+  section.forceTolerance = valueOr(sub, "Force Tolerance", 1e-6);
+  return section;
+}
+}  // namespace
+
+void readPretensions(const Teuchos::ParameterList& list, const std::string& source, Scene& scene) {
+  for (auto it = list.begin(); it != list.end(); ++it) {
+    if (!list.entry(it).isList()) continue;
+    const std::string name = list.name(it);
+    const std::string where = source + ": Pretension/" + name;
+    PretensionSection section = readSection(list.sublist(name), name, where, scene);
+    for (const auto& other : scene.pretensions)
+      core::requireInput(other.interface != section.interface,
+                         where + "/Interface: Contact/" + scene.contacts[section.interface].rows.name +
+                             " is already the section Pretension/" + other.name);
+    scene.pretensions.push_back(section);
+    scene.loadHistory = true;
+  }
+}
+
+double sectionForce(const LoadHistory& history, size_t p, const std::vector<double>& lambda, MPI_Comm comm) {
+  std::vector<double> terms;
+  for (const auto& [row, scale] : history.sectionRows(p))
+    terms.push_back(row < lambda.size() ? -scale * lambda[row] : 0.0);  // a failed solve may hold none
+  const Teuchos::MpiComm<int> world(comm);
+  return core::reproducibleSum(&world, terms.data(), terms.size(), history.sectionRowCount(p));
+}
+
+std::vector<SectionState> sectionStates(const LoadHistory& history, const std::vector<double>& lambda,
+                                        MPI_Comm comm) {
+  std::vector<SectionState> states;
+  for (size_t p = 0; p < history.sections(); ++p)
+    states.push_back({history.section(p).name, sectionForce(history, p, lambda, comm), history.shortening(p)});
+  return states;
+}
+
+namespace {
+/// The Force sections acting at `position` (within their steps) and their targets there.
+std::vector<std::pair<size_t, double>> forceTargets(const LoadHistory& history, double position) {
+  std::vector<std::pair<size_t, double>> targets;
+  for (size_t p = 0; p < history.sections(); ++p) {
+    const PretensionSection& s = history.section(p);
+    if (s.byForce && position <= s.steps + 1e-12) targets.push_back({p, s.target * std::min(position / s.steps, 1.0)});
+  }
+  return targets;
+}
+
+/// Whether every target is met (the solve converged, each force within its tolerance); else the
+/// first section that is not, in words.
+std::string unmet(const LoadHistory& history, const std::vector<std::pair<size_t, double>>& targets,
+                  const std::vector<double>& force) {
+  for (size_t i = 0; i < targets.size(); ++i) {
+    const PretensionSection& s = history.section(targets[i].first);
+    if (std::abs(force[i] - targets[i].second) > s.forceTolerance * s.target)
+      return "Pretension/" + s.name + " carries " + core::formatNumber(force[i]) + " of its " +
+             core::formatNumber(targets[i].second) + " at shortening " +
+             core::formatNumber(history.shortening(targets[i].first));
+  }
+  return "";
+}
+
+/// The next shortening of each section: a secant step on its slope dF/ds, or, where none is
+/// known yet, a probe 1e-3 |s| beyond s (1e-6 from s = 0): F is linear in s where the scene is,
+/// so any probe gives the slope there.
+void nextShortenings(LoadHistory& history, const std::vector<std::pair<size_t, double>>& targets,
+                     const std::vector<double>& force) {
+  for (size_t i = 0; i < targets.size(); ++i) {
+    const size_t p = targets[i].first;
+    const double k = history.slope(p), s = history.shortening(p);
+    history.setShortening(p, k > 0.0 ? s + (targets[i].second - force[i]) / k
+                                     : s + 1e-3 * std::max(std::abs(s), 1e-3));
+  }
+}
+}  // namespace
+
+contact::ContactResult solveWithSectionForces(
+    LoadHistory& history, double position, const contact::ContactResult& start, MPI_Comm comm,
+    const std::function<contact::ContactResult(const contact::ContactResult& warm)>& solve, int& solves) {
+  history.setSectionsAt(position);
+  const auto targets = forceTargets(history, position);
+  contact::ContactResult result = solve(start);
+  solves = 1;
+  if (targets.empty()) return result;
+  for (;;) {
+    std::vector<double> force;
+    for (const auto& [p, target] : targets) force.push_back(sectionForce(history, p, result.lambda, comm));
+    const std::string missed = unmet(history, targets, force);
+    if (!result.converged || missed.empty()) return result;
+    if (solves == kMaxSectionSolves) {
+      result.converged = false;
+      result.message = missed + " after " + std::to_string(solves) + " solves (the pretension iterations' limit)";
+      return result;
+    }
+    std::vector<double> before;
+    for (const auto& [p, target] : targets) before.push_back(history.shortening(p));
+    nextShortenings(history, targets, force);
+    const contact::ContactResult next = solve(result);
+    ++solves;
+    for (size_t i = 0; i < targets.size(); ++i) {  // the secant's slope, dF/ds
+      const size_t p = targets[i].first;
+      const double ds = history.shortening(p) - before[i];
+      if (ds != 0.0) history.setSlope(p, (sectionForce(history, p, next.lambda, comm) - force[i]) / ds);
+    }
+    result = next;
+  }
+}
+
+}  // namespace tribos::stack
