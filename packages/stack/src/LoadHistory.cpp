@@ -65,14 +65,20 @@ void LoadHistory::addSections(const feti::ConstraintMatrix& B, GO first, GO end,
   for (const auto& section : sections_) {
     std::vector<std::pair<size_t, double>> rows;
     long long count = 0;
+    std::array<double, 3> low{HUGE_VAL, HUGE_VAL, HUGE_VAL}, high{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
     for (const auto& node : B.contact) {
       if (node.interface != static_cast<int>(section.interface)) continue;
       ++count;
+      for (int c = 0; c < 3; ++c) {
+        low[c] = std::min(low[c], scene.mesh.coords[static_cast<size_t>(node.slaveNode)][c]);
+        high[c] = std::max(high[c], scene.mesh.coords[static_cast<size_t>(node.slaveNode)][c]);
+      }
       if (node.normalRow >= first && node.normalRow < end)
         rows.push_back({static_cast<size_t>(node.normalRow - first), node.rowScale});
     }
     sectionRows_.push_back(std::move(rows));
     sectionRowCount_.push_back(count);
+    sectionSize_.push_back(count > 0 ? std::hypot(high[0] - low[0], high[1] - low[1], high[2] - low[2]) : 0.0);
   }
   shortening_.assign(sections_.size(), 0.0);
   slope_.assign(sections_.size(), 0.0);

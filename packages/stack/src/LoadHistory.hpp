@@ -72,6 +72,9 @@ class LoadHistory {
   const std::vector<std::pair<size_t, double>>& sectionRows(size_t p) const { return sectionRows_[p]; }
   /// The number of normal rows of section p over all ranks (a reproducible sum's bound).
   long long sectionRowCount(size_t p) const { return sectionRowCount_[p]; }
+  /// The diagonal of the bounding box of section p's slave nodes (a length scale for its first
+  /// shortening, Pretension.cpp).
+  double sectionSize(size_t p) const { return sectionSize_[p]; }
 
  private:
   std::vector<std::vector<std::vector<double>>> loadVectors_;
@@ -87,6 +90,7 @@ class LoadHistory {
   std::vector<PretensionSection> sections_;
   std::vector<std::vector<std::pair<size_t, double>>> sectionRows_;
   std::vector<long long> sectionRowCount_;
+  std::vector<double> sectionSize_;
   std::vector<double> shortening_;  ///< per section, the value c holds now
   std::vector<double> slope_;       ///< per section, dF/ds
   std::vector<double> fixed_;     ///< the part of B's c that no factor scales (the normal rows' gaps)
