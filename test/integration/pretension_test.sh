@@ -2,7 +2,8 @@
 # CTest integration.pretension.aSectionReachesItsForceThenLocks (issue 43: no bolt pretension; a
 # preload had to be faked by a bolt meshed too short). split_bar.xml on split_bar_mesh.py's bar:
 # uniaxial stress, so the section's force is E A s / L = 200000 s exactly (linear hexahedra
-# represent it), and the summary's steps[k].pretension must give, to 1e-6:
+# represent it), and the summary's steps[k].pretension must give, to 1e-5 (the solver's
+# accuracy; an iterated force to its Force Tolerance, 1e-6 of 10 kN):
 #  - Force 10 kN in step 1: shortening 0.05, force 10000; step 2 (the right end pulled 0.02, the
 #    section locked): force 14000 at the same shortening;
 #  - Shortening 0.05 instead of Force: the same forces;
@@ -61,18 +62,21 @@ bad = []
 def sections(name):
     return [(s["step"], s["pretension"][0]["force"], s["pretension"][0]["shortening"])
             for s in json.load(open("%s/%s.json" % (d, name)))["steps"]]
-def check(name, expected):
+# The force a section is iterated to is within its Force Tolerance (1e-6) of the target; the rest
+# (a shortening found, a locked section's force) within the solver's accuracy, 1e-5.
+def check(name, expected, iterated=()):
     for (step, force, shortening), (want_force, want_shortening) in zip(sections(name), expected):
         error = max(abs(force - want_force) / want_force, abs(shortening - want_shortening) / want_shortening)
         print("%s step %d: force %.9g, shortening %.9g (relative error %.2g)" % (name, step, force, shortening, error))
-        if not error <= 1e-6:
+        if not error <= 1e-5 or (step in iterated and not abs(force - want_force) <= 1e-6 * 1e4):
             bad.append(name)
     if len(sections(name)) != len(expected):
         bad.append(name + " (steps)")
 locked = [(10000.0, 0.05), (14000.0, 0.05)]
-for name in ("force", "shortening", "nonmatching", "np2"):
-    check(name, locked)
-check("ramped", [(5000.0, 0.025), (10000.0, 0.05)])
+for name in ("force", "nonmatching", "np2"):
+    check(name, locked, iterated=(1,))
+check("shortening", locked)
+check("ramped", [(5000.0, 0.025), (10000.0, 0.05)], iterated=(1, 2))
 check("restarted", locked[1:])
 names = lambda v: ["".join(c.decode() for c in row if c) for row in v[:].data]
 def displacement(path):

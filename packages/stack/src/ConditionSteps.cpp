@@ -71,9 +71,7 @@ void appendRun(const ContactSolveResult& run, ContactSolveResult& done) {
   done.steps.insert(done.steps.end(), run.steps.begin(), run.steps.end());
   done.earlierSteps.insert(done.earlierSteps.end(), run.earlierSteps.begin(), run.earlierSteps.end());
   done.earlierSteps.push_back(static_cast<const StepResults&>(run));
-  done.fApplications += run.fApplications;
-  done.factorizationSeconds += run.factorizationSeconds;
-  done.solveSeconds += run.solveSeconds;
+  addPartCounts(run, done);
   done.pairingUpdates.insert(done.pairingUpdates.end(), run.pairingUpdates.begin(), run.pairingUpdates.end());
 }
 
@@ -144,11 +142,7 @@ ContactSolveResult solveConditionRuns(const Scene& scene, std::vector<fem::Subdo
     if (afterStep) afterStep(done);  // the run's last step, which its own observer does not see
   }
   // The result: the steps of the runs before, then the last run's.
-  result.steps.insert(result.steps.begin(), done.steps.begin(), done.steps.end());
-  result.earlierSteps.insert(result.earlierSteps.begin(), done.earlierSteps.begin(), done.earlierSteps.end());
-  result.fApplications += done.fApplications;
-  result.factorizationSeconds += done.factorizationSeconds;
-  result.solveSeconds += done.solveSeconds;
+  prependSteps(done, result);
   result.pairingUpdates.insert(result.pairingUpdates.begin(), done.pairingUpdates.begin(), done.pairingUpdates.end());
   result.restartFile = restartFile;
   result.restartStep = restartFile.empty() ? 0 : firstStep - 1;

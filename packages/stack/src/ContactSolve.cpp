@@ -326,11 +326,12 @@ void setAppliedLoad(const std::vector<std::vector<double>>& f, MPI_Comm comm, St
 /// restart file's last step: each step's record and results (out.steps, out.earlierSteps), the
 /// last state's contact result and applied load in `out`. Returns the totals before the last
 /// state (accumulated slip, dissipated energy): the last earlier step's, the file's, or none.
-/// Where a history solve starts (a restart file's state, or one in memory; none: step 1) and its
-/// last step (0: the scene's last).
+/// Where a history solve starts (a restart file's state, or one in memory; none: step 1), its
+/// last step (0: the scene's last) and when it stops before (HistoryPart::stopWhen).
 struct HistorySpan {
   const RestartState& restart;
   int lastStep = 0;
+  const std::function<bool(const ContactSolveResult&)>& stopWhen;
 };
 
 const ContactFields* solveHistory(const Scene& scene, const feti::ConstraintMatrix& B,
@@ -362,7 +363,12 @@ const ContactFields* solveHistory(const Scene& scene, const feti::ConstraintMatr
     out.earlierSteps.push_back(std::move(results));
     if (afterStep) afterStep(out);
   };
+  bool stopped = false;
+  if (span.stopWhen) run.stopAfter = [&](int) { return stopped = span.stopWhen(out); };
   out.contact = solveLoadHistory(feti, B, chain, loads, run, rank, out.steps, everyStep);
+  // Stopped after step k: its results are the last state's, which the caller gathers (as a last
+  // step's are); the totals before it are the step before's.
+  if (stopped) out.earlierSteps.pop_back();
   setAppliedLoad(loads.loads(out.steps.back().step), comm, out);  // the last step solved (B2)
   return previous();
 }
@@ -432,8 +438,8 @@ ContactSolveResult solveOnePairing(const Scene& scene, std::vector<fem::Subdomai
   core::Stopwatch watch;
   const ContactFields* totalsBefore = nullptr;  // a history's totals before its last state
   if (history)
-    totalsBefore = solveHistory(scene, B, stepsList, feti, chain, *loads, {restart, part.lastStep}, comm, out,
-                                afterStep);
+    totalsBefore = solveHistory(scene, B, stepsList, feti, chain, *loads, {restart, part.lastStep, part.stopWhen},
+                                comm, out, afterStep);
   else
     out.contact = contact::solveContact(feti, B, chain.friction, chain.smalse, chain.preconditioner);
   out.solveSeconds = watch.seconds();

@@ -1,11 +1,12 @@
 // A load history paired again as it goes (issue 41; PairingUpdate.hpp): a joint that slides
-// further than its pairs reach, a pin that crosses its clearance in step k. The history is solved
-// on one pairing; its first converged step whose state changes the pairing is solved again from
-// the step before it, on the pairing of that state, continuing in memory as a restart does
-// (RestartState: the tangential displacement reached, measured with the new rows, the
-// accumulated slip and the dissipated energies). Steps past that point are solved again.
+// further than its pairs reach, a pin that crosses its clearance in step k. Each converged step
+// is checked as it is reached; the first whose state changes the pairing ends the part being
+// solved (HistoryPart::stopWhen) and is solved again from the step before it, on the pairing of
+// that state, continuing in memory as a restart does (RestartState: the tangential displacement
+// reached, measured with the new rows, the accumulated slip and the dissipated energies).
 #include <Teuchos_ParameterList.hpp>
 
+#include <functional>
 #include <memory>
 #include <optional>
 
@@ -51,12 +52,51 @@ void keepSteps(ContactSolveResult& result, size_t count, ContactSolveResult& don
     done.steps.push_back(result.steps[i]);
     done.earlierSteps.push_back(std::move(result.earlierSteps[i]));
   }
-  done.fApplications += result.fApplications;
-  done.factorizationSeconds += result.factorizationSeconds;
-  done.solveSeconds += result.solveSeconds;
+  addPartCounts(result, done);
 }
 
+/// Moves every step of `result` (its earlier steps and its last state) to the end of `done`,
+/// with the counts of the solve that made them.
+void keepAllSteps(ContactSolveResult& result, ContactSolveResult& done) {
+  keepSteps(result, result.earlierSteps.size(), done);
+  done.steps.push_back(result.steps.back());
+  done.earlierSteps.push_back(static_cast<const StepResults&>(result));
+}
+
+/// The pairing check of the last converged step of a part being solved, once per step: whether
+/// the state changes the pairing `rows` (from the part's step `firstIndex` on).
+struct StepCheck {
+  const Scene& scene;
+  const feti::ConstraintSpec& spec;
+  const feti::ConstraintMatrix*& rows;
+  size_t firstIndex;
+  MPI_Comm comm;
+  long long checked = -1;
+  bool changed = false;
+
+  bool changes(const ContactSolveResult& part) {
+    const long long i = static_cast<long long>(part.earlierSteps.size()) - 1;
+    if (i == checked) return changed;
+    checked = i;
+    changed = i >= static_cast<long long>(firstIndex) &&
+              changesAt(scene, spec, stepDisplacement(part, static_cast<size_t>(i), scene.mesh.numNodes(), comm), *rows, 0)
+                  .solvedAgain;
+    return changed;
+  }
+  /// A part solved next: its steps counted from 0, all checked.
+  void newPart() {
+    checked = -1;
+    firstIndex = 0;
+  }
+};
 }  // namespace
+
+void prependSteps(ContactSolveResult& done, ContactSolveResult& last) {
+  last.steps.insert(last.steps.begin(), done.steps.begin(), done.steps.end());
+  last.earlierSteps.insert(last.earlierSteps.begin(), std::make_move_iterator(done.earlierSteps.begin()),
+                           std::make_move_iterator(done.earlierSteps.end()));
+  addPartCounts(done, last);
+}
 
 Displacement stepDisplacement(const ContactSolveResult& result, size_t i, LO numNodes, MPI_Comm comm) {
   const bool earlier = i < result.earlierSteps.size();
@@ -73,6 +113,39 @@ void tangentialReached(const feti::ConstraintMatrix& rows, const Displacement& u
     totals.contactTangentialT1[node.slaveNode] = t1;
     totals.contactTangentialT2[node.slaveNode] = t2;
   }
+}
+
+void addPartCounts(const ContactSolveResult& part, ContactSolveResult& into) {
+  const qp::SmalseCounters& c = part.contact.counters;
+  qp::SmalseCounters& t = into.contact.counters;
+  t.outerIterations += c.outerIterations;
+  t.innerIterations += c.innerIterations;
+  t.cgSteps += c.cgSteps;
+  t.expansionSteps += c.expansionSteps;
+  t.proportioningSteps += c.proportioningSteps;
+  t.operatorApplications += c.operatorApplications;
+  t.preconditionerApplications += c.preconditionerApplications;
+  t.seconds += c.seconds;
+  t.operatorSeconds += c.operatorSeconds;
+  t.productSeconds += c.productSeconds;
+  t.preconditionerSeconds += c.preconditionerSeconds;
+  into.contact.fixedPointIterations += part.contact.fixedPointIterations;
+  into.fApplications += part.fApplications;
+  into.factorizationSeconds += part.factorizationSeconds;
+  into.solveSeconds += part.solveSeconds;
+  const feti::OperatorProfile& p = part.profile;
+  feti::OperatorProfile& q = into.profile;
+  for (auto [from, to] : {std::pair{&p.fApplications, &q.fApplications}, {&p.projections, &q.projections},
+                          {&p.coarseSolves, &q.coarseSolves}, {&p.preconditionerApplications, &q.preconditionerApplications},
+                          {&p.coarseCoordinates, &q.coarseCoordinates}, {&p.coarseRefinementSteps, &q.coarseRefinementSteps}})
+    *to += *from;
+  for (auto [from, to] : {std::pair{&p.fSeconds, &q.fSeconds}, {&p.gSeconds, &q.gSeconds},
+                          {&p.coarseReduceSeconds, &q.coarseReduceSeconds}, {&p.coarseSolveSeconds, &q.coarseSolveSeconds},
+                          {&p.preconditionerSeconds, &q.preconditionerSeconds},
+                          {&p.coarseFactorSeconds, &q.coarseFactorSeconds},
+                          {&p.rigidCoefficientsSeconds, &q.rigidCoefficientsSeconds}})
+    *to += *from;
+  q.coarseFactorizations += p.coarseFactorizations;
 }
 
 RestartState stateAfter(const ContactSolveResult& done, const feti::ConstraintMatrix& rows, const Scene& scene,
@@ -97,58 +170,68 @@ ContactSolveResult solveHistoryPairedAsItGoes(const Scene& scene, std::vector<fe
   const feti::ConstraintSpec spec = span.spec ? *span.spec : constraintSpec(scene);
   ContactSolveResult done;  // the steps before the pairing last changed
   const feti::ConstraintMatrix* rows = &B;  // the pairing the part is solved on
-  // Checkpoints see the steps kept so far and the part now being solved, up to its first step
-  // whose state changes the pairing: that step will be solved again, and no checkpoint holds it.
-  bool stale = false;
+  // Each converged step is checked as the part solving it reaches it: a step whose state changes
+  // the pairing ends the part there (HistoryPart::stopWhen; it is solved again on the new
+  // pairing), and no checkpoint holds it. The checkpoint observer and the stop rule share the check.
+  // A part restarted from a file checks from its second step on: the file's state is its own.
+  StepCheck check{scene, spec, rows,
+                  span.continueFrom || tribos.sublist("Load Steps").get<std::string>("Restart From").empty() ? 0u : 1u,
+                  comm};
+  const std::function<bool(const ContactSolveResult&)> changesAtStep = [&](const ContactSolveResult& p) {
+    return check.changes(p);
+  };
   const StepObserver observe = !afterStep ? StepObserver() : [&](const ContactSolveResult& part) {
-    if (stale) return;
-    const Displacement u = stepDisplacement(part, part.earlierSteps.size() - 1, scene.mesh.numNodes(), comm);
-    if ((stale = changesAt(scene, spec, u, *rows, 0).solvedAgain)) return;
+    if (changesAtStep(part)) return;
     ContactSolveResult all = done;
     all.steps.insert(all.steps.end(), part.steps.begin(), part.steps.end());
     all.earlierSteps.insert(all.earlierSteps.end(), part.earlierSteps.begin(), part.earlierSteps.end());
     afterStep(all);
   };
-  ContactSolveResult part = solveOnePairing(scene, std::move(owned), B, tribos, comm, runStart, observe, span);
+  HistoryPart first = span;
+  first.stopWhen = changesAtStep;
+  ContactSolveResult part = solveOnePairing(scene, std::move(owned), B, tribos, comm, runStart, observe, first);
   const std::string restartFile = part.restartFile;  // Load Steps/Restart From's, as the summary shows it
   const int restartStep = part.restartStep;
   std::unique_ptr<feti::ConstraintMatrix> held;
   std::optional<RestartState> from;  // the state `part` started from, when in memory
   if (span.continueFrom) from = *span.continueFrom;
-  // A part restarted from a file checks from its second step on: the file's state is its own.
-  size_t firstIndex = span.continueFrom || tribos.sublist("Load Steps").get<std::string>("Restart From").empty() ? 0 : 1;
   std::vector<PairingUpdateRecord> records;
   int changedStep = 0, atThatStep = 0;  // Pairing Updates counts the changes at one step
-  for (int k = 1;; ++k) {
-    PairingUpdateRecord standing{k};
-    auto change = firstChange(scene, spec, part, *rows, firstIndex, k, comm, standing);
+  const int lastStep = span.lastStep > 0 ? span.lastStep : scene.loadSteps;
+  auto solveNextPart = [&]() {  // from the state after `done`, on `rows`
+    if (!done.steps.empty()) from = stateAfter(done, *rows, scene, comm);
+    std::vector<fem::SubdomainSystem> systems;
+    assembleOwnedSubdomains(scene, comm, systems);
+    check.newPart();
+    part = solveOnePairing(scene, std::move(systems), *rows, tribos, comm, runStart, observe,
+                           {from ? &*from : nullptr, span.lastStep, &spec, changesAtStep});
+  };
+  for (int update = 1;;) {
+    PairingUpdateRecord standing{update};
+    auto change = firstChange(scene, spec, part, *rows, check.firstIndex, update, comm, standing);
     if (change) {
       const int step = part.steps[change->index].step;
       atThatStep = step == changedStep ? atThatStep + 1 : 1;
       changedStep = step;
-      if (atThatStep > scene.pairingUpdates) break;  // the check after the solve has the last word
+    }
+    if (change && atThatStep > scene.pairingUpdates) {
+      // That step keeps this pairing (the check after the solve has the last word); the part
+      // stopped there (HistoryPart::stopWhen), so the rest of the history goes on from it.
+      if (!part.contact.converged || part.steps.back().step >= lastStep) break;
+      keepAllSteps(part, done);
+      solveNextPart();
+      continue;
     }
     records.push_back(change ? change->record : standing);
     reportUpdate(records.back(), rank, verbose);
+    ++update;
     if (!change) break;
     keepSteps(part, change->index, done);
     held = std::move(change->rows);
     rows = held.get();
-    if (!done.steps.empty()) from = stateAfter(done, *rows, scene, comm);
-    std::vector<fem::SubdomainSystem> systems;
-    assembleOwnedSubdomains(scene, comm, systems);
-    stale = false;
-    part = solveOnePairing(scene, std::move(systems), *rows, tribos, comm, runStart, observe,
-                           {from ? &*from : nullptr, span.lastStep, &spec});
-    firstIndex = 0;
+    solveNextPart();
   }
-  // The result: the steps kept, then the last part's.
-  part.steps.insert(part.steps.begin(), done.steps.begin(), done.steps.end());
-  part.earlierSteps.insert(part.earlierSteps.begin(), std::make_move_iterator(done.earlierSteps.begin()),
-                           std::make_move_iterator(done.earlierSteps.end()));
-  part.fApplications += done.fApplications;
-  part.factorizationSeconds += done.factorizationSeconds;
-  part.solveSeconds += done.solveSeconds;
+  prependSteps(done, part);
   part.restartFile = restartFile;
   part.restartStep = restartStep;
   part.pairingUpdates = std::move(records);

@@ -131,6 +131,7 @@ contact::ContactResult solveLoadHistory(feti::TotalFeti& feti, const feti::Const
       break;
     }
     everyStep(k, result);
+    if (run.stopAfter && run.stopAfter(k)) break;  // step k's state is the history's last
     history.advance(feti, result.displacement, k);
     last = std::move(result);
   }

@@ -37,6 +37,10 @@ struct HistoryRun {
   int firstStep = 1;
   int maxCutbacks = 0;
   int lastStep = 0;  ///< the last step solved (0: the history's last; ConditionSteps.hpp's parts end before)
+  /// Asked after each converged step k before the last, once `everyStep` has its results: true
+  /// ends the history there, with step k its last state (a pairing that step changed:
+  /// HistoryPairing.cpp). The same answer on every rank.
+  std::function<bool(int)> stopAfter;
 };
 
 /// The sum of the loads `f` (owned subdomains) in x, y, z. Collective.

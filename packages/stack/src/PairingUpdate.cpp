@@ -111,6 +111,7 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
   std::vector<PairingUpdateRecord> records;
   std::unique_ptr<feti::ConstraintMatrix> current;  // the pairing of `out` when not B
   std::vector<std::array<double, 3>> pairedAt;        // the state `current` was paired at
+  ContactSolveResult spent;  // the counts of the solves before the last
   for (int k = 1; k <= scene.pairingUpdates && (out.contact.converged || out.penetrated); ++k) {
     const auto u = onEveryRank(out.displacement.value, scene.mesh.numNodes(), comm);
     const feti::ConstraintMatrix& solved = current ? *current : B;
@@ -129,11 +130,13 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
     // keeps its subdomains' elements for this, stack::keepRankData).
     std::vector<fem::SubdomainSystem> systems;
     assembleOwnedSubdomains(scene, comm, systems);
+    addPartCounts(out, spent);  // the solve that is superseded counts too
     out = solveOnePairing(scene, std::move(systems), *next, tribos, comm, runStart);
     current = std::move(next);
     pairedAt = u;
   }
   out.pairingUpdates = std::move(records);
+  addPartCounts(spent, out);
   return out;
 }
 

@@ -10,6 +10,7 @@
 #include <mpi.h>
 
 #include <array>
+#include <functional>
 #include <vector>
 
 #include "Restart.hpp"
@@ -25,6 +26,9 @@ struct HistoryPart {
   /// The constraints its B was built from, which a pairing update builds its rows from again;
   /// null: constraintSpec(scene).
   const feti::ConstraintSpec* spec = nullptr;
+  /// Asked with the result so far after each converged step before the last: true ends the
+  /// history there (HistoryRun::stopAfter). Collective.
+  std::function<bool(const ContactSolveResult&)> stopWhen;
 };
 
 /// One solve on one pairing (ContactSolve.cpp): solveContactScene without pairing updates; a
@@ -34,12 +38,13 @@ ContactSolveResult solveOnePairing(const Scene& scene, std::vector<fem::Subdomai
                                    core::Stopwatch runStart, const StepObserver& afterStep = {},
                                    const HistoryPart& part = {});
 
-/// A load history paired again as it goes (HistoryPairing.cpp): after the history is solved on
-/// the pairing `B`, its first converged step whose state changes the pairing (newly inside,
-/// moved on) is solved again, from the step before it, on the pairing of that state; and so on,
-/// at most Scene::pairingUpdates times at one step. The result's pairingUpdates get one entry
-/// per check that changed the pairing, and one for the check that found it standing.
-/// Over the steps of `part` (its spec: what the rows are built from).
+/// A load history paired again as it goes (HistoryPairing.cpp): each converged step is checked
+/// as it is reached; the first whose state changes the pairing (newly inside, moved on) ends the
+/// part being solved and is solved again, from the step before it, on the pairing of that state;
+/// and so on, at most Scene::pairingUpdates times at one step (then the step keeps its pairing
+/// and the history goes on from it). The result's pairingUpdates get one entry per check that
+/// changed the pairing, and one for the check that found it standing; its counts are every
+/// part's. Over the steps of `part` (its spec: what the rows are built from).
 ContactSolveResult solveHistoryPairedAsItGoes(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
                                               const feti::ConstraintMatrix& B, const Teuchos::ParameterList& tribos,
                                               MPI_Comm comm, core::Stopwatch runStart, const StepObserver& afterStep,
@@ -70,6 +75,14 @@ void tangentialReached(const feti::ConstraintMatrix& rows, const std::vector<std
 /// the rows it continues on (this rank's part; the state is rank 0's, on every rank). Collective.
 RestartState stateAfter(const ContactSolveResult& done, const feti::ConstraintMatrix& rows, const Scene& scene,
                         MPI_Comm comm);
+/// Adds the additive counts of a part of a history solved on its own operators (its SMALSE-M
+/// counters, fixed-point iterations, F applications, factorisation and solve seconds, the
+/// operators' counts and times) to `into`: a history solved in parts counts every part's work,
+/// the steps a later part solved again included.
+void addPartCounts(const ContactSolveResult& part, ContactSolveResult& into);
+/// The result of a history solved in parts: the steps of `done` (moved), then those of `last`,
+/// and every part's counts.
+void prependSteps(ContactSolveResult& done, ContactSolveResult& last);
 /// The update's line on rank 0 when `verbose`.
 void reportUpdate(const PairingUpdateRecord& r, int rank, bool verbose);
 

@@ -105,15 +105,16 @@ std::string unmet(const LoadHistory& history, const std::vector<std::pair<size_t
 }
 
 /// The next shortening of each section: a secant step on its slope dF/ds, or, where none is
-/// known yet, a probe 1e-3 |s| beyond s (1e-6 from s = 0): F is linear in s where the scene is,
-/// so any probe gives the slope there.
+/// known yet, a probe at twice s: F is linear in s where the scene is, nearly so with contact,
+/// and a probe as large as s itself measures the slope far above the solver's round-off (a probe
+/// of 1e-3 s measured it to 1 %, and the iterations crept: 12 solves to 1e-3 of the force).
 void nextShortenings(LoadHistory& history, const std::vector<std::pair<size_t, double>>& targets,
                      const std::vector<double>& force) {
   for (size_t i = 0; i < targets.size(); ++i) {
     const size_t p = targets[i].first;
     const double k = history.slope(p), s = history.shortening(p);
     history.setShortening(p, k > 0.0 ? s + (targets[i].second - force[i]) / k
-                                     : s + 1e-3 * std::max(std::abs(s), 1e-3));
+                                     : s + std::max(std::abs(s), 1e-3 * history.sectionSize(p)));
   }
 }
 }  // namespace
@@ -150,7 +151,10 @@ contact::ContactResult solveWithSectionForces(
     for (size_t i = 0; i < targets.size(); ++i) {  // the secant's slope, dF/ds
       const size_t p = targets[i].first;
       const double ds = history.shortening(p) - before[i];
-      if (ds != 0.0) history.setSlope(p, (sectionForce(history, p, next.lambda, comm) - force[i]) / ds);
+      // A last correction (ds below 1e-3 of s) measures the slope mostly in the solver's round-off:
+      // the slope of the larger steps stays.
+      if (std::abs(ds) >= 1e-3 * std::abs(history.shortening(p)) || history.slope(p) <= 0.0)
+        history.setSlope(p, (sectionForce(history, p, next.lambda, comm) - force[i]) / ds);
     }
     result = next;
   }

@@ -1,8 +1,8 @@
-"""Writes a single-lap bolted joint of hexahedra, the mesh of bolted_joint.xml (issue 43), as
+"""Writes a single-lap bolted joint of hexahedra, the mesh of input/bolted_joint.xml (issue 43), as
 meshio writes Exodus meshes (node sets only; each body its own nodes; the bodies' grids do not
 match, so every interface has mortar rows).
 
-Usage: python3 bolted_joint_mesh.py OUT.exo [--refine N]
+Usage: python3 bolted_joint_mesh.py OUT.exo [--refine N]   (bolted_joint.exo: the default)
 (needs Debian's python3-meshio). Units mm. Two plates 20 wide (-10 <= y <= 10) and 5 thick overlap
 over -20 <= x <= 20: the lower plate (block_0, -40 <= x <= 20, -5 <= z <= 0) and the upper plate
 (block_1, -20 <= x <= 40, 0 <= z <= 5), each with a square hole |x|, |y| < 4.25. A square bolt,
