@@ -133,8 +133,9 @@ TEST(tribosDriver, outputCarriesTheSubdomainsAndReadsBackThroughMetis) {
 
 TEST(tribosDriver, everySceneInInputRunsAndConvergesWithResults) {
   // The Cattaneo-Mindlin scenes (load histories, 14 and 60 s) run as delivered in their own
-  // CTests, integration.cattaneoMindlin.sphere and .cylinder, which check their results.
-  const std::vector<std::string> runElsewhere = {"cattaneo_sphere.xml", "cattaneo_cylinder.xml"};
+  // CTests, integration.cattaneoMindlin.sphere and .cylinder, which check their results; so does
+  // the bolted joint (a 31-step history, 36 s: integration.boltedJoint.*).
+  const std::vector<std::string> runElsewhere = {"cattaneo_sphere.xml", "cattaneo_cylinder.xml", "bolted_joint.xml"};
   const auto dir = scratch();
   for (const auto& entry : std::filesystem::directory_iterator(tribos::test::sourceDir() + "/input")) {
     if (entry.path().extension() != ".xml") continue;
