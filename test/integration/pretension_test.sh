@@ -12,8 +12,8 @@
 #  - 2 ranks: the same bits (displacements and summary values);
 #  - restarted after step 1 from a 1-step result: step 2's force 14000 (the locked shortening read
 #    from the file's bolt_pretension_shortening);
-#  - a section on a missing interface, with both Force and Shortening, or Steps beyond the history:
-#    exit 2 naming the parameter.
+#  - a section on a missing interface, with both Force and Shortening, Steps beyond the history, or
+#    on an interface that pairs no node (no rows to pull): exit 2 naming the parameter.
 # Needs Debian's python3 with meshio and netCDF4; exit 77 (CTest: skipped) without them.
 # Usage: pretension_test.sh TRIBOS SOURCE_DIR [LAUNCHER...] (the launcher: the 2-rank run)
 set -u
@@ -108,4 +108,6 @@ expect_refused forceAndShortening "Pretension/bolt: give Force or Shortening, on
   --set "Pretension/bolt/Shortening=0.05"
 expect_refused stepsBeyond "Pretension/bolt/Steps = 3 exceeds Load Steps/Number Of Steps = 2" \
   --set "Pretension/bolt/Steps=3"
+expect_refused noRows "Pretension/bolt/Interface: Contact/cut pairs no slave node" \
+  --set "Contact/cut/Master Side Set=right_end"
 exit $failed

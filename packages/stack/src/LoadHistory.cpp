@@ -76,6 +76,10 @@ void LoadHistory::addSections(const feti::ConstraintMatrix& B, GO first, GO end,
       if (node.normalRow >= first && node.normalRow < end)
         rows.push_back({static_cast<size_t>(node.normalRow - first), node.rowScale});
     }
+    core::requireInput(count > 0, "Pretension/" + section.name + "/Interface: Contact/" +
+                                      scene.contacts[section.interface].rows.name +
+                                      " pairs no slave node, so the section has no rows to pull (check its side sets "
+                                      "and Search Distance)");
     sectionRows_.push_back(std::move(rows));
     sectionRowCount_.push_back(count);
     sectionSize_.push_back(count > 0 ? std::hypot(high[0] - low[0], high[1] - low[1], high[2] - low[2]) : 0.0);
