@@ -13,7 +13,8 @@
 #  - restarted after step 1 from a 1-step result: step 2's force 14000 (the locked shortening read
 #    from the file's bolt_pretension_shortening);
 #  - a section on a missing interface, with both Force and Shortening, Steps beyond the history, or
-#    on an interface that pairs no node (no rows to pull): exit 2 naming the parameter.
+#    on an interface that pairs no node (no rows to pull): exit 2 naming the parameter; a
+#    condition switched off that frees the bar (Load Steps/y0/Active): exit 2 before any solve.
 # Needs Debian's python3 with meshio and netCDF4; exit 77 (CTest: skipped) without them.
 # Usage: pretension_test.sh TRIBOS SOURCE_DIR [LAUNCHER...] (the launcher: the 2-rank run)
 set -u
@@ -99,7 +100,7 @@ expect_refused() {
   if [ "$status" != 2 ] || ! grep -qF -- "$text" "$dir/$name.log"; then
     cat "$dir/$name.log"; echo "FAILED: $name: exit $status, 2 and \"$text\" expected"; failed=1
   else
-    echo "$name: exit 2, $(grep -o 'Pretension/.*' "$dir/$name.log" | head -1)"
+    echo "$name: exit 2, $(grep -o 'error: .*' "$dir/$name.log" | head -1)"
   fi
 }
 expect_refused missingInterface "Pretension/bolt/Interface: no Contact/nut in the scene" \
@@ -110,4 +111,9 @@ expect_refused stepsBeyond "Pretension/bolt/Steps = 3 exceeds Load Steps/Number 
   --set "Pretension/bolt/Steps=3"
 expect_refused noRows "Pretension/bolt/Interface: Contact/cut pairs no slave node" \
   --set "Contact/cut/Master Side Set=right_end"
+# A condition switched off (Load Steps/y0/Active) that leaves the bar free along y: exit 2 before
+# step 1 is solved (ConditionSteps.cpp checks every run's constraints first).
+expect_refused freedByActive "Load Steps: in steps 2 to 2 (the displacement conditions switched by Active)" \
+  --set "Load Steps/y0/Active={1, 0}"
+grep -q "load step" "$dir/freedByActive.log" && { echo "FAILED: freedByActive solved a step first"; failed=1; }
 exit $failed

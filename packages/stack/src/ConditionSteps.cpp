@@ -8,6 +8,7 @@
 #include <string>
 
 #include "PairingUpdate.hpp"
+#include "tribos/core/Errors.hpp"
 #include "tribos/core/PhaseTimer.hpp"
 #include "tribos/feti/Solvability.hpp"
 #include "tribos/stack/LinearFetiSolve.hpp"
@@ -99,9 +100,35 @@ std::unique_ptr<feti::ConstraintMatrix> runRows(const Scene& scene, feti::Constr
 }
 }  // namespace
 
+namespace {
+/// Before any solve: the B of every run after the first must hold every body (its conditions
+/// alone decide that, not where they hold): a condition switched off that leaves a body free is
+/// exit 2 naming the body and the step, before step 1 is solved rather than after.
+void requireEveryRunRestrained(const Scene& scene, MPI_Comm comm) {
+  int rank = 0, numRanks = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &numRanks);
+  const Teuchos::MpiComm<int> world(comm);
+  for (const auto& run : conditionRuns(scene)) {
+    if (run.first == 1) continue;  // the driver checked step 1's
+    feti::ConstraintSpec spec = constraintSpec(scene);
+    spec.presentConditions.clear();
+    for (int since : heldSince(scene, run.first)) spec.presentConditions.push_back(since >= 0);
+    const auto rows = feti::buildConstraintMatrix(scene.mesh, scene.decomposition, spec, numRanks, rank);
+    try {
+      feti::requireRestrainedBodies(scene.mesh, scene.decomposition, rows, &world);
+    } catch (const core::InputError& e) {
+      throw core::InputError("Load Steps: in steps " + std::to_string(run.first) + " to " + std::to_string(run.last) +
+                             " (the displacement conditions switched by Active): " + e.what());
+    }
+  }
+}
+}  // namespace
+
 ContactSolveResult solveConditionRuns(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
                                       const feti::ConstraintMatrix& B, const Teuchos::ParameterList& tribos,
                                       MPI_Comm comm, core::Stopwatch runStart, const StepObserver& afterStep) {
+  requireEveryRunRestrained(scene, comm);
   const std::string restartFile = tribos.sublist("Load Steps").get<std::string>("Restart From");
   std::map<int, Displacement> at;  // the states conditions hold their nodes at
   std::optional<RestartState> from;
