@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <utility>
 
 #include <functional>
 
@@ -87,25 +88,29 @@ ResultFiles prepareResultFiles(const CommandLine& cl, const std::vector<std::str
 
 
 namespace {
-// Bytes the file system of `path` has left for it (statvfs of its directory, the space an
-// unprivileged user may take), and the file size limit (ulimit -f); HUGE_VAL where there is no
-// bound or the file system does not say (a pseudo file system reports no blocks).
-double roomFor(const std::string& path) {
+// Bytes the file system of `path` has left (statvfs of its directory, the space an unprivileged
+// user may take) and the file size limit (ulimit -f); HUGE_VAL where there is no bound or the file
+// system does not say (a pseudo file system reports no blocks).
+std::pair<double, double> roomFor(const std::string& path) {
   std::filesystem::path dir = std::filesystem::path(path).parent_path();
   if (dir.empty()) dir = ".";
-  double room = HUGE_VAL;
+  double space = HUGE_VAL, fileSize = HUGE_VAL;
   struct statvfs fs {};
   if (statvfs(dir.c_str(), &fs) == 0 && fs.f_blocks > 0)
-    room = static_cast<double>(fs.f_bavail) * static_cast<double>(fs.f_frsize);
+    space = static_cast<double>(fs.f_bavail) * static_cast<double>(fs.f_frsize);
   struct rlimit limit {};
   if (getrlimit(RLIMIT_FSIZE, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
-    room = std::min(room, static_cast<double>(limit.rlim_cur));
-  return room;
+    fileSize = static_cast<double>(limit.rlim_cur);
+  return {space, fileSize};
 }
 
 std::string megabytes(double bytes) {
+  if (!std::isfinite(bytes)) return "unbounded";
   char text[32];
-  std::snprintf(text, sizeof text, "%.3g MB", bytes / 1e6);
+  if (bytes >= 1e9)
+    std::snprintf(text, sizeof text, "%.3g GB", bytes / 1e9);
+  else
+    std::snprintf(text, sizeof text, "%.3g MB", bytes / 1e6);
   return text;
 }
 }  // namespace
@@ -113,14 +118,20 @@ std::string megabytes(double bytes) {
 void requireRoomForTheResult(const ResultFiles& files, int loadSteps, LO numNodes, LO numElements, int rank) {
   onRootForEveryRank(rank, [&] {
     if (!files.exodus) return;
-    const double needed = 8.0 * std::max(loadSteps, 1) *
+    const double result = 8.0 * std::max(loadSteps, 1) *
                           (kWrittenDoublesPerNodeAndStep * numNodes + kWrittenDoublesPerElementAndStep * numElements);
-    const double room = roomFor(files.exodus->path());
-    core::requireInput(needed <= room,
+    // A history's last checkpoint stays on the disk until the final file, written beside it,
+    // replaces it: twice the result's space, each file within the file size limit.
+    const bool checkpoints = loadSteps > 1;
+    const auto [space, fileSize] = roomFor(files.exodus->path());
+    const double room = std::min(checkpoints ? space / 2.0 : space, fileSize);
+    core::requireInput(result <= room,
                        files.exodus->path() + " (--output): the result of " + std::to_string(std::max(loadSteps, 1)) +
                            " step(s) of " + std::to_string(numNodes) + " nodes and " + std::to_string(numElements) +
-                           " elements takes at least " + megabytes(needed) + ", and only " + megabytes(room) +
-                           " can be written there (the file system's free space or ulimit -f); nothing was solved");
+                           " elements takes at least " + megabytes(result) +
+                           (checkpoints ? " (twice that on the disk while the last checkpoint is replaced)" : "") +
+                           "; the file system has " + megabytes(space) + " free, the file size limit (ulimit -f) is " +
+                           megabytes(fileSize) + "; nothing was solved");
   });
 }
 

@@ -40,8 +40,9 @@ constexpr double kWrittenDoublesPerElementAndStep = 8.0;
 
 /// Before the assembly: refuses (core::InputError on every rank, naming --output, the sizes and
 /// the room) a result that cannot fit where --output writes it: the free space of its file
-/// system or the file size limit (issue 44: 10 000 steps wrote 2.08 GB before the disk said no).
-/// Nothing without --output. Collective.
+/// system or the file size limit (issue 44: 10 000 steps wrote 2.08 GB before the disk said no);
+/// a history's twice (its last checkpoint stays until the final file replaces it). Nothing
+/// without --output. Collective.
 void requireRoomForTheResult(const ResultFiles& files, int loadSteps, LO numNodes, LO numElements, int rank);
 
 }  // namespace tribos::driver
