@@ -307,11 +307,11 @@ void pretensionParameters(ParameterList& pl) {
               "the tension the section carries at the end of its Steps [force; > 0]: its shortening is found by "
               "secant iterations, each a solve of the step (the solver's accuracy: Pretension/<name>/Force "
               "Tolerance). Give Force or Shortening",
-              core::atLeast(0.0));
+              core::closedInterval(0.0, core::kMaxMagnitude));
   section.set("Shortening", 0.0,
               "the shortening of the section at the end of its Steps [length; > 0]: the cut's two sides pulled "
               "into each other by this much. Give Force or Shortening",
-              core::atLeast(0.0));
+              core::closedInterval(0.0, core::kMaxMagnitude));
   section.set("Steps", 1,
               "the pretension is applied over steps 1 .. Steps (its force or shortening ramped k / Steps), then "
               "locked: the shortening reached stays, and the section's force follows the other loads",
