@@ -153,7 +153,7 @@ contact::ContactResult solveWithSectionForces(
       const double ds = history.shortening(p) - before[i];
       // A last correction (ds below 1e-3 of s) measures the slope mostly in the solver's round-off:
       // the slope of the larger steps stays.
-      if (std::abs(ds) >= 1e-3 * std::abs(history.shortening(p)) || history.slope(p) <= 0.0)
+      if (ds != 0.0 && (std::abs(ds) >= 1e-3 * std::abs(history.shortening(p)) || history.slope(p) <= 0.0))
         history.setSlope(p, (sectionForce(history, p, next.lambda, comm) - force[i]) / ds);
     }
     result = next;
