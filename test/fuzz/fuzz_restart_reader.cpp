@@ -14,6 +14,8 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -85,6 +87,11 @@ const Base& base() {
     made.file = (std::filesystem::temp_directory_path() / ("fuzz_restart_" + std::to_string(getpid()) + ".exo")).string();
     return made;
   }();
+  static const bool cleanUp = [] {  // the damaged file of the last input goes when the run ends
+    std::atexit([] { std::remove(b.file.c_str()); });
+    return true;
+  }();
+  (void)cleanUp;
   return b;
 }
 
