@@ -1,4 +1,4 @@
-// The Exodus result of a run and the checkpoints of a load history (ResultFile.hpp).
+// The Exodus result of a run (ResultFile.hpp).
 #include "ResultFile.hpp"
 
 #include <iostream>
@@ -43,25 +43,32 @@ void addContactFields(const stack::ContactFields& c, mesh::TimeStep& step) {
 
 }  // namespace
 
-void writeOutput(const std::string& path, const stack::Scene& scene, const OutputData& data) {
+mesh::Field subdomainField(const stack::Scene& scene) {
   mesh::Field subdomain{"subdomain", std::vector<double>(scene.mesh.numElements())};
   for (LO e = 0; e < scene.mesh.numElements(); ++e) subdomain.values[e] = scene.decomposition.elementPart[e];
+  return subdomain;
+}
+
+mesh::TimeStep timeStep(const OutputStep& data, const mesh::Field& subdomain) {
+  mesh::TimeStep step;
+  step.time = data.displacement ? data.time : 0.0;
+  if (data.displacement) addVectorField("displ_", *data.displacement, step);
+  if (data.reaction) addVectorField("reaction_", *data.reaction, step);
+  if (data.stress) addStressFields(*data.stress, step);
+  if (data.contact) addContactFields(*data.contact, step);
+  step.element.push_back(subdomain);
+  step.global = data.globals;
+  if (data.contact)  // the restart's check of the memory (stack::contactMemorySum)
+    step.global.push_back({"contact_memory_sum",
+                           stack::contactMemorySum(data.contact->contactTangentialT1, data.contact->contactTangentialT2,
+                                                   data.contact->contactAccumulatedSlip)});
+  return step;
+}
+
+void writeOutput(const std::string& path, const stack::Scene& scene, const OutputData& data) {
+  const mesh::Field subdomain = subdomainField(scene);
   std::vector<mesh::TimeStep> steps;
-  for (const auto& data : data.steps) {
-    mesh::TimeStep step;
-    step.time = data.displacement ? data.time : 0.0;
-    if (data.displacement) addVectorField("displ_", *data.displacement, step);
-    if (data.reaction) addVectorField("reaction_", *data.reaction, step);
-    if (data.stress) addStressFields(*data.stress, step);
-    if (data.contact) addContactFields(*data.contact, step);
-    step.element.push_back(subdomain);
-    step.global = data.globals;
-    if (data.contact)  // the restart's check of the memory (stack::contactMemorySum)
-      step.global.push_back({"contact_memory_sum",
-                             stack::contactMemorySum(data.contact->contactTangentialT1, data.contact->contactTangentialT2,
-                                                     data.contact->contactAccumulatedSlip)});
-    steps.push_back(std::move(step));
-  }
+  for (const auto& step : data.steps) steps.push_back(timeStep(step, subdomain));
   mesh::writeExodus(path, scene.mesh, steps, data.info);
 }
 
@@ -107,49 +114,6 @@ std::vector<mesh::GlobalValue> globalValues(const nlohmann::json& summary) {
       out.push_back({name + "shortening", s["shortening"].get<double>()});
     }
   return out;
-}
-
-Checkpoints::Checkpoints(const stack::Scene& scene, core::OutputFile* exodus, double seconds,
-                         std::vector<std::string> info, int rank)
-    : scene_(scene), exodus_(exodus), seconds_(seconds), info_(std::move(info)), rank_(rank) {}
-
-void Checkpoints::operator()(const stack::ContactSolveResult& soFar) {
-  if (rank_ != 0 || !exodus_ || since_.seconds() < seconds_) return;
-  try {
-    write(soFar);
-    ++written_;
-  } catch (const core::IoError& e) {
-    std::cout << "  warning: no checkpoint after step " << soFar.steps.back().step << ": " << e.what() << "\n";
-  }
-  since_ = core::Stopwatch();
-}
-
-void Checkpoints::write(const stack::ContactSolveResult& soFar) {
-  OutputData data;
-  data.steps.clear();
-  data.info = info_;
-  for (size_t i = stress_.size(); i < soFar.earlierSteps.size(); ++i) {  // steps not written before
-    const auto& step = soFar.earlierSteps[i];
-    stress_.push_back(stack::evaluateStresses(scene_, step.displacement.value));
-    nlohmann::json entry = stack::stepSummary(soFar, i);
-    const auto balance = stack::forceBalance(scene_, step.reaction, step.appliedLoad, step.appliedLoadMagnitude);
-    stack::addResultsToSummary(stress_[i], balance, entry);
-    globals_.push_back(globalValues(entry));
-  }
-  for (size_t i = 0; i < soFar.earlierSteps.size(); ++i) {  // stress_ no longer grows: its addresses hold
-    const auto& step = soFar.earlierSteps[i];
-    OutputStep out;
-    out.time = soFar.steps[i].time;
-    out.displacement = &step.displacement.value;
-    out.reaction = &step.reaction;
-    out.stress = &stress_[i];
-    out.contact = &step;
-    out.globals = globals_[i];
-    data.steps.push_back(std::move(out));
-  }
-  exodus_->writeWith([&](const std::string& path) { writeOutput(path, scene_, data); });
-  std::cout << "  checkpoint: wrote steps 1 to " << soFar.steps[soFar.earlierSteps.size() - 1].step << " of the history to "
-            << exodus_->path() << "\n";
 }
 
 }  // namespace tribos::driver

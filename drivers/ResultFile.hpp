@@ -1,6 +1,6 @@
 #pragma once
 // The Exodus result of a run (step (6) of drivers/tribos.cpp): its time steps, fields and
-// global variables, and the checkpoints of a load history (Load Steps/Checkpoint Seconds).
+// global variables (a load history's, step by step: HistoryResults.hpp).
 #include <Teuchos_ParameterList.hpp>
 
 #include <array>
@@ -8,10 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "tribos/core/OutputFile.hpp"
-#include "tribos/core/Timer.hpp"
 #include "tribos/mesh/ExodusIO.hpp"
-#include "tribos/stack/ContactSolve.hpp"
+#include "tribos/stack/ContactFields.hpp"
 #include "tribos/stack/Results.hpp"
 #include "tribos/stack/Scene.hpp"
 
@@ -33,6 +31,12 @@ struct OutputData {
   std::vector<std::string> info;
 };
 
+/// The subdomain of every element, as the result shows it.
+mesh::Field subdomainField(const stack::Scene& scene);
+/// One time step of the Exodus result: its fields, `subdomain` and its global variables (with
+/// contact_memory_sum where it has contact fields).
+mesh::TimeStep timeStep(const OutputStep& data, const mesh::Field& subdomain);
+
 /// Writes the Exodus result at `path`: the mesh, the subdomain of every element and the steps.
 void writeOutput(const std::string& path, const stack::Scene& scene, const OutputData& data);
 
@@ -43,31 +47,5 @@ std::vector<std::string> infoRecords(int argc, char** argv, const Teuchos::Param
 /// Per-step global variables: the summary's counts and KKT residuals (numbers only), of the
 /// summary itself or of one entry of its steps.
 std::vector<mesh::GlobalValue> globalValues(const nlohmann::json& summary);
-
-/// The checkpoints of a load history (Load Steps/Checkpoint Seconds; issue 43): after a
-/// converged step, once the interval has passed since the run started or the last checkpoint,
-/// rank 0 writes the result file with every step converged so far, as the final write would
-/// show them (their stresses computed once each). A write that fails is a warning, not the end
-/// of the run: the final write reports its own failure. Given on every rank (StepObserver).
-class Checkpoints {
- public:
-  /// `exodus`: the result file on rank 0, null elsewhere.
-  Checkpoints(const stack::Scene& scene, core::OutputFile* exodus, double seconds, std::vector<std::string> info,
-              int rank);
-  void operator()(const stack::ContactSolveResult& soFar);
-  int written() const { return written_; }
-
- private:
-  void write(const stack::ContactSolveResult& soFar);
-  const stack::Scene& scene_;
-  core::OutputFile* exodus_;
-  double seconds_;
-  std::vector<std::string> info_;
-  int rank_;
-  core::Stopwatch since_;
-  std::vector<stack::StressResults> stress_;  ///< per step written so far
-  std::vector<std::vector<mesh::GlobalValue>> globals_;
-  int written_ = 0;
-};
 
 }  // namespace tribos::driver

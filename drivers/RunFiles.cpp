@@ -120,8 +120,8 @@ void requireRoomForTheResult(const ResultFiles& files, int loadSteps, LO numNode
     if (!files.exodus) return;
     const double result = 8.0 * std::max(loadSteps, 1) *
                           (kWrittenDoublesPerNodeAndStep * numNodes + kWrittenDoublesPerElementAndStep * numElements);
-    // A history's last checkpoint stays on the disk until the final file, written beside it,
-    // replaces it: twice the result's space, each file within the file size limit.
+    // A history's last checkpoint stays on the disk beside its draft until the draft replaces
+    // it (HistoryResults.hpp): twice the result's space, each file within the file size limit.
     const bool checkpoints = loadSteps > 1;
     const auto [space, fileSize] = roomFor(files.exodus->path());
     const double room = std::min(checkpoints ? space / 2.0 : space, fileSize);

@@ -34,6 +34,7 @@
 #include "CommandLine.hpp"
 #include "ProcessStart.hpp"
 #include "RunFiles.hpp"
+#include "HistoryResults.hpp"
 #include "ResultFile.hpp"
 #include "RunOutcome.hpp"
 #include "tribos/stack/SubdomainSetup.hpp"
@@ -183,8 +184,7 @@ SetUpScene setUpScene(int rank, const RunStart& start) {
   }
   deadline.check("reading the mesh", MPI_COMM_WORLD);
   if (!cl.dryRun)
-    stack::requireHistoryFitsInMemory(set.scene.loadSteps, set.scene.mesh.numNodes(), set.scene.mesh.numElements(),
-                                      MPI_COMM_WORLD);
+    stack::requireHistoryFitsInMemory(set.scene.loadSteps, MPI_COMM_WORLD);
   if (!cl.dryRun)
     requireRoomForTheResult(resultFiles, set.scene.loadSteps, set.scene.mesh.numNodes(), set.scene.mesh.numElements(),
                             rank);
@@ -222,19 +222,24 @@ SetUpScene setUpScene(int rank, const RunStart& start) {
 
 // (6) The result files (rank 0). A result that cannot be written (disk full, read-only, a
 // file size limit) leaves no partial file; the summary is still written where it can be and
-// records the failure.
+// records the failure. A load history's steps taken as it went (`taken`) are in their draft
+// already: `output` holds the rest, which the draft gets before it replaces the target.
 void writeResults(int argc, char** argv, const RunStart& start, const stack::Scene& scene, OutputData& output,
-                  std::vector<long>& maxRssPerRankKb, nlohmann::json& summary) {
+                  driver::HistoryResults* taken, std::vector<long>& maxRssPerRankKb, nlohmann::json& summary) {
   const auto& [cl, params, meshFile, resultFiles, deadline, total] = start;
   std::string writeError;
   if (resultFiles.exodus) {
     // Per-step global variables: a load history's from its steps' entries, else the summary's.
     const bool history = summary.contains("steps");
+    const size_t first = taken ? taken->taken() : 0;
     for (size_t k = 0; k < output.steps.size(); ++k)
-      output.steps[k].globals = globalValues(history ? summary["steps"][k] : summary);
+      output.steps[k].globals = globalValues(history ? summary["steps"][first + k] : summary);
     output.info = infoRecords(argc, argv, params);
     try {
-      resultFiles.exodus->writeWith([&](const std::string& path) { writeOutput(path, scene, output); });
+      if (taken)
+        taken->finish(output.steps);
+      else
+        resultFiles.exodus->writeWith([&](const std::string& path) { writeOutput(path, scene, output); });
       std::cout << "  wrote " << cl.output << "\n";
     } catch (const core::IoError& e) {
       writeError = e.what();
@@ -257,18 +262,23 @@ void writeResults(int argc, char** argv, const RunStart& start, const stack::Sce
 /// (5) The time steps of the result (rank 0): each state's stresses and force balance, written
 /// into the summary (a load history: into each step's entry, and the last state's into the
 /// summary itself). One state, or one per load step solved: the earlier steps' results, then the
-/// last state. `stress` holds what the steps point to.
+/// last state; of a history, only the steps `taken` has not (their entries get what it kept).
+/// `stress` holds what the steps point to.
 std::vector<OutputStep> resultSteps(const stack::Scene& scene, const stack::SceneSolveResult& solve,
-                                    nlohmann::json& summary, std::vector<stack::StressResults>& stress) {
+                                    const driver::HistoryResults* taken, nlohmann::json& summary,
+                                    std::vector<stack::StressResults>& stress) {
   static const std::vector<stack::StepResults> none;
   const auto& earlier = solve.contactProblem ? solve.contactSolve.earlierSteps : none;
   const size_t n = earlier.size() + 1;
   const bool history = summary.contains("steps");
-  stress.resize(n);
-  std::vector<OutputStep> steps(n);
-  for (size_t k = 0; k < n; ++k) {
+  const size_t first = taken ? std::min(taken->taken(), earlier.size()) : 0;
+  for (size_t k = 0; k < first; ++k) summary["steps"][k].update(taken->summaryOfStep(k));
+  stress.resize(n - first);
+  std::vector<OutputStep> steps(n - first);
+  for (size_t k = first; k < n; ++k) {
     const bool last = k + 1 == n;
-    OutputStep& out = steps[k];
+    OutputStep& out = steps[k - first];
+    stack::StressResults& s = stress[k - first];
     const stack::ContactFields* lastFields =
         solve.contactProblem ? static_cast<const stack::ContactFields*>(&solve.contactSolve) : &solve.linear;
     out.displacement = last ? &solve.displacement() : &earlier[k].displacement.value;
@@ -276,14 +286,14 @@ std::vector<OutputStep> resultSteps(const stack::Scene& scene, const stack::Scen
     if (!scene.contacts.empty()) out.contact = last ? lastFields : &earlier[k];
     const auto& appliedLoad = last ? solve.appliedLoad() : earlier[k].appliedLoad;
     const double magnitude = last ? solve.appliedLoadMagnitude() : earlier[k].appliedLoadMagnitude;
-    stress[k] = stack::evaluateStresses(scene, *out.displacement);
-    out.stress = &stress[k];
+    s = stack::evaluateStresses(scene, *out.displacement);
+    out.stress = &s;
     const auto balance = stack::forceBalance(scene, *out.reaction, appliedLoad, magnitude);
     out.time = history ? summary["steps"][k]["time"].get<double>() : 1.0;
-    if (history) stack::addResultsToSummary(stress[k], balance, summary["steps"][k]);
+    if (history) stack::addResultsToSummary(s, balance, summary["steps"][k]);
     if (!last) continue;
-    stack::addResultsToSummary(stress[k], balance, summary);
-    std::cout << "  strain energy " << stress[k].strainEnergy << "; applied load (" << appliedLoad[0] << ", "
+    stack::addResultsToSummary(s, balance, summary);
+    std::cout << "  strain energy " << s.strainEnergy << "; applied load (" << appliedLoad[0] << ", "
               << appliedLoad[1] << ", " << appliedLoad[2] << "), force balance |reactions + load| / scale = "
               << balance.relativeImbalance << "\n";
   }
@@ -301,24 +311,24 @@ int solveAndReport(int argc, char** argv, int rank, const RunStart& start) {
   int status = core::kExitOk;
   stack::SceneSolveResult solve;
   OutputData output;
+  std::optional<driver::HistoryResults> taken;  // a load history's steps as they converge
   if (cl.dryRun) {
     summary["solver"] = "dry run: not solved";
   } else {
     if (rank == 0 && stack::isContactProblem(set.scene))
       std::cout << "  solver chain: " << stack::describeSolverChain(set.scene, params) << "\n";
     core::ScopedPhase phase("Solve");
-    // A load history with a result file writes checkpoints as it goes (Load Steps/Checkpoint Seconds).
-    // The observer is given on every rank (the stack's calls of it may be collective); only rank
-    // 0 holds the file and writes.
-    std::optional<driver::Checkpoints> checkpoints;
+    // A load history writes its result as it goes (checkpoints; rank 0 holds no written step),
+    // with or without a result file. The observer is given on every rank (the stack's calls of
+    // it may be collective); only rank 0 works.
     stack::StepObserver afterStep;
-    if (set.scene.loadHistory && !cl.output.empty()) {
-      checkpoints.emplace(set.scene, resultFiles.exodus.get(), params.sublist("Load Steps").get<double>("Checkpoint Seconds"),
-                          infoRecords(argc, argv, params), rank);
-      afterStep = std::ref(*checkpoints);
+    if (set.scene.loadHistory) {
+      taken.emplace(set.scene, resultFiles.exodus.get(), params.sublist("Load Steps").get<double>("Checkpoint Seconds"),
+                    infoRecords(argc, argv, params), rank);
+      afterStep = std::ref(*taken);
     }
     solve = stack::solveScene(set.scene, std::move(set.systems), set.B, params, MPI_COMM_WORLD, total, afterStep);
-    if (checkpoints) summary["checkpoints"] = checkpoints->written();
+    if (taken && !cl.output.empty()) summary["checkpoints"] = taken->checkpoints();
     status = solve.converged() ? core::kExitOk : core::kExitNotConverged;
     stack::addSolveSummary(solve, params, summary);
     if (rank == 0) std::cout << stack::solveReport(solve);
@@ -329,7 +339,7 @@ int solveAndReport(int argc, char** argv, int rank, const RunStart& start) {
   // or one per load step solved (the earlier steps' results, then the last state).
   std::vector<stack::StressResults> stress;
   std::optional<core::ScopedPhase> resultsPhase(std::in_place, "Results: stresses and reactions");
-  if (rank == 0 && !cl.dryRun) output.steps = resultSteps(set.scene, solve, summary, stress);
+  if (rank == 0 && !cl.dryRun) output.steps = resultSteps(set.scene, solve, taken ? &*taken : nullptr, summary, stress);
   // Peak memory per rank (KiB) after the solve and the stresses; rank 0's own figure is read
   // again after writing the Exodus result, just before the summary.
   std::vector<long> maxRssPerRankKb = gatherPeakRssKb(rank);
@@ -338,7 +348,7 @@ int solveAndReport(int argc, char** argv, int rank, const RunStart& start) {
   const auto phases = core::finishPhaseTimers(Teuchos::MpiComm<int>(MPI_COMM_WORLD));
   stack::addTimersToSummary(phases, summary);
   if (rank == 0 && !cl.dryRun) std::cout << stack::timingTable(phases);
-  if (rank == 0) writeResults(argc, argv, start, set.scene, output, maxRssPerRankKb, summary);  // (6)
+  if (rank == 0) writeResults(argc, argv, start, set.scene, output, taken ? &*taken : nullptr, maxRssPerRankKb, summary);  // (6)
   return status;
 }
 

@@ -248,4 +248,64 @@ void OutputFile::writeText(const std::string& text) {
   commit(temporary);
 }
 
+/// The draft's temporary file and its guard against signals.
+struct OutputFile::Draft::Held {
+  std::string path;
+  std::unique_ptr<partial::Guard> guard;
+  bool committed = false;
+  std::string failure;  ///< the first failed write's message (the draft removed)
+};
+
+OutputFile::Draft::Draft(OutputFile& target) : target_(target), held_(std::make_unique<Held>()) {
+  const auto [temporary, fd] = target_.createTemporary();
+  ::close(fd);  // the writer opens it by name (netCDF)
+  held_->path = temporary;
+  held_->guard = std::make_unique<partial::Guard>(temporary);
+}
+
+OutputFile::Draft::~Draft() {
+  if (!held_->committed) ::unlink(held_->path.c_str());
+}
+
+const std::string& OutputFile::Draft::path() const { return held_->path; }
+
+void OutputFile::Draft::write(const std::function<void(const std::string& path)>& write) {
+  if (!held_->failure.empty()) throw IoError(held_->failure);
+  try {
+    write(held_->path);
+    return;
+  } catch (const IoError& e) {
+    held_->failure = e.what();
+  } catch (const InputError& e) {  // the Exodus writer's failed calls (a full disk among them)
+    held_->failure = e.what();
+  }
+  try {
+    target_.fail(held_->path, held_->failure);
+  } catch (const IoError& e) {
+    held_->failure = e.what();
+    throw;
+  }
+}
+
+void OutputFile::Draft::publishCopy() {
+  if (!held_->failure.empty()) throw IoError(held_->failure);
+  target_.writeWith([&](const std::string& copy) {
+    std::error_code error;
+    std::filesystem::copy_file(held_->path, copy, std::filesystem::copy_options::overwrite_existing, error);
+    if (error) throw IoError("cannot copy " + held_->path + ": " + error.message());
+  });
+}
+
+void OutputFile::Draft::commit() {
+  if (!held_->failure.empty()) throw IoError(held_->failure);
+  held_->committed = true;  // commit() removes the file itself where it fails
+  target_.commit(held_->path);
+  held_->guard.reset();
+}
+
+std::unique_ptr<OutputFile::Draft> OutputFile::startDraft() {
+  if (streamFd_ >= 0) throw std::logic_error("tribos::core::OutputFile::startDraft: " + path_ + " is not a regular file");
+  return std::unique_ptr<Draft>(new Draft(*this));
+}
+
 }  // namespace tribos::core

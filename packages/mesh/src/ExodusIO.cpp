@@ -144,15 +144,18 @@ void writeGlobals(int id, const std::string& path, int step, const std::vector<G
 
 namespace {
 // Validate everything before touching the file, so a bad call does not clobber a good one.
+/// One step checked against the first (names) and the mesh (sizes).
+void checkStep(const Mesh& mesh, const TimeStep& first, const TimeStep& step, size_t index) {
+  checkSameFields(first.nodal, step.nodal, index, "nodal");
+  checkSameFields(first.element, step.element, index, "element");
+  checkSameGlobals(first.global, step.global, index);
+  checkFieldSizes(step.nodal, mesh.numNodes(), "nodal", "nodes");
+  checkFieldSizes(step.element, mesh.numElements(), "element", "elements");
+}
+
 void checkWritable(const Mesh& mesh, const std::vector<TimeStep>& steps) {
   checkWritableMesh(mesh);
-  for (size_t s = 0; s < steps.size(); ++s) {
-    checkSameFields(steps.front().nodal, steps[s].nodal, s, "nodal");
-    checkSameFields(steps.front().element, steps[s].element, s, "element");
-    checkSameGlobals(steps.front().global, steps[s].global, s);
-    checkFieldSizes(steps[s].nodal, mesh.numNodes(), "nodal", "nodes");
-    checkFieldSizes(steps[s].element, mesh.numElements(), "element", "elements");
-  }
+  for (size_t s = 0; s < steps.size(); ++s) checkStep(mesh, steps.front(), steps[s], s);
 }
 
 void writeCoordinates(int id, const std::string& path, const Mesh& mesh, int nameLength) {
@@ -220,13 +223,11 @@ void writeSets(int id, const std::string& path, const Mesh& mesh, int nameLength
   writeNames(id, path, EX_SIDE_SET, names, nameLength, "side set");
 }
 
-/// The variables (declared once for the file: the first step's names) and their values at
-/// every step.
-void writeSteps(int id, const std::string& path, const Mesh& mesh, const std::vector<BlockPart>& parts,
-                const std::vector<TimeStep>& steps, int nameLength) {
-  if (steps.empty()) return;
-  defineGlobals(id, path, steps.front().global, nameLength);
-  const auto nodalNames = fieldNames(steps.front().nodal), elementNames = fieldNames(steps.front().element);
+/// The variables, declared once for the file from the first step's names.
+void defineVariables(int id, const std::string& path, const std::vector<BlockPart>& parts, const TimeStep& first,
+                     int nameLength) {
+  defineGlobals(id, path, first.global, nameLength);
+  const auto nodalNames = fieldNames(first.nodal), elementNames = fieldNames(first.element);
   const int numNodal = static_cast<int>(nodalNames.size()), numElemVars = static_cast<int>(elementNames.size());
   if (numNodal > 0) {
     check(ex_put_variable_param(id, EX_NODAL, numNodal), path, "defining nodal variables");
@@ -244,44 +245,87 @@ void writeSteps(int id, const std::string& path, const Mesh& mesh, const std::ve
     check(ex_put_truth_table(id, EX_ELEM_BLOCK, numParts, numElemVars, truth.data()), path,
           "writing the element variable truth table");
   }
-  for (size_t s = 0; s < steps.size(); ++s) {
-    const int step = static_cast<int>(s) + 1;
-    const double time = steps[s].time;
-    check(ex_put_time(id, step, &time), path, "writing time");
-    writeGlobals(id, path, step, steps[s].global);
-    for (size_t v = 0; v < steps[s].nodal.size(); ++v)
-      check(ex_put_var(id, step, EX_NODAL, static_cast<int>(v) + 1, 1, mesh.numNodes(), steps[s].nodal[v].values.data()),
-            path, "writing nodal variable " + steps[s].nodal[v].name);
-    for (size_t v = 0; v < steps[s].element.size(); ++v)
-      for (const auto& part : parts)
-        if (part.count > 0)
-          check(ex_put_var(id, step, EX_ELEM_BLOCK, static_cast<int>(v) + 1, part.id, part.count,
-                         steps[s].element[v].values.data() + part.first),
-              path, "writing element variable " + steps[s].element[v].name);
-  }
 }
+
+/// The values of time step `step` (1-based).
+void writeStep(int id, const std::string& path, const Mesh& mesh, const std::vector<BlockPart>& parts, int step,
+               const TimeStep& values) {
+  check(ex_put_time(id, step, &values.time), path, "writing time");
+  writeGlobals(id, path, step, values.global);
+  for (size_t v = 0; v < values.nodal.size(); ++v)
+    check(ex_put_var(id, step, EX_NODAL, static_cast<int>(v) + 1, 1, mesh.numNodes(), values.nodal[v].values.data()),
+          path, "writing nodal variable " + values.nodal[v].name);
+  for (size_t v = 0; v < values.element.size(); ++v)
+    for (const auto& part : parts)
+      if (part.count > 0)
+        check(ex_put_var(id, step, EX_ELEM_BLOCK, static_cast<int>(v) + 1, part.id, part.count,
+                         values.element[v].values.data() + part.first),
+              path, "writing element variable " + values.element[v].name);
+}
+
 }  // namespace
+
+struct ExodusWriter::Open {
+  explicit Open(int id, std::vector<exodus::BlockPart> p) : file(id), parts(std::move(p)) {}
+  exodus::ExodusFile file;
+  std::vector<exodus::BlockPart> parts;
+  TimeStep first;  ///< the first step's names (its values dropped)
+};
+
+ExodusWriter::ExodusWriter(std::string path, const Mesh& mesh, std::vector<std::string> info)
+    : path_(std::move(path)), mesh_(mesh), info_(std::move(info)) {
+  checkWritableMesh(mesh_);
+}
+
+ExodusWriter::~ExodusWriter() = default;
+
+/// Creates the file: the header, coordinates, info, blocks and sets, and the variables of
+/// `first` (none: a mesh-only file).
+void ExodusWriter::create(const TimeStep* first) {
+  ex_opts(0);  // report errors through return codes (quiet, no abort); 0 is also 6.02's default
+  int cpuWordSize = 8, ioWordSize = 8;  // doubles in memory and on disk: coordinates round-trip bitwise
+  const int id = ex_create(path_.c_str(), EX_CLOBBER, &cpuWordSize, &ioWordSize);
+  if (id < 0) throw core::InputError(path_ + ": cannot create the Exodus file");
+  open_ = std::make_unique<Open>(id, blockParts(mesh_));
+  const std::vector<TimeStep> names = first ? std::vector<TimeStep>{*first} : std::vector<TimeStep>{};
+  const int nameLength = std::max(kNameLength, longestName(mesh_, names));
+  check(ex_set_max_name_length(id, nameLength), path_, "setting the name length");
+  check(ex_put_init(id, "Tribos", 3, mesh_.numNodes(), mesh_.numElements(), static_cast<int64_t>(open_->parts.size()),
+                    static_cast<int64_t>(mesh_.nodeSets.size()), static_cast<int64_t>(mesh_.sideSets.size())),
+        path_, "writing the header");
+  writeCoordinates(id, path_, mesh_, nameLength);
+  writeInfo(id, path_, info_);
+  writeBlocks(id, path_, mesh_, open_->parts, nameLength);
+  writeSets(id, path_, mesh_, nameLength);
+  if (!first) return;
+  defineVariables(id, path_, open_->parts, *first, nameLength);
+  for (const auto& f : first->nodal) open_->first.nodal.push_back({f.name, {}});
+  for (const auto& f : first->element) open_->first.element.push_back({f.name, {}});
+  open_->first.global = first->global;
+}
+
+void ExodusWriter::append(const TimeStep& step) {
+  if (closed_) throw std::logic_error("tribos::mesh::ExodusWriter::append after close (" + path_ + ")");
+  checkStep(mesh_, open_ ? open_->first : step, step, static_cast<size_t>(steps_));
+  if (!open_) create(&step);
+  ++steps_;
+  writeStep(open_->file.id(), path_, mesh_, open_->parts, steps_, step);
+  check(ex_update(open_->file.id()), path_, "flushing time step " + std::to_string(steps_));
+}
+
+void ExodusWriter::close() {
+  if (closed_) return;
+  if (!open_) create(nullptr);
+  closed_ = true;
+  check(open_->file.close(), path_, "closing the file");
+}
 
 void writeExodus(const std::string& path, const Mesh& mesh, const std::vector<TimeStep>& steps,
                  const std::vector<std::string>& info) {
-  checkWritable(mesh, steps);
-  ex_opts(0);  // report errors through return codes (quiet, no abort); 0 is also 6.02's default
-  int cpuWordSize = 8, ioWordSize = 8;  // doubles in memory and on disk: coordinates round-trip bitwise
-  ExodusFile file(ex_create(path.c_str(), EX_CLOBBER, &cpuWordSize, &ioWordSize));
-  if (file.id() < 0) throw core::InputError(path + ": cannot create the Exodus file");
-  const int id = file.id();
-  const int nameLength = std::max(kNameLength, longestName(mesh, steps));
-  check(ex_set_max_name_length(id, nameLength), path, "setting the name length");
-  const std::vector<BlockPart> parts = blockParts(mesh);
-  check(ex_put_init(id, "Tribos", 3, mesh.numNodes(), mesh.numElements(), static_cast<int64_t>(parts.size()),
-                    static_cast<int64_t>(mesh.nodeSets.size()), static_cast<int64_t>(mesh.sideSets.size())),
-        path, "writing the header");
-  writeCoordinates(id, path, mesh, nameLength);
-  writeInfo(id, path, info);
-  writeBlocks(id, path, mesh, parts, nameLength);
-  writeSets(id, path, mesh, nameLength);
-  writeSteps(id, path, mesh, parts, steps, nameLength);
-  check(file.close(), path, "closing the file");
+  checkWritable(mesh, steps);  // everything before touching the file: a bad call does not clobber a good one
+  ExodusWriter writer(path, mesh, info);
+  for (const auto& step : steps) writer.append(step);
+  writer.close();
 }
 
 }  // namespace tribos::mesh

@@ -145,6 +145,7 @@ ContactSolveResult solveConditionRuns(const Scene& scene, std::vector<fem::Subdo
     all.steps.insert(all.steps.end(), part.steps.begin(), part.steps.end());
     all.earlierSteps.insert(all.earlierSteps.end(), part.earlierSteps.begin(), part.earlierSteps.end());
     afterStep(all);
+    releaseWrittenSteps(done);  // its last step stays: a part may continue from it again
   };
   std::unique_ptr<feti::ConstraintMatrix> rows;  // the run's B after the first
   for (const auto& run : conditionRuns(scene)) {
@@ -166,7 +167,9 @@ ContactSolveResult solveConditionRuns(const Scene& scene, std::vector<fem::Subdo
     if (run.last == scene.loadSteps || !result.contact.converged) break;
     at[run.last] = stepDisplacement(result, result.earlierSteps.size(), scene.mesh.numNodes(), comm);
     appendRun(result, done);
-    if (afterStep) afterStep(done);  // the run's last step, which its own observer does not see
+    if (!afterStep) continue;
+    afterStep(done);  // the run's last step, which its own observer does not see
+    releaseWrittenSteps(done);
   }
   // The result: the steps of the runs before, then the last run's.
   prependSteps(done, result);

@@ -322,6 +322,24 @@ void setAppliedLoad(const std::vector<std::vector<double>>& f, MPI_Comm comm, St
   out.appliedLoadMagnitude = loadMagnitude(loaded, comm);
 }
 
+}  // namespace
+
+void releaseNodalFields(StepResults& step) {
+  for (auto* v : {&step.contactNormal, &step.contactT1, &step.contactT2, &step.contactStatus, &step.contactPressure,
+                  &step.contactGap, &step.contactOpening, &step.contactNx, &step.contactNy, &step.contactNz,
+                  &step.contactMaster, &step.contactSlipT1, &step.contactSlipT2, &step.contactTangentialT1,
+                  &step.contactTangentialT2, &step.contactAccumulatedSlip})
+    std::vector<double>().swap(*v);
+  std::vector<std::array<double, 3>>().swap(step.displacement.value);
+  std::vector<std::array<double, 3>>().swap(step.reaction);
+}
+
+void releaseWrittenSteps(ContactSolveResult& result) {
+  for (size_t i = 0; i + 1 < result.earlierSteps.size(); ++i) releaseNodalFields(result.earlierSteps[i]);
+}
+
+namespace {
+
 /// A load history (Scene::loadHistory) on the factorised operators, from step 1 or after the
 /// restart file's last step: each step's record and results (out.steps, out.earlierSteps), the
 /// last state's contact result and applied load in `out`. Returns the totals before the last
@@ -355,6 +373,9 @@ const ContactFields* solveHistory(const Scene& scene, const feti::ConstraintMatr
     return restart.file.empty() ? nullptr : &restart.totals;
   };
   auto everyStep = [&](int k, const contact::ContactResult& step) {
+    // The steps before the last were taken by the observer (a step the stop rule ends the part
+    // at is never followed by another): only the last, which this one continues, is kept.
+    if (afterStep) releaseWrittenSteps(out);
     const ContactFields* before = previous();
     StepResults results;
     setAppliedLoad(loads.loads(k), comm, results);

@@ -186,6 +186,7 @@ ContactSolveResult solveHistoryPairedAsItGoes(const Scene& scene, std::vector<fe
     all.steps.insert(all.steps.end(), part.steps.begin(), part.steps.end());
     all.earlierSteps.insert(all.earlierSteps.end(), part.earlierSteps.begin(), part.earlierSteps.end());
     afterStep(all);
+    releaseWrittenSteps(done);  // its last step stays: a part may continue from it again
   };
   HistoryPart first = span;
   first.stopWhen = changesAtStep;

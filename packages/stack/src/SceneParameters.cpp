@@ -364,11 +364,12 @@ Teuchos::RCP<const Teuchos::ParameterList> sceneValidParameters() {
               "displacement, accumulated slip and dissipated energy reached there (the first step starts cold); the "
               "new result holds the new steps. Empty: start at step 1");
     steps.set("Checkpoint Seconds", 60.0,
-              "with --output: after a converged step, once this many seconds passed since the run started or the "
-              "last checkpoint, the result file is written with every step converged so far (whole, under a "
-              "temporary name, then renamed: never partial), so that a job killed later leaves them to continue "
-              "from (Restart From). 0: after every step (each write rewrites the file: for long histories of small "
-              "steps, give seconds). The last write, at the end, holds every step as before",
+              "with --output: each converged step is appended to a draft of the result file as it converges; after "
+              "a converged step, once this many seconds passed since the run started or the last checkpoint, a "
+              "copy of the draft replaces the result file (whole, under a temporary name, then renamed: never "
+              "partial), so that a job killed later leaves the steps so far to continue from (Restart From). 0: "
+              "after every step (each copy is the whole file so far: for long histories of small steps, give "
+              "seconds). At the end the draft, with every step, replaces the file",
               core::atLeast(0.0));
     steps.set("Times", Teuchos::Array<double>(),
               "the time of each step in the results (Number Of Steps increasing values); not given: the ramp k / N",

@@ -163,18 +163,16 @@ void requireSceneFitsInMemory(const Teuchos::ParameterList& tribos, const std::s
                          ", or raise the limit");
 }
 
-void requireHistoryFitsInMemory(int loadSteps, LO numNodes, LO numElements, MPI_Comm comm) {
+void requireHistoryFitsInMemory(int loadSteps, MPI_Comm comm) {
   if (loadSteps <= 1) return;
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   double memory = std::min({physicalMemoryBytes(), cgroupLimitBytes(), addressSpaceLeftBytes()});
-  MPI_Bcast(&memory, 1, MPI_DOUBLE, 0, comm);  // rank 0's: it holds the steps
-  const double needed = 8.0 * loadSteps *
-                        (kHeldDoublesPerNodeAndStep * numNodes + kHeldDoublesPerElementAndStep * numElements);
+  MPI_Bcast(&memory, 1, MPI_DOUBLE, 0, comm);  // rank 0's: it keeps the steps' records
+  const double needed = loadSteps * kHeldBytesPerStep;
   core::requireInput(needed <= 0.5 * memory,
-                     "Load Steps/Number Of Steps = " + std::to_string(loadSteps) + ": rank 0 keeps every step's "
-                     "results until the result file is written at the end, at least " + gib(needed) + " for " +
-                         count(numNodes) + " nodes and " + count(numElements) + " elements, more than half of the " +
+                     "Load Steps/Number Of Steps = " + std::to_string(loadSteps) + ": rank 0 keeps a summary entry of "
+                     "every step until the end of the run, at least " + gib(needed) + ", more than half of the " +
                          gib(memory) + " it has (physical memory, the cgroup's limit or ulimit -v); give fewer "
                          "steps, or split the history with Load Steps/Restart From");
 }

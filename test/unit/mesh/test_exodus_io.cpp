@@ -486,3 +486,33 @@ TEST(ExodusIO, writerRejectsBadCalls) {
   // Validation happens before the file is created, so a bad call leaves no file behind.
   EXPECT_FALSE(std::filesystem::exists(dir.file("a.exo")));
 }
+
+// A result written one step at a time (a load history's, issue 43): a copy taken between two
+// steps is a whole file of the steps so far, the finished file reads back as writeExodus's,
+// and a step whose names differ from the first step's is refused without harming the file.
+TEST(ExodusIO, stepByStepWriterMatchesTheWholeWrite) {
+  const ScratchDir dir("stepwise");
+  const Mesh mesh = cubeMesh();
+  auto steps = someSteps(mesh);
+  for (size_t s = 0; s < steps.size(); ++s) steps[s].global = {{"load_step", 1.0 + s}};
+  const std::vector<std::string> info = {"tribos --input scene.xml"};
+  const std::string path = dir.file("stepwise.exo");
+  ExodusWriter writer(path, mesh, info);
+  writer.append(steps[0]);
+  std::filesystem::copy_file(path, dir.file("copy.exo"));
+  const ExodusData copy = readExodus(dir.file("copy.exo"));
+  expectSameMesh(copy.mesh, mesh);
+  expectSameSteps(copy.steps, {steps[0]});
+
+  auto renamed = steps[1];
+  renamed.nodal[0].name = "elsewhere";
+  expectInvalidArgument([&] { writer.append(renamed); }, "elsewhere");
+  for (size_t s = 1; s < steps.size(); ++s) writer.append(steps[s]);
+  writer.close();
+  EXPECT_EQ(writer.steps(), static_cast<int>(steps.size()));
+  const ExodusData back = readExodus(path);
+  expectSameMesh(back.mesh, mesh);
+  expectSameSteps(back.steps, steps);
+  EXPECT_EQ(back.info, info);
+  EXPECT_THROW(writer.append(steps[0]), std::logic_error);
+}

@@ -17,6 +17,7 @@
 ///   goes to) is written in place through a copy of it, after what the run printed.
 /// - A replaced file keeps its permissions.
 #include <functional>
+#include <memory>
 #include <string>
 #include <utility>
 
@@ -43,6 +44,36 @@ class OutputFile {
   void writeWith(const std::function<void(const std::string& path)>& write);
   /// `text` as the whole file. Throws IoError naming the file and the option on failure.
   void writeText(const std::string& text);
+
+  /// A file built over time (a load history's result, step by step) at a temporary name next
+  /// to the target, removed when it is dropped uncommitted or a signal ends the run (as
+  /// writeWith's). Regular targets only.
+  class Draft {
+   public:
+    ~Draft();
+    Draft(const Draft&) = delete;
+    Draft& operator=(const Draft&) = delete;
+    /// Where the draft is written.
+    const std::string& path() const;
+    /// `write(path())` adds to the draft. A failed write (IoError or InputError) throws IoError
+    /// naming the target and the option, and removes the draft: later writes and commit throw
+    /// the same error, and nothing partial is left.
+    void write(const std::function<void(const std::string& path)>& write);
+    /// A copy of the draft as it is now replaces the target (a checkpoint), never partial.
+    /// Throws IoError as writeWith.
+    void publishCopy();
+    /// The draft itself replaces the target; it is no longer a draft. Throws IoError (the
+    /// draft removed) on failure.
+    void commit();
+
+   private:
+    friend class OutputFile;
+    struct Held;
+    explicit Draft(OutputFile& target);
+    OutputFile& target_;
+    std::unique_ptr<Held> held_;
+  };
+  std::unique_ptr<Draft> startDraft();
 
  private:
   /// A new, empty file with a name unique to this run in the target's directory: its path and

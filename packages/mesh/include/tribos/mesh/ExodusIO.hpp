@@ -2,6 +2,7 @@
 /// \file ExodusIO.hpp
 /// Exodus II reading and writing of a Mesh with nodal and element variables over time
 /// steps (classic ex_* C API of Debian's exodusii 6.02). Files open in ParaView.
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,34 @@ struct ExodusData {
 /// when field sizes do not match the mesh.
 void writeExodus(const std::string& path, const Mesh& mesh, const std::vector<TimeStep>& steps = {},
                  const std::vector<std::string>& info = {});
+
+/// An Exodus result written one time step at a time (a load history's steps as they
+/// converge, so that no step is held in memory after it is written). The file is created at
+/// the first step, whose names declare the variables; each step is on disk when append returns
+/// (ex_update), so that a copy taken between steps is a complete file. Every step must carry
+/// the first step's names. Errors as writeExodus's, at the step that has them.
+class ExodusWriter {
+ public:
+  ExodusWriter(std::string path, const Mesh& mesh, std::vector<std::string> info = {});
+  ~ExodusWriter();
+  ExodusWriter(const ExodusWriter&) = delete;
+  ExodusWriter& operator=(const ExodusWriter&) = delete;
+  void append(const TimeStep& step);
+  /// Closes the file (a mesh-only file when no step was appended); reports a failed flush.
+  void close();
+  int steps() const { return steps_; }
+  const std::string& path() const { return path_; }
+
+ private:
+  struct Open;
+  void create(const TimeStep* first);
+  std::string path_;
+  const Mesh& mesh_;
+  std::vector<std::string> info_;
+  std::unique_ptr<Open> open_;
+  int steps_ = 0;
+  bool closed_ = false;
+};
 
 /// Reads a 3D tetrahedral Exodus II file (TETRA/TETRA4/TET4 blocks; 32- or 64-bit ids,
 /// ids from 0 as meshio writes them) with its node sets, side sets, all nodal / element /

@@ -110,9 +110,19 @@ struct ContactSolveResult : StepResults {
 
 /// Called on every rank after each converged step of a load history but the last, with the
 /// result so far (ContactSolveResult::steps and earlierSteps up to that step): the driver writes
-/// its checkpoints with it (Load Steps/Checkpoint Seconds). Give it on every rank or on none:
+/// each step into the result file as it comes (drivers/HistoryResults.hpp). Where one is given,
+/// the stack releases the nodal fields of every earlier step but the last before it solves the
+/// next (releaseWrittenSteps), so that rank 0's memory does not grow with the steps: an observer
+/// takes what it needs of a step the first time it sees it. Give it on every rank or on none:
 /// the stack's work around it may be collective (HistoryPairing.cpp checks each step's pairing).
 using StepObserver = std::function<void(const ContactSolveResult&)>;
+
+/// Frees the per-node fields of a step (displacement, reactions, contact fields), keeping what
+/// the summary reports of it (the interfaces' resultants, the dissipated energy, the load).
+void releaseNodalFields(StepResults& step);
+/// releaseNodalFields on every earlier step of `result` but the last (the state a history
+/// continues from).
+void releaseWrittenSteps(ContactSolveResult& result);
 
 /// Solver settings from the validated "Tribos" list and the scene's interfaces (exposed for
 /// tests and perf tools).
