@@ -240,6 +240,8 @@ bool SmalseRun::stalled(double equalityResidual) {
 
 // Optional penalty growth when ||G mu|| decreased by less than the target ratio.
 void SmalseRun::growPenalty(int k, double ratio, double gmu) {
+  slowInARow_ = k > 0 && ratio > s_.rhoTargetRatio ? slowInARow_ + 1 : 0;
+  if (slowInARow_ <= s_.rhoGrowthPatience) return;
   const double factor = k > 0 && s_.rhoGrowth > 1.0 ? rhoFactor(s_, ratio, equalityMet(gmu, mu_)) : 1.0;
   if (!(factor > 1.0)) return;
   gradientHolds_ = false;  // A_rho changes

@@ -63,6 +63,7 @@ class SmalseRun {
   // g = A_rho mu - b holds for the mu and b of the last inner solve; true until rho changes.
   bool gradientHolds_ = false;
   double previousL_ = 0.0, previousGmu_ = 0.0;
+  int slowInARow_ = 0;  ///< outer iterations in a row that missed the rho target ratio
   std::vector<double> equalityHistory_;  ///< ||A|| ||G mu|| / ||c|| per outer iteration (stall test)
   /// Whether ||G mu|| stalled (SmalseSettings::stallWindow) at this outer iteration.
   bool stalled(double equalityResidual);

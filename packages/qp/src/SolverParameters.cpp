@@ -60,12 +60,18 @@ const core::ParameterTable<SmalseSettings>& smalseTable() {
                "and goes on); 0: never",
                core::intRange(0, kMaxCount))
           .add("rho growth", &SmalseSettings::rhoGrowth,
-               "rho is multiplied by it (rho update Ratio; Model: by at most it) after an outer iteration that "
-               "reduced ||G mu|| by less than the rho target ratio (1: fixed rho, the paper's algorithm)",
+               "rho is multiplied by it (rho update Ratio; Model: by at most it) after more than rho growth "
+               "patience outer iterations in a row reduced ||G mu|| by less than the rho target ratio (1: fixed "
+               "rho, the paper's algorithm)",
                core::atLeast(1.0))
           .add("rho target ratio", &SmalseSettings::rhoTargetRatio,
                "the reduction of ||G mu|| per outer iteration that rho growth asks for",
                Teuchos::rcp(new core::RealRangeValidator(0.0, /*lowIncluded=*/false, 1.0, /*highIncluded=*/true)))
+          .add("rho growth patience", &SmalseSettings::rhoGrowthPatience,
+               "rho grows (rho growth > 1) only after this many outer iterations in a row reduced ||G mu|| by less "
+               "than the rho target ratio: a solve at the fixed rate keeps rho, one whose ||G mu|| crawls (a body "
+               "held only by friction at capacity on two faces) gets the growth (0: from the first such iteration)",
+               core::intRange(0, kMaxCount))
           .add("rho update", &SmalseSettings::rhoUpdate,
                "how rho grows after an outer iteration that reduced ||G mu|| by a ratio r above the rho target "
                "ratio t (rho growth > 1 only): \"Ratio\" multiplies it by rho growth; \"Model\" by (1/t - 1) / "

@@ -143,6 +143,7 @@ int outerIterationsOverSeeds(const qp::SmalseSettings& settings) {
 qp::SmalseSettings slowRhoSettings() {
   qp::SmalseSettings s = tunedSettings();
   s.rho = 0.2;
+  s.rhoGrowth = 1.0;  // the small rho kept fixed unless a test asks for its growth
   s.maxOuterIterations = 2000;
   s.multiplierStep = qp::MultiplierStep::Fixed;
   return s;
@@ -160,6 +161,24 @@ TEST(SmalseM, modelRhoUpdateKeepsTheSolutionAndNeedsFewerOuterIterations) {
   const int fixedOuter = outerIterationsOverSeeds(slowRhoSettings()), modelOuter = outerIterationsOverSeeds(model);
   EXPECT_LT(modelOuter, fixedOuter);
   std::printf("outer iterations over 16 seeds: rho 0.2 fixed %d, Model update %d\n", fixedOuter, modelOuter);
+}
+
+// rho growth after patience (the default: growth 2 after 10 slow outer iterations in a row):
+// from the small rho, whose ||G mu|| falls slowly, rho grows and the solves need fewer outer
+// iterations over the seeds; with a patience longer than any solve, rho stays fixed and the
+// counts are those of rho growth 1 exactly.
+TEST(SmalseM, rhoGrowsOnlyAfterItsPatience) {
+  qp::SmalseSettings patient = slowRhoSettings();
+  patient.rhoGrowth = 2.0;
+  patient.rhoGrowthPatience = 10;
+  qp::SmalseSettings never = patient;
+  never.rhoGrowthPatience = 1000000;
+  const int fixedOuter = outerIterationsOverSeeds(slowRhoSettings());
+  const int patientOuter = outerIterationsOverSeeds(patient), neverOuter = outerIterationsOverSeeds(never);
+  EXPECT_EQ(neverOuter, fixedOuter);
+  EXPECT_LT(patientOuter, fixedOuter);
+  std::printf("outer iterations over 16 seeds: rho 0.2 fixed %d, growth 2 after 10 slow %d\n", fixedOuter,
+              patientOuter);
 }
 
 // multiplier step "Relaxed" (MultiplierRelaxation.hpp): at the small rho the over-relaxed step

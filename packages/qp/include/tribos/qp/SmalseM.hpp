@@ -70,8 +70,15 @@ struct SmalseSettings {
   /// Lanczos stops when its estimate of ||A|| moves by at most this (relative) in a step; at
   /// most 1e-4 when rho < 2 (normEstimateToleranceFor).
   double normEstimateTolerance = 1e-3;
-  double rhoGrowth = 1.0;      ///< > 1: rho *= rhoGrowth when ||G mu|| fell by less than rhoTargetRatio
+  /// > 1: rho *= rhoGrowth when ||G mu|| fell by less than rhoTargetRatio in more than
+  /// rhoGrowthPatience outer iterations in a row (1: the paper's fixed rho).
+  double rhoGrowth = 2.0;
   double rhoTargetRatio = 0.5;
+  /// rho grows only after this many outer iterations in a row missed rhoTargetRatio (0: at
+  /// the first): a solve that converges at the fixed rate keeps rho (and its counts), one whose
+  /// ||G mu|| crawls (a body held by friction at capacity on two faces: issue 43, the bolted
+  /// joint at eps 1e-6) gets the growth. Measured: doc/parameters.md, "rho growth".
+  int rhoGrowthPatience = 10;
   /// Ratio: rho *= rhoGrowth; Model: rho *= min(rhoGrowth, (1/t - 1)/(1/r - 1)) for the
   /// measured ratio r and the target t, while the equality test fails (SmalseM.cpp, rhoFactor).
   RhoUpdate rhoUpdate = RhoUpdate::Ratio;
