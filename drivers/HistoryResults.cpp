@@ -29,7 +29,8 @@ void HistoryResults::operator()(const stack::ContactSolveResult& soFar) {
   if (rank_ != 0) return;
   const size_t before = taken();
   for (size_t i = before; i < soFar.earlierSteps.size(); ++i) take(soFar, i);
-  if (draft_ && taken() > before && since_.seconds() >= seconds_) checkpoint(soFar.steps[taken() - 1].step);
+  if (draft_ && taken() > before && since_.seconds() >= seconds_)
+    checkpoint(soFar.steps.front().step, soFar.steps[taken() - 1].step);
 }
 
 /// Step i's stresses, force balance and global variables, as the final write would compute
@@ -64,13 +65,14 @@ void HistoryResults::append(const OutputStep& step) {
   }
 }
 
-/// A copy of the draft replaces the target: the steps up to `step`, whole.
-void HistoryResults::checkpoint(int step) {
+/// A copy of the draft replaces the target: the steps `first` (1, or the one after a restart's)
+/// to `step`, whole.
+void HistoryResults::checkpoint(int first, int step) {
   if (!writer_) return;
   try {
     draft_->publishCopy();
     ++checkpoints_;
-    std::cout << "  checkpoint: wrote steps 1 to " << step << " of the history to " << exodus_->path() << "\n";
+    std::cout << "  checkpoint: wrote steps " << first << " to " << step << " of the history to " << exodus_->path() << "\n";
   } catch (const core::IoError& e) {
     std::cout << "  warning: no checkpoint after step " << step << ": " << e.what() << "\n";
   }

@@ -42,7 +42,7 @@ class HistoryResults {
  private:
   void take(const stack::ContactSolveResult& soFar, size_t i);
   void append(const OutputStep& step);
-  void checkpoint(int step);
+  void checkpoint(int first, int step);
   const stack::Scene& scene_;
   core::OutputFile* exodus_;
   double seconds_;

@@ -1,12 +1,12 @@
 #!/bin/sh
 # CTest integration.loadSteps.aKilledHistoryContinuesFromItsCheckpoint (issue 43): a 12-step
-# history of the bricks (H/h 5, tolerance 1e-8) with Load Steps/Checkpoint Seconds = 0 writes its
+# history of the bricks (H/h 5, tolerance 1e-10) with Load Steps/Checkpoint Seconds = 0 writes its
 # result after every converged step. Killed (SIGKILL: nothing of tribos runs after it) once the
 # checkpoint of step 3 is written, the file holds the steps converged so far, whole; their
 # displacements are those of the run that was not killed, bit for bit. Restarted from it
 # (Load Steps/Restart From), the history ends at step 12 with the uninterrupted run's
-# displacements to 1e-6 of their largest (the first step after a restart starts cold: the two
-# differ by the solver's tolerance).
+# displacements to 1e-8 of their largest (issue 43's acceptance; the first step after a restart
+# starts cold: the two differ by the solver's tolerance, measured 6.4e-11).
 # Needs Debian's python3 with netCDF4; exit 77 (CTest: skipped) without it.
 # Usage: checkpoint_restart_test.sh TRIBOS SOURCE_DIR
 set -u
@@ -16,7 +16,7 @@ trap 'rm -rf "$dir"' EXIT
 /usr/bin/python3 -c "import netCDF4" 2>/dev/null || { echo "skipped: /usr/bin/python3 lacks netCDF4"; exit 77; }
 cd "$dir" || exit 1
 set -- --input "$source/input/two_bricks.xml" --set "Load Steps/Number Of Steps=12" \
-  --set "Load Steps/Checkpoint Seconds=0" --set "Mesh/H Over h=5" --set Solver/Tolerance=1e-8 --set Solver/Verbose=false
+  --set "Load Steps/Checkpoint Seconds=0" --set "Mesh/H Over h=5" --set Solver/Tolerance=1e-10 --set Solver/Verbose=false
 "$tribos" "$@" --output whole.exo >whole.log 2>&1 || { cat whole.log; echo "the uninterrupted history failed"; exit 1; }
 "$tribos" "$@" --output killed.exo >killed.log 2>&1 &
 pid=$!
@@ -58,6 +58,6 @@ if restarted_steps != list(range(k + 1, 13)):
 scale = np.abs(whole[-1]).max()
 difference = np.abs(restarted[-1] - whole[-1]).max() / scale
 print("step 12 after the restart: largest displacement difference %.3e of the largest displacement" % difference)
-if not difference <= 1e-6:
+if not difference <= 1e-8:
     sys.exit("the restarted history ends %.3e away from the uninterrupted one" % difference)
 PY
