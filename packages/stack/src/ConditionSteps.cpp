@@ -141,11 +141,7 @@ ContactSolveResult solveConditionRuns(const Scene& scene, std::vector<fem::Subdo
   }
   ContactSolveResult done, result;
   const StepObserver observe = !afterStep ? StepObserver() : [&](const ContactSolveResult& part) {
-    ContactSolveResult all = done;
-    all.steps.insert(all.steps.end(), part.steps.begin(), part.steps.end());
-    all.earlierSteps.insert(all.earlierSteps.end(), part.earlierSteps.begin(), part.earlierSteps.end());
-    afterStep(all);
-    releaseWrittenSteps(done);  // its last step stays: a part may continue from it again
+    observeAfter(done, part, afterStep);
   };
   std::unique_ptr<feti::ConstraintMatrix> rows;  // the run's B after the first
   for (const auto& run : conditionRuns(scene)) {

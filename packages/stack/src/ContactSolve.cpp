@@ -344,12 +344,12 @@ namespace {
 /// restart file's last step: each step's record and results (out.steps, out.earlierSteps), the
 /// last state's contact result and applied load in `out`. Returns the totals before the last
 /// state (accumulated slip, dissipated energy): the last earlier step's, the file's, or none.
-/// Where a history solve starts (a restart file's state, or one in memory; none: step 1), its
-/// last step (0: the scene's last) and when it stops before (HistoryPart::stopWhen).
+/// Where a history solve starts (a restart file's state, or one in memory; none: step 1) and the
+/// part it solves (HistoryPart: its last step, when it stops before, the multipliers it starts
+/// from).
 struct HistorySpan {
   const RestartState& restart;
-  int lastStep = 0;
-  const std::function<bool(const ContactSolveResult&)>& stopWhen;
+  const HistoryPart& part;
 };
 
 const ContactFields* solveHistory(const Scene& scene, const feti::ConstraintMatrix& B,
@@ -360,7 +360,9 @@ const ContactFields* solveHistory(const Scene& scene, const feti::ConstraintMatr
   MPI_Comm_rank(comm, &rank);
   const RestartState& restart = span.restart;
   HistoryRun run{comm, scene.stepTimes, stepsList.get<bool>("Warm Start"), 1, stepsList.get<int>("Max Cutbacks"),
-                 span.lastStep};
+                 span.part.lastStep};
+  run.startLambda = span.part.startLambda;
+  run.startLambdaStep = span.part.startLambdaStep;
   if (!restart.file.empty()) {
     loads.restore(B, rank, restart.totals.contactTangentialT1, restart.totals.contactTangentialT2);
     for (size_t p = 0; p < restart.sectionShortening.size(); ++p) loads.setShortening(p, restart.sectionShortening[p]);
@@ -385,7 +387,7 @@ const ContactFields* solveHistory(const Scene& scene, const feti::ConstraintMatr
     if (afterStep) afterStep(out);
   };
   bool stopped = false;
-  if (span.stopWhen) run.stopAfter = [&](int) { return stopped = span.stopWhen(out); };
+  if (span.part.stopWhen) run.stopAfter = [&](int) { return stopped = span.part.stopWhen(out); };
   out.contact = solveLoadHistory(feti, B, chain, loads, run, rank, out.steps, everyStep);
   // Stopped after step k: its results are the last state's, which the caller gathers (as a last
   // step's are); the totals before it are the step before's.
@@ -459,10 +461,10 @@ ContactSolveResult solveOnePairing(const Scene& scene, std::vector<fem::Subdomai
   core::Stopwatch watch;
   const ContactFields* totalsBefore = nullptr;  // a history's totals before its last state
   if (history)
-    totalsBefore = solveHistory(scene, B, stepsList, feti, chain, *loads, {restart, part.lastStep, part.stopWhen},
-                                comm, out, afterStep);
-  else
-    out.contact = contact::solveContact(feti, B, chain.friction, chain.smalse, chain.preconditioner);
+    totalsBefore = solveHistory(scene, B, stepsList, feti, chain, *loads, {restart, part}, comm, out, afterStep);
+  else  // warm where the multipliers of another pairing were carried to B (PairingUpdate.cpp)
+    out.contact = contact::solveContact(feti, B, chain.friction, chain.smalse, chain.preconditioner,
+                                        {part.startLambda, 0.0});
   out.solveSeconds = watch.seconds();
   nameTheLimit(budget, *runs, chain.smalse, chain.friction, out.contact);
   if (!out.steps.empty() && !out.contact.converged) {

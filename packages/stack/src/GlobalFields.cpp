@@ -101,16 +101,14 @@ void addDroppedContactForces(const feti::ConstraintMatrix& B, const PrescribedCo
   for (const auto& node : B.contact) {
     if (node.normalRow < first || node.normalRow >= end) continue;  // its rows are on another rank
     const std::vector<std::pair<LO, double>> sides = node.sides();
-    const std::array<double, 3>* directions[3] = {&node.normal, &node.t1, &node.t2};
     for (int d = 0; d < 3; ++d) {
-      const GO row = d == 0 ? node.normalRow : node.tangentialRow(d - 1);
+      const GO row = node.row(d);
       if (row < 0) continue;
-      const double scale = d == 0 ? node.rowScale : node.tangentialScale[d - 1];
       const double lambda = ownedLambda[row - first];
       for (const auto& [g, weight] : sides)
         for (int c = 0; c < 3; ++c)
           if (prescribed(g, c)) {
-            const double force = weight * (*directions[d])[c] * scale * lambda;
+            const double force = weight * node.direction(d)[c] * node.scale(d) * lambda;
             reaction.add(3 * static_cast<long long>(g) + c, &force);
           }
     }

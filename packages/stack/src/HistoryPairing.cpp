@@ -11,6 +11,8 @@
 #include <optional>
 
 #include "PairingUpdate.hpp"
+
+#include "tribos/feti/CarriedMultipliers.hpp"
 #include "tribos/stack/LinearFetiSolve.hpp"
 #include "tribos/stack/SubdomainSetup.hpp"
 
@@ -44,6 +46,20 @@ std::optional<PairingChangePoint> firstChange(const Scene& scene, const feti::Co
   return std::nullopt;
 }
 
+
+/// The multipliers a part starts from and the step whose end they hold (HistoryPart::startLambda).
+struct StartMultipliers {
+  std::vector<double> lambda;
+  int step = 0;
+};
+
+/// A step solved again on the pairing `next` starts from its own multipliers on `rows`, carried
+/// to `next`: held only where it is the last state of `part` (none otherwise: cold).
+StartMultipliers startAfterChange(const ContactSolveResult& part, size_t index, const feti::ConstraintMatrix& rows,
+                                  const feti::ConstraintMatrix& next, MPI_Comm comm) {
+  if (index + 1 != part.steps.size()) return {};
+  return {feti::carryMultipliers(rows, part.contact.lambda, next, comm), part.steps.back().step};
+}
 
 /// Moves the steps [0, count) of `result` (records and results) to the end of `done`, with the
 /// counts of the solve that made them.
@@ -90,6 +106,14 @@ struct StepCheck {
   }
 };
 }  // namespace
+
+void observeAfter(ContactSolveResult& done, const ContactSolveResult& part, const StepObserver& afterStep) {
+  ContactSolveResult all = done;
+  all.steps.insert(all.steps.end(), part.steps.begin(), part.steps.end());
+  all.earlierSteps.insert(all.earlierSteps.end(), part.earlierSteps.begin(), part.earlierSteps.end());
+  afterStep(all);
+  releaseWrittenSteps(done);
+}
 
 void prependSteps(ContactSolveResult& done, ContactSolveResult& last) {
   last.steps.insert(last.steps.begin(), done.steps.begin(), done.steps.end());
@@ -181,12 +205,7 @@ ContactSolveResult solveHistoryPairedAsItGoes(const Scene& scene, std::vector<fe
     return check.changes(p);
   };
   const StepObserver observe = !afterStep ? StepObserver() : [&](const ContactSolveResult& part) {
-    if (changesAtStep(part)) return;
-    ContactSolveResult all = done;
-    all.steps.insert(all.steps.end(), part.steps.begin(), part.steps.end());
-    all.earlierSteps.insert(all.earlierSteps.end(), part.earlierSteps.begin(), part.earlierSteps.end());
-    afterStep(all);
-    releaseWrittenSteps(done);  // its last step stays: a part may continue from it again
+    if (!changesAtStep(part)) observeAfter(done, part, afterStep);
   };
   HistoryPart first = span;
   first.stopWhen = changesAtStep;
@@ -199,13 +218,15 @@ ContactSolveResult solveHistoryPairedAsItGoes(const Scene& scene, std::vector<fe
   std::vector<PairingUpdateRecord> records;
   int changedStep = 0, atThatStep = 0;  // Pairing Updates counts the changes at one step
   const int lastStep = span.lastStep > 0 ? span.lastStep : scene.loadSteps;
+  StartMultipliers start;  // the next part's (HistoryPart::startLambda)
   auto solveNextPart = [&]() {  // from the state after `done`, on `rows`
     if (!done.steps.empty()) from = stateAfter(done, *rows, scene, comm);
     std::vector<fem::SubdomainSystem> systems;
     assembleOwnedSubdomains(scene, comm, systems);
     check.newPart();
     part = solveOnePairing(scene, std::move(systems), *rows, tribos, comm, runStart, observe,
-                           {from ? &*from : nullptr, span.lastStep, &spec, changesAtStep});
+                           {from ? &*from : nullptr, span.lastStep, &spec, changesAtStep, std::move(start.lambda),
+                            start.step});
   };
   for (int update = 1;;) {
     PairingUpdateRecord standing{update};
@@ -219,6 +240,7 @@ ContactSolveResult solveHistoryPairedAsItGoes(const Scene& scene, std::vector<fe
       // That step keeps this pairing (the check after the solve has the last word); the part
       // stopped there (HistoryPart::stopWhen), so the rest of the history goes on from it.
       if (!part.contact.converged || part.steps.back().step >= lastStep) break;
+      start = {part.contact.lambda, part.steps.back().step};  // the same rows: warm, as within a part
       keepAllSteps(part, done);
       solveNextPart();
       continue;
@@ -227,6 +249,7 @@ ContactSolveResult solveHistoryPairedAsItGoes(const Scene& scene, std::vector<fe
     reportUpdate(records.back(), rank, verbose);
     ++update;
     if (!change) break;
+    start = startAfterChange(part, change->index, *rows, *change->rows, comm);
     keepSteps(part, change->index, done);
     held = std::move(change->rows);
     rows = held.get();

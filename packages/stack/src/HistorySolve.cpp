@@ -17,10 +17,11 @@ std::array<double, 3> loadSum(const std::vector<std::vector<double>>& f, MPI_Com
 }
 
 namespace {
-/// One solve of the history at `position` (in steps: k - 1 < position <= k), from the state
-/// reached at `reached`. Warm: the last converged state's multipliers (scaled to this load
-/// factor where every load follows the ramp: exact for a proportional history), the slip
-/// bound they imply and its ||PFP|| (ALGORITHMS.md 11).
+/// One solve of the history at `position` (in steps: k - 1 < position <= k), warm from `last`,
+/// the multipliers at `reached` (the last converged state's, or those carried from another
+/// pairing: HistoryRun::startLambda), scaled to this load factor where every load follows the
+/// ramp (exact for a proportional history), the slip bound they imply and its ||PFP||
+/// (ALGORITHMS.md 11).
 contact::ContactResult solveAt(feti::TotalFeti& feti, const feti::ConstraintMatrix& B, const ContactChain& chain,
                                const LoadHistory& history, const HistoryRun& run, double position, double reached,
                                const contact::ContactResult& last) {
@@ -29,7 +30,7 @@ contact::ContactResult solveAt(feti::TotalFeti& feti, const feti::ConstraintMatr
   feti.setRightHandSide(loads, history.constraintValues(position));
   contact::WarmStart warm;
   if (run.warmStart) warm = {last.lambda, last.counters.normA};
-  if (run.warmStart && history.proportional())
+  if (run.warmStart && history.proportional() && history.ramp(reached) != 0.0)
     for (double& v : warm.lambda) v *= history.ramp(position) / history.ramp(reached);
   return contact::solveContact(feti, B, chain.friction, chain.smalse, chain.preconditioner, warm);
 }
@@ -74,6 +75,23 @@ void printTry(const LoadHistory& history, int k, double position, const contact:
   std::printf("\n");
   std::fflush(stdout);
 }
+/// Every additive count of the summary is the sum over every try of every step; the
+/// residuals, ||A|| and the flags stay the last try's.
+void putTotals(const qp::SmalseCounters& total, int fixedPointIterations, contact::ContactResult& result) {
+  qp::SmalseCounters& c = result.counters;
+  c.outerIterations = total.outerIterations;
+  c.innerIterations = total.innerIterations;
+  c.cgSteps = total.cgSteps;
+  c.expansionSteps = total.expansionSteps;
+  c.proportioningSteps = total.proportioningSteps;
+  c.operatorApplications = total.operatorApplications;
+  c.preconditionerApplications = total.preconditionerApplications;
+  c.seconds = total.seconds;
+  c.operatorSeconds = total.operatorSeconds;
+  c.productSeconds = total.productSeconds;
+  c.preconditionerSeconds = total.preconditionerSeconds;
+  result.fixedPointIterations = fixedPointIterations;
+}
 }  // namespace
 
 contact::ContactResult solveLoadHistory(feti::TotalFeti& feti, const feti::ConstraintMatrix& B,
@@ -85,6 +103,10 @@ contact::ContactResult solveLoadHistory(feti::TotalFeti& feti, const feti::Const
   contact::ContactResult result, last;  // the last try; the last converged state
   qp::SmalseCounters total;             // the counts over every try
   int fixedPointIterations = 0;
+  // A part solved again on a new pairing starts from the multipliers carried to it, which hold
+  // the end of run.startLambdaStep (not the state it continues from) until a try converges.
+  bool carried = !run.startLambda.empty();
+  last.lambda = run.startLambda;
   for (int k = run.firstStep; k <= steps; ++k) {
     LoadStepRecord record{k, history.ramp(k), run.times[static_cast<size_t>(k - 1)], history.label(k),
                           history.factors(k)};
@@ -96,7 +118,8 @@ contact::ContactResult solveLoadHistory(feti::TotalFeti& feti, const feti::Const
       // One try: one solve, or the pretension iterations' solves (Pretension.hpp).
       int solves = 0;
       result = solveWithSectionForces(history, position, last, run.comm, [&](const contact::ContactResult& warm) {
-        contact::ContactResult one = solveAt(feti, B, chain, history, run, position, reached, warm);
+        const double warmAt = carried && &warm == &last ? run.startLambdaStep : reached;
+        contact::ContactResult one = solveAt(feti, B, chain, history, run, position, warmAt, warm);
         count(one, record, total, fixedPointIterations);
         return one;
       }, solves);
@@ -108,6 +131,7 @@ contact::ContactResult solveLoadHistory(feti::TotalFeti& feti, const feti::Const
         if (position == k) break;
         history.advance(feti, result.displacement, position);  // a sub-step: remembered, not written
         last = std::move(result);
+        carried = false;
       } else if (depth < run.maxCutbacks && !budgetSpent(chain)) {
         ++depth;
         ++record.cutbacks;
@@ -134,22 +158,9 @@ contact::ContactResult solveLoadHistory(feti::TotalFeti& feti, const feti::Const
     if (run.stopAfter && run.stopAfter(k)) break;  // step k's state is the history's last
     history.advance(feti, result.displacement, k);
     last = std::move(result);
+    carried = false;
   }
-  // Every additive count of the summary is the sum over every try of every step; the
-  // residuals, ||A|| and the flags stay the last try's.
-  qp::SmalseCounters& c = result.counters;
-  c.outerIterations = total.outerIterations;
-  c.innerIterations = total.innerIterations;
-  c.cgSteps = total.cgSteps;
-  c.expansionSteps = total.expansionSteps;
-  c.proportioningSteps = total.proportioningSteps;
-  c.operatorApplications = total.operatorApplications;
-  c.preconditionerApplications = total.preconditionerApplications;
-  c.seconds = total.seconds;
-  c.operatorSeconds = total.operatorSeconds;
-  c.productSeconds = total.productSeconds;
-  c.preconditionerSeconds = total.preconditionerSeconds;
-  result.fixedPointIterations = fixedPointIterations;
+  putTotals(total, fixedPointIterations, result);
   feti.keepCoarseFactor(false);
   return result;
 }

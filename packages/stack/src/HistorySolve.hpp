@@ -41,6 +41,10 @@ struct HistoryRun {
   /// ends the history there, with step k its last state (a pairing that step changed:
   /// HistoryPairing.cpp). The same answer on every rank.
   std::function<bool(int)> stopAfter;
+  /// The multipliers the first try starts from (HistoryPart::startLambda) and the step whose
+  /// end they hold; empty: cold, as a history's first step.
+  std::vector<double> startLambda;
+  int startLambdaStep = 0;
 };
 
 /// The sum of the loads `f` (owned subdomains) in x, y, z. Collective.

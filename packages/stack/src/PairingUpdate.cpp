@@ -11,6 +11,7 @@
 #include "ConditionSteps.hpp"
 
 #include "tribos/core/PhaseTimer.hpp"
+#include "tribos/feti/CarriedMultipliers.hpp"
 #include "tribos/stack/LinearFetiSolve.hpp"
 #include "tribos/stack/SubdomainSetup.hpp"
 
@@ -131,7 +132,9 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
     std::vector<fem::SubdomainSystem> systems;
     assembleOwnedSubdomains(scene, comm, systems);
     addPartCounts(out, spent);  // the solve that is superseded counts too
-    out = solveOnePairing(scene, std::move(systems), *next, tribos, comm, runStart);
+    HistoryPart warm;  // from the multipliers of the solve before, carried to the new rows
+    warm.startLambda = feti::carryMultipliers(solved, out.contact.lambda, *next, comm);
+    out = solveOnePairing(scene, std::move(systems), *next, tribos, comm, runStart, {}, warm);
     current = std::move(next);
     pairedAt = u;
   }

@@ -29,6 +29,11 @@ struct HistoryPart {
   /// Asked with the result so far after each converged step before the last: true ends the
   /// history there (HistoryRun::stopAfter). Collective.
   std::function<bool(const ContactSolveResult&)> stopWhen;
+  /// The multipliers its first solve starts from, on this rank's rows of its B (carried from
+  /// another pairing: feti::carryMultipliers), and the step whose end they hold (0: a solve
+  /// without steps); empty: the first solve starts cold.
+  std::vector<double> startLambda;
+  int startLambdaStep = 0;
 };
 
 /// One solve on one pairing (ContactSolve.cpp): solveContactScene without pairing updates; a
@@ -83,6 +88,10 @@ void addPartCounts(const ContactSolveResult& part, ContactSolveResult& into);
 /// The result of a history solved in parts: the steps of `done` (moved), then those of `last`,
 /// and every part's counts.
 void prependSteps(ContactSolveResult& done, ContactSolveResult& last);
+
+/// `afterStep` shown the steps of `done` then those of `part` (the part being solved after
+/// them); then `done`'s written steps released but its last (a part may continue from it again).
+void observeAfter(ContactSolveResult& done, const ContactSolveResult& part, const StepObserver& afterStep);
 /// The update's line on rank 0 when `verbose`.
 void reportUpdate(const PairingUpdateRecord& r, int rank, bool verbose);
 

@@ -10,6 +10,7 @@
 #include <tuple>
 
 #include "tribos/core/Errors.hpp"
+#include "tribos/feti/CarriedMultipliers.hpp"
 #include "tribos/feti/ConstraintMatrix.hpp"
 #include "tribos/mesh/TwoBricks.hpp"
 
@@ -372,5 +373,37 @@ TEST(ConstraintMatrix, gluingAndContactRowsVanishOnARigidTranslation) {
       else
         EXPECT_NEAR(sum, 0.0, 1e-13) << "row " << r;
     }
+  }
+}
+
+// Multipliers carried between two pairings (feti::carryMultipliers, issue 41: the warm start
+// of a solve on the rows of a pairing on the deformed bodies). Onto the same rows they are the
+// same to round-off. Onto frictionless rows of the same contact (normal rows only) each node
+// keeps its normal force, and the gluing and Dirichlet rows keep theirs by their order.
+TEST(ConstraintMatrix, multipliersCarriedToAnotherPairingKeepEachNodesForce) {
+  const Built b = build({{2, 1, 1}, 2}, paperSpec());
+  std::vector<double> lambda(static_cast<size_t>(b.B.numRows));
+  for (size_t r = 0; r < lambda.size(); ++r) lambda[r] = std::sin(1.0 + static_cast<double>(r));
+  const auto same = feti::carryMultipliers(b.B, lambda, b.B, MPI_COMM_WORLD);
+  ASSERT_EQ(same.size(), lambda.size());
+  for (size_t r = 0; r < lambda.size(); ++r) EXPECT_NEAR(same[r], lambda[r], 1e-14) << "row " << r;
+
+  const auto normalOnly = feti::buildConstraintMatrix(b.mesh, b.d, paperSpec(false), 1);
+  const auto carried = feti::carryMultipliers(b.B, lambda, normalOnly, MPI_COMM_WORLD);
+  ASSERT_EQ(carried.size(), static_cast<size_t>(normalOnly.numRows));
+  ASSERT_EQ(normalOnly.contact.size(), b.B.contact.size());
+  for (size_t i = 0; i < normalOnly.contact.size(); ++i) {
+    const auto& before = b.B.contact[i];
+    const auto& after = normalOnly.contact[i];
+    ASSERT_EQ(before.slaveNode, after.slaveNode);
+    EXPECT_NEAR(after.rowScale * carried[after.normalRow], before.rowScale * lambda[before.normalRow], 1e-14);
+  }
+  for (auto kind : {feti::RowKind::Gluing, feti::RowKind::Dirichlet}) {
+    std::vector<double> from, to;
+    for (GO r = 0; r < b.B.numRows; ++r)
+      if (b.B.kind[r] == kind) from.push_back(lambda[r]);
+    for (GO r = 0; r < normalOnly.numRows; ++r)
+      if (normalOnly.kind[r] == kind) to.push_back(carried[r]);
+    EXPECT_EQ(from, to);
   }
 }

@@ -150,6 +150,11 @@ struct ContactNode {
     return normalRow + 1 + (j == 1 && hasTangential[0] ? 1 : 0);
   }
   int numRows() const { return 1 + hasTangential[0] + hasTangential[1]; }
+  /// Row d of the node (0: N_r, 1: T1_r, 2: T2_r; -1 when absent), its direction and its scale
+  /// (the force along the direction is scale x lambda).
+  GO row(int d) const { return d == 0 ? normalRow : tangentialRow(d - 1); }
+  const std::array<double, 3>& direction(int d) const { return d == 0 ? normal : d == 1 ? t1 : t2; }
+  double scale(int d) const { return d == 0 ? rowScale : tangentialScale[d - 1]; }
 };
 
 /// B_s: the rows of B that touch subdomain s, as a sparse (rows x local dofs) matrix.
