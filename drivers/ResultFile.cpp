@@ -30,15 +30,7 @@ void addStressFields(const stack::StressResults& stress, mesh::TimeStep& step) {
 }
 
 void addContactFields(const stack::ContactFields& c, mesh::TimeStep& step) {
-  const std::pair<const char*, const std::vector<double>*> fields[] = {
-      {"contact_normal", &c.contactNormal}, {"contact_t1", &c.contactT1},         {"contact_t2", &c.contactT2},
-      {"contact_status", &c.contactStatus}, {"contact_pressure", &c.contactPressure}, {"contact_gap", &c.contactGap},
-      {"contact_opening", &c.contactOpening}, {"contact_nx", &c.contactNx},       {"contact_ny", &c.contactNy},
-      {"contact_nz", &c.contactNz},         {"contact_master", &c.contactMaster},
-      {"contact_slip_t1", &c.contactSlipT1}, {"contact_slip_t2", &c.contactSlipT2},
-      {"contact_tangential_t1", &c.contactTangentialT1}, {"contact_tangential_t2", &c.contactTangentialT2},
-      {"contact_accumulated_slip", &c.contactAccumulatedSlip}};
-  for (const auto& [name, values] : fields) step.nodal.push_back({name, *values});
+  for (const auto& field : stack::kContactNodalFields) step.nodal.push_back({field.name, c.*field.values});
 }
 
 }  // namespace

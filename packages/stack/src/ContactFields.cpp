@@ -2,12 +2,38 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "tribos/contact/ContactSolver.hpp"
 #include "tribos/stack/GlobalFields.hpp"
 #include "tribos/stack/RootGather.hpp"
 
 namespace tribos::stack {
+
+const std::array<ContactNodalField, 16> kContactNodalFields = {{
+    {"contact_normal", &ContactFields::contactNormal},
+    {"contact_t1", &ContactFields::contactT1},
+    {"contact_t2", &ContactFields::contactT2},
+    {"contact_status", &ContactFields::contactStatus},
+    {"contact_pressure", &ContactFields::contactPressure},
+    {"contact_gap", &ContactFields::contactGap},
+    {"contact_opening", &ContactFields::contactOpening},
+    {"contact_nx", &ContactFields::contactNx},
+    {"contact_ny", &ContactFields::contactNy},
+    {"contact_nz", &ContactFields::contactNz},
+    {"contact_master", &ContactFields::contactMaster},
+    {"contact_slip_t1", &ContactFields::contactSlipT1},
+    {"contact_slip_t2", &ContactFields::contactSlipT2},
+    {"contact_tangential_t1", &ContactFields::contactTangentialT1},
+    {"contact_tangential_t2", &ContactFields::contactTangentialT2},
+    {"contact_accumulated_slip", &ContactFields::contactAccumulatedSlip},
+}};
+
+const char* nameOf(std::vector<double> ContactFields::*values) {
+  for (const auto& field : kContactNodalFields)
+    if (field.values == values) return field.name;
+  throw std::logic_error("tribos::stack::nameOf: not a field of kContactNodalFields");
+}
 
 double contactMemorySum(const std::vector<double>& tangentialT1, const std::vector<double>& tangentialT2,
                         const std::vector<double>& accumulatedSlip) {
@@ -40,11 +66,7 @@ void gatherContactFields(const Scene& scene, const feti::ConstraintMatrix& B,
   std::vector<double> all(kPerNode * numNodes, 0.0);
   for (size_t k = 0; k < gathered.size(); ++k)
     std::copy_n(&gathered.values[kPerNode * k], kPerNode, &all[kPerNode * static_cast<size_t>(gathered.index[k])]);
-  for (auto* field : {&out.contactNormal, &out.contactT1, &out.contactT2, &out.contactStatus, &out.contactPressure,
-                      &out.contactGap, &out.contactOpening, &out.contactNx, &out.contactNy, &out.contactNz,
-                      &out.contactMaster, &out.contactSlipT1, &out.contactSlipT2, &out.contactTangentialT1,
-                      &out.contactTangentialT2, &out.contactAccumulatedSlip})
-    field->assign(numNodes, 0.0);
+  for (const auto& field : kContactNodalFields) (out.*field.values).assign(numNodes, 0.0);
   std::vector<std::vector<double>> area;  // per interface: the tributary area of its slave nodes
   for (const auto& one : scene.contacts) area.push_back(tributaryArea(scene.mesh, one.rows.slaveSideSet));
   for (const auto& c : B.contact) {

@@ -325,11 +325,7 @@ void setAppliedLoad(const std::vector<std::vector<double>>& f, MPI_Comm comm, St
 }  // namespace
 
 void releaseNodalFields(StepResults& step) {
-  for (auto* v : {&step.contactNormal, &step.contactT1, &step.contactT2, &step.contactStatus, &step.contactPressure,
-                  &step.contactGap, &step.contactOpening, &step.contactNx, &step.contactNy, &step.contactNz,
-                  &step.contactMaster, &step.contactSlipT1, &step.contactSlipT2, &step.contactTangentialT1,
-                  &step.contactTangentialT2, &step.contactAccumulatedSlip})
-    std::vector<double>().swap(*v);
+  for (const auto& field : kContactNodalFields) std::vector<double>().swap(step.*field.values);
   std::vector<std::array<double, 3>>().swap(step.displacement.value);
   std::vector<std::array<double, 3>>().swap(step.reaction);
 }

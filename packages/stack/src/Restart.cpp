@@ -41,7 +41,7 @@ void requireSameNodes(const mesh::Mesh& file, const mesh::Mesh& scene, const std
 // tangential displacement or slip on a node that is not one of B's slave nodes (a file of a
 // scene with other interfaces would hand its memory to the wrong nodes).
 void requireSameContactNodes(const mesh::TimeStep& step, const feti::ConstraintMatrix& B, const std::string& where) {
-  const auto& master = nodalField(step, "contact_master", where);
+  const auto& master = nodalField(step, nameOf(&ContactFields::contactMaster), where);
   std::vector<char> slave(master.size(), 0);
   for (const auto& node : B.contact) {
     const size_t n = static_cast<size_t>(node.slaveNode);
@@ -54,7 +54,8 @@ void requireSameContactNodes(const mesh::TimeStep& step, const feti::ConstraintM
                            core::formatNumber(master[n]) + " there and node " + std::to_string(node.masterNode + 1) +
                            " in this scene (a result of other contact interfaces)");
   }
-  for (const char* name : {"contact_tangential_t1", "contact_tangential_t2", "contact_accumulated_slip"}) {
+  for (const char* name : {nameOf(&ContactFields::contactTangentialT1), nameOf(&ContactFields::contactTangentialT2),
+                           nameOf(&ContactFields::contactAccumulatedSlip)}) {
     const auto& values = nodalField(step, name, where);
     for (size_t n = 0; n < values.size(); ++n)
       core::requireInput(slave[n] || values[n] == 0.0,
@@ -145,12 +146,14 @@ RestartState readRestart(const std::string& file, const Scene& scene, const feti
                          ": no step left to solve");
   requireSameContactNodes(*last, B, where);
   ContactFields& t = state.totals;
-  t.contactTangentialT1 = nodalField(*last, "contact_tangential_t1", where);
-  t.contactTangentialT2 = nodalField(*last, "contact_tangential_t2", where);
-  t.contactAccumulatedSlip = nodalField(*last, "contact_accumulated_slip", where);
-  requirePlausible(t.contactTangentialT1, "contact_tangential_t1", false, where);
-  requirePlausible(t.contactTangentialT2, "contact_tangential_t2", false, where);
-  requirePlausible(t.contactAccumulatedSlip, "contact_accumulated_slip", true, where);
+  // The friction memory: the total tangential displacement (of either sign) and the accumulated
+  // slip (>= 0) the history reached.
+  for (auto [values, nonNegative] : {std::pair{&ContactFields::contactTangentialT1, false},
+                                     {&ContactFields::contactTangentialT2, false},
+                                     {&ContactFields::contactAccumulatedSlip, true}}) {
+    t.*values = nodalField(*last, nameOf(values), where);
+    requirePlausible(t.*values, nameOf(values), nonNegative, where);
+  }
   // A file cut inside its last step reads the missing values as zeros (issue 44: exit 0 with
   // the friction memory lost); results before this check have no sum, and are taken as they are.
   if (const double* sum = globalValue(*last, "contact_memory_sum")) {

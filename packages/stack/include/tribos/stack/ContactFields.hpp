@@ -59,6 +59,18 @@ struct ContactFields {
   std::vector<InterfaceResult> interfaces;  ///< per scene interface, in the scene's order (rank 0)
 };
 
+/// One per-node field of ContactFields: its name in the Exodus result and its member.
+struct ContactNodalField {
+  const char* name;
+  std::vector<double> ContactFields::*values;
+};
+/// Every per-node contact field, in the order the result writes them: the one list the gather,
+/// the result writer, the release of a written step and the restart reader take their fields
+/// and names from (a new field is a member and a line here).
+extern const std::array<ContactNodalField, 16> kContactNodalFields;
+/// The result's name of one of them (kContactNodalFields).
+const char* nameOf(std::vector<double> ContactFields::*values);
+
 /// Fills `out` on rank 0 from the contact nodes whose rows this rank owns (`nodes`); the
 /// geometry (gap, normal, master) comes from B on every rank. Every rank gets the interfaces'
 /// names and laws, rank 0 their sums. Collective over `comm`.
