@@ -59,6 +59,20 @@ long long movedSincePairing(const mesh::Mesh& mesh, const feti::ConstraintMatrix
   return moved;
 }
 
+/// A solve whose pairing the deformed bodies still change, with no Pairing Updates left to solve
+/// again: not converged, however its own KKT residuals read (the hertz sphere with the default
+/// Search Distance ended "converged" at 4.5 times the normal force of its settled pairing).
+void notSettled(const PairingUpdateRecord& r, int updates, contact::ContactResult& result) {
+  if (!result.converged) return;
+  result.converged = false;
+  result.message = "the pairing on the deformed bodies did not settle within Solver/Pairing Updates = " +
+                   std::to_string(updates) + " (after the last solve " + std::to_string(r.newlyInside) +
+                   " slave nodes without rows lie inside the master, " + std::to_string(r.movedOn) +
+                   " slid past their master nodes, " + std::to_string(r.relinearised) +
+                   " moved since they were paired there): raise Pairing Updates, or Contact/Search Distance to "
+                   "pair the nodes that may touch before the solve";
+}
+
 }  // namespace
 
 /// The update's line (rank 0, Solver/Verbose; the summary's pairing_updates hold them all).
@@ -67,7 +81,10 @@ void reportUpdate(const PairingUpdateRecord& r, int rank, bool verbose) {
   std::cout << "  pairing on the deformed bodies (update " << r.update << "): " << r.paired << " slave nodes paired, "
             << r.newlyInside << " without rows inside the master, " << r.movedOn << " slid past their master nodes, "
             << r.relinearised << " moved since they were paired there"
-            << (r.solvedAgain ? ": solving again on this pairing" : ": the pairing stands") << "\n";
+            << (r.solvedAgain                                              ? ": solving again on this pairing"
+                : r.newlyInside + r.movedOn + r.relinearised > 0 ? ": no update left to solve again"
+                                                                  : ": the pairing stands")
+            << "\n";
 }
 
 feti::ConstraintMatrix rowsAt(const Scene& scene, const feti::ConstraintSpec& of,
@@ -113,12 +130,15 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
   std::unique_ptr<feti::ConstraintMatrix> current;  // the pairing of `out` when not B
   std::vector<std::array<double, 3>> pairedAt;        // the state `current` was paired at
   ContactSolveResult spent;  // the counts of the solves before the last
-  for (int k = 1; k <= scene.pairingUpdates && (out.contact.converged || out.penetrated); ++k) {
+  // Every solve's pairing is checked, the last one's too: one that Pairing Updates leaves no
+  // solve for is not converged (its rows were built where the bodies were not left).
+  for (int k = 1; out.contact.converged || out.penetrated; ++k) {
     const auto u = onEveryRank(out.displacement.value, scene.mesh.numNodes(), comm);
     const feti::ConstraintMatrix& solved = current ? *current : B;
     PairingUpdateRecord record = changesAt(scene, spec, u, solved, k);
     if (current) record.relinearised = movedSincePairing(scene.mesh, *current, pairedAt, u);
-    record.solvedAgain = record.solvedAgain || record.relinearised > 0;
+    const bool changed = record.solvedAgain || record.relinearised > 0;
+    record.solvedAgain = changed && k <= scene.pairingUpdates;
     std::unique_ptr<feti::ConstraintMatrix> next;
     if (record.solvedAgain) {  // only then are the rows built
       next = std::make_unique<feti::ConstraintMatrix>(rowsAt(scene, spec, u, solved, comm));
@@ -126,6 +146,7 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
     }
     records.push_back(record);
     reportUpdate(record, rank, tribos.sublist("Solver").get<bool>("Verbose"));
+    if (changed && !record.solvedAgain) notSettled(record, scene.pairingUpdates, out.contact);
     if (!record.solvedAgain) break;
     // The systems went into the last solve's factors: assembled and factorised again (the scene
     // keeps its subdomains' elements for this, stack::keepRankData).

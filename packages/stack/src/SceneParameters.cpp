@@ -279,7 +279,8 @@ void solverParameters(ParameterList& pl) {
          "now lies inside the master, or a paired one has slid past its master nodes, the contact rows are built on "
          "the deformed bodies and the problem is solved again (factorised again), at most this many times (a load "
          "history: at each step, from the first step whose state changed the pairing on). Nothing changed: the "
-         "first result stands, as it was. 0: the reference mesh decides the pairing (issue 41; "
+         "first result stands, as it was. A scene solved once whose pairing still changes after the last of them "
+         "is not converged (exit 3). 0: the reference mesh decides the pairing (issue 41; "
          "doc/contact_surfaces.md)",
          core::intRange(0, 20));
   pl.set("Verbose", true, "print the solver chain and one progress line per outer iteration (rank 0)");
