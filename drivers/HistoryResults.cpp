@@ -19,7 +19,8 @@ HistoryResults::HistoryResults(const stack::Scene& scene, core::OutputFile* exod
       writer_ = std::make_unique<mesh::ExodusWriter>(path, scene_.mesh, std::move(info));
     });
   } catch (const core::IoError& e) {  // reported by finish, as a final write's failure
-    std::cout << "  warning: the result file cannot be written as the history goes: " << e.what() << "\n";
+    startError_ = e.what();
+    std::cout << "  warning: the result file cannot be written as the history goes: " << startError_ << "\n";
   }
 }
 
@@ -80,7 +81,7 @@ void HistoryResults::checkpoint(int first, int step) {
 }
 
 void HistoryResults::finish(const std::vector<OutputStep>& rest) {
-  if (!draft_) throw core::IoError(exodus_->path() + " (" + exodus_->option() + "): cannot start the result file");
+  if (!draft_) throw core::IoError(startError_);
   for (const auto& step : rest) append(step);
   draft_->write([&](const std::string&) {
     if (writer_) writer_->close();

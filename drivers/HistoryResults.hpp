@@ -52,6 +52,7 @@ class HistoryResults {
   mesh::Field subdomain_;
   core::Stopwatch since_;
   std::vector<nlohmann::json> extras_;
+  std::string startError_;  ///< why the draft could not be started (its IoError), reported by finish
   int checkpoints_ = 0;
 };
 
