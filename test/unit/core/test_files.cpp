@@ -134,6 +134,46 @@ TEST_F(Files, aFailedWriteKeepsTheOldFileAndLeavesNoPartial) {
   EXPECT_TRUE(leftovers({"result.exo"}).empty());
 }
 
+// A result built over time (a load history's, OutputFile::Draft): written next to the target,
+// a published copy replaces the target whole while the draft goes on, commit puts the draft
+// itself in place; a draft dropped uncommitted leaves nothing.
+TEST_F(Files, aDraftIsPublishedWholeAndCommittedInPlace) {
+  const auto target = write("history.exo", "the earlier result");
+  OutputFile out(target, "--output", false);
+  {
+    const auto dropped = out.startDraft();
+    std::ofstream(dropped->path()) << "step 1";
+  }
+  EXPECT_EQ(read(target), "the earlier result");
+  EXPECT_TRUE(leftovers({"history.exo"}).empty());
+
+  const auto draft = out.startDraft();
+  EXPECT_EQ(fs::path(draft->path()).parent_path(), fs::path(target).parent_path());
+  draft->write([](const std::string& p) { std::ofstream(p, std::ios::app) << "step 1;"; });
+  draft->publishCopy();
+  EXPECT_EQ(read(target), "step 1;");
+  draft->write([](const std::string& p) { std::ofstream(p, std::ios::app) << "step 2;"; });
+  EXPECT_EQ(read(target), "step 1;");  // the checkpoint stays until the next one
+  draft->commit();
+  EXPECT_EQ(read(target), "step 1;step 2;");
+  EXPECT_TRUE(leftovers({"history.exo"}).empty());
+}
+
+// A failed write into a draft is an IoError naming the target and the option; the draft is
+// removed, its later writes and commit say the same, and the last checkpoint stays.
+TEST_F(Files, aFailedDraftWriteRemovesTheDraftAndKeepsTheCheckpoint) {
+  const auto target = path("history.exo");
+  OutputFile out(target, "--output", false);
+  const auto draft = out.startDraft();
+  draft->write([](const std::string& p) { std::ofstream(p) << "step 1;"; });
+  draft->publishCopy();
+  const auto why = messageOf<IoError>([&] { draft->write([](const std::string&) { throw IoError("disk full"); }); });
+  EXPECT_NE(why.find("history.exo (--output): could not write the results: disk full"), std::string::npos) << why;
+  EXPECT_TRUE(leftovers({"history.exo"}).empty());
+  EXPECT_EQ(messageOf<IoError>([&] { draft->commit(); }), why);
+  EXPECT_EQ(read(target), "step 1;");
+}
+
 TEST_F(Files, temporaryNamesAreUniqueToEachWrite) {
   const auto target = path("shared.exo");
   OutputFile first(target, "--output", false), second(target, "--output", false);
