@@ -71,4 +71,20 @@ std::vector<double> carryMultipliers(const ConstraintMatrix& from, const std::ve
   return out;
 }
 
+std::vector<double> multipliersFromNodalForces(const ConstraintMatrix& B, const std::vector<double>& normal,
+                                               const std::vector<double>& t1, const std::vector<double>& t2,
+                                               int rank) {
+  const GO first = B.firstRowOfRank[rank], end = B.firstRowOfRank[rank + 1];
+  std::vector<double> out(static_cast<size_t>(end - first), 0.0);
+  const std::vector<double>* forces[3] = {&normal, &t1, &t2};
+  for (const auto& node : B.contact) {
+    if (node.normalRow < first || node.normalRow >= end) continue;  // its rows are another rank's
+    const size_t n = static_cast<size_t>(node.slaveNode);
+    for (int d = 0; d < 3; ++d)
+      if (const GO row = node.row(d); row >= 0 && n < forces[d]->size())
+        out[static_cast<size_t>(row - first)] = (*forces[d])[n] / node.scale(d);
+  }
+  return out;
+}
+
 }  // namespace tribos::feti

@@ -1,5 +1,7 @@
 #include "tribos/stack/ContactSolve.hpp"
 
+#include "tribos/feti/CarriedMultipliers.hpp"
+
 #include "PairingUpdate.hpp"
 #include "tribos/stack/FetiSettings.hpp"
 #include "tribos/stack/PenetrationCheck.hpp"
@@ -360,6 +362,13 @@ const ContactFields* solveHistory(const Scene& scene, const feti::ConstraintMatr
   run.startLambda = span.part.startLambda;
   run.startLambdaStep = span.part.startLambdaStep;
   if (!restart.file.empty()) {
+    // Warm from the forces of the state it continues from, unless a pairing change carried the
+    // multipliers of a later state (HistoryPart::startLambda).
+    if (run.startLambda.empty() && !restart.totals.contactNormal.empty()) {
+      const ContactFields& t = restart.totals;
+      run.startLambda = feti::multipliersFromNodalForces(B, t.contactNormal, t.contactT1, t.contactT2, rank);
+      run.startLambdaStep = restart.step;
+    }
     loads.restore(B, rank, restart.totals.contactTangentialT1, restart.totals.contactTangentialT2);
     for (size_t p = 0; p < restart.sectionShortening.size(); ++p) loads.setShortening(p, restart.sectionShortening[p]);
     run.firstStep = restart.step + 1;

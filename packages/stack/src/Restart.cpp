@@ -146,11 +146,12 @@ RestartState readRestart(const std::string& file, const Scene& scene, const feti
                          ": no step left to solve");
   requireSameContactNodes(*last, B, where);
   ContactFields& t = state.totals;
-  // The friction memory: the total tangential displacement (of either sign) and the accumulated
-  // slip (>= 0) the history reached.
-  for (auto [values, nonNegative] : {std::pair{&ContactFields::contactTangentialT1, false},
-                                     {&ContactFields::contactTangentialT2, false},
-                                     {&ContactFields::contactAccumulatedSlip, true}}) {
+  // The friction memory the history reached (the total tangential displacement, of either sign,
+  // and the accumulated slip, >= 0) and the contact forces the first new step starts from.
+  for (auto [values, nonNegative] :
+       {std::pair{&ContactFields::contactTangentialT1, false}, {&ContactFields::contactTangentialT2, false},
+        {&ContactFields::contactAccumulatedSlip, true}, {&ContactFields::contactNormal, false},
+        {&ContactFields::contactT1, false}, {&ContactFields::contactT2, false}}) {
     t.*values = nodalField(*last, nameOf(values), where);
     requirePlausible(t.*values, nameOf(values), nonNegative, where);
   }
@@ -218,6 +219,7 @@ void broadcastRestartState(RestartState& state, const Scene& scene, MPI_Comm com
   broadcast(t.contactTangentialT1, comm);
   broadcast(t.contactTangentialT2, comm);
   broadcast(t.contactAccumulatedSlip, comm);
+  for (auto* forces : {&t.contactNormal, &t.contactT1, &t.contactT2}) broadcast(*forces, comm);
   std::vector<double> energies;
   for (const auto& one : t.interfaces) energies.push_back(one.dissipatedEnergy);
   energies.push_back(t.dissipatedEnergy);

@@ -21,7 +21,8 @@ struct RestartState {
   int step = 0;  ///< the last converged load step in the file (its global variable load_step)
   /// The file's totals at that step, per global node and interface (every rank):
   /// contactTangentialT1/T2, contactAccumulatedSlip, interfaces[i].dissipatedEnergy and
-  /// dissipatedEnergy; the other fields are empty.
+  /// dissipatedEnergy, and the contact forces contactNormal/T1/T2 (the first new step's warm
+  /// start: feti::multipliersFromNodalForces); the other fields are empty.
   ContactFields totals;
   /// The displacement of every global node at the steps asked for (readRestart's
   /// displacementSteps; ConditionSteps.cpp: where conditions that took hold hold their nodes).

@@ -362,8 +362,8 @@ Teuchos::RCP<const Teuchos::ParameterList> sceneValidParameters() {
     steps.set("Restart From", std::string(),
               "an Exodus result of a load history of this scene (a path relative to the working directory, like "
               "--output): the history continues after its last converged step, from the relative tangential "
-              "displacement, accumulated slip and dissipated energy reached there (the first step starts cold); the "
-              "new result holds the new steps. Empty: start at step 1");
+              "displacement, accumulated slip and dissipated energy reached there (the first step starts from "
+              "its contact forces); the new result holds the new steps. Empty: start at step 1");
     steps.set("Checkpoint Seconds", 60.0,
               "with --output: each converged step is appended to a draft of the result file as it converges; after "
               "a converged step, once this many seconds passed since the run started or the last checkpoint, a "

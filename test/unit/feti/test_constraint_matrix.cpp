@@ -407,3 +407,20 @@ TEST(ConstraintMatrix, multipliersCarriedToAnotherPairingKeepEachNodesForce) {
     EXPECT_EQ(from, to);
   }
 }
+
+// A restart's warm start (feti::multipliersFromNodalForces): the contact forces of a result along
+// each node's rows give back that node's multipliers; the gluing and Dirichlet rows start at zero.
+TEST(ConstraintMatrix, multipliersFromTheContactForcesOfAResult) {
+  const Built b = build({{2, 1, 1}, 2}, paperSpec());
+  std::vector<double> normal(b.mesh.numNodes(), 0.0), t1 = normal, t2 = normal;
+  std::vector<double> lambda(static_cast<size_t>(b.B.numRows), 0.0);
+  for (const auto& node : b.B.contact)
+    for (int d = 0; d < 3; ++d)
+      if (const GO row = node.row(d); row >= 0) {
+        lambda[row] = std::cos(1.0 + static_cast<double>(row));
+        (d == 0 ? normal : d == 1 ? t1 : t2)[node.slaveNode] = node.scale(d) * lambda[row];
+      }
+  const auto back = feti::multipliersFromNodalForces(b.B, normal, t1, t2, 0);
+  ASSERT_EQ(back.size(), lambda.size());
+  for (size_t r = 0; r < lambda.size(); ++r) EXPECT_NEAR(back[r], lambda[r], 1e-15) << "row " << r;
+}

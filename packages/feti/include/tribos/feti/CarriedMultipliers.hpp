@@ -23,4 +23,11 @@ namespace tribos::feti {
 std::vector<double> carryMultipliers(const ConstraintMatrix& from, const std::vector<double>& lambdaOfFrom,
                                      const ConstraintMatrix& to, MPI_Comm comm);
 
+/// lambda on this rank's rows of `B` from the contact forces per global node along each contact
+/// node's normal, t1 and t2 (a result's contact_normal, contact_t1, contact_t2: a restart's warm
+/// start); the gluing and Dirichlet rows, which a result does not hold, start at zero.
+std::vector<double> multipliersFromNodalForces(const ConstraintMatrix& B, const std::vector<double>& normal,
+                                               const std::vector<double>& t1, const std::vector<double>& t2,
+                                               int rank);
+
 }  // namespace tribos::feti
