@@ -11,9 +11,10 @@ namespace tribos::feti {
 
 CoarseProblem::CoarseProblem(const TotalFeti::CoarseRows& G, int numSubdomains, GO numRowsOfB, double gMax,
                              double subdomainBytesPerF, Teuchos::RCP<const Teuchos::Comm<int>> comm,
-                             const TotalFetiSettings& settings, OperatorProfile& profile)
+                             const TotalFetiSettings& settings, OperatorProfile& profile, std::vector<char> pinnedModes)
     : G_(G),
       numSubdomains_(numSubdomains),
+      pinned_(std::move(pinnedModes)),
       numRowsOfB_(numRowsOfB),
       gMax_(gMax),
       subdomainBytesPerF_(subdomainBytesPerF),
@@ -36,6 +37,9 @@ void CoarseProblem::buildPattern() {
     for (LO e = G.rowStart[r]; e < G.rowStart[r + 1]; ++e)
       for (LO f = G.rowStart[r]; f < G.rowStart[r + 1]; ++f)
         pairs.push_back(static_cast<long long>(G.rowSubdomain[e]) * numSubdomains_ + G.rowSubdomain[f]);
+  // Every diagonal block, also of a subdomain no row touches (all its modes pinned).
+  if (comm_->getRank() == 0)
+    for (int s = 0; s < numSubdomains_; ++s) pairs.push_back(static_cast<long long>(s) * numSubdomains_ + s);
   std::sort(pairs.begin(), pairs.end());
   pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
   if (comm_->getSize() > 1) pairs = allGather(*comm_, pairs);
@@ -137,6 +141,17 @@ bool CoarseProblem::sameSubdomains(LO a, LO b) const {
                     G.rowSubdomain.begin() + G.rowStart[b], G.rowSubdomain.begin() + G.rowStart[b + 1]);
 }
 
+void CoarseProblem::pinRows(fem::CsrMatrix& GGt) const {
+  if (std::find(pinned_.begin(), pinned_.end(), 1) == pinned_.end()) return;
+  double largest = 0.0;
+  for (LO i = 0; i < GGt.n; ++i)
+    if (!pinned_[i]) largest = std::max(largest, GGt.at(i, i));
+  for (LO i = 0; i < GGt.n; ++i)
+    if (pinned_[i])
+      for (LO k = GGt.rowPtr[i]; k < GGt.rowPtr[i + 1]; ++k)
+        if (GGt.colInd[k] == i) GGt.values[k] = largest > 0.0 ? largest : 1.0;
+}
+
 fem::CsrMatrix CoarseProblem::matrixFromSlots(const std::vector<double>& slots) const {
   // Each value combined from its slots straight into the matrix (no array of the blocks in
   // between); a block (s, t) below the diagonal is the upper block (t, s) read transposed.
@@ -158,6 +173,7 @@ fem::CsrMatrix CoarseProblem::matrixFromSlots(const std::vector<double>& slots) 
       }
       GGt.rowPtr[6 * s + a + 1] = static_cast<LO>(GGt.colInd.size());
     }
+  pinRows(GGt);
   return GGt;
 }
 

@@ -26,7 +26,7 @@ class CoarseProblem {
   /// Builds the block pattern (collective); factorize() assembles and factorises.
   CoarseProblem(const TotalFeti::CoarseRows& G, int numSubdomains, GO numRowsOfB, double gMax,
                 double subdomainBytesPerF, Teuchos::RCP<const Teuchos::Comm<int>> comm,
-                const TotalFetiSettings& settings, OperatorProfile& profile);
+                const TotalFetiSettings& settings, OperatorProfile& profile, std::vector<char> pinnedModes = {});
   ~CoarseProblem();
 
   /// Assembles G G^T (collective) and factorises it on rank 0, rounded to single where the
@@ -69,6 +69,8 @@ class CoarseProblem {
   /// Deposits g g^T of one row's (or combination's) g_{s}, 6 per entry of `subdomains`.
   void depositOuterProduct(const std::vector<double>& g, const int* subdomains, LO entries, const core::SumBins& bins,
                            const std::vector<LO>& slotOf, std::vector<double>& local) const;
+  /// Rank 0: the diagonal of the pinned rows (pinned_) set.
+  void pinRows(fem::CsrMatrix& GGt) const;
   /// Rank 0: G G^T (or G_I G_I^T) in CSR from the whole pattern's slots.
   fem::CsrMatrix matrixFromSlots(const std::vector<double>& slots) const;
   /// Rank 0: sum = the whole pattern's slots, every rank's `values` (their `blocks`, kSlots x 36
@@ -84,6 +86,10 @@ class CoarseProblem {
 
   const TotalFeti::CoarseRows& G_;
   int numSubdomains_;
+  /// Per coarse row, 1 where G's row is 0 (a rigid mode that eliminated components removed):
+  /// its diagonal is set to the largest other one, so that G G^T stays regular and the row's
+  /// coordinate stays 0 (TotalFeti::pinnedModes). Empty: none.
+  std::vector<char> pinned_;
   GO numRowsOfB_;
   double gMax_, subdomainBytesPerF_;
   Teuchos::RCP<const Teuchos::Comm<int>> comm_;

@@ -105,7 +105,14 @@ void addGluingAndDirichletRows(LO numNodes, const RowContext& ctx, RowList& list
     // node touches it and has the same owner.
     const int owner = k > 1 ? mesh::ownerRank(ctx.copies.of(n, 0).subdomain, ctx.numSubdomains, ctx.numRanks) : 0;
     for (int c = 0; c < 3; ++c) {
-      if (ctx.prescribed.fixed[3 * n + c]) {
+      const size_t dof = 3 * static_cast<size_t>(n) + c;
+      if (ctx.prescribed.fixed[dof] && ctx.eliminateZeroComponents && ctx.prescribed.value[dof] == 0.0 &&
+          ctx.prescribed.base[dof] == 0.0) {
+        // Eliminated from K_s instead (TotalFeti): no rows.
+        for (LO j = 0; j < k; ++j) list.eliminated.push_back({ctx.copies.of(n, j).subdomain, 3 * ctx.copies.of(n, j).localNode + c});
+        continue;
+      }
+      if (ctx.prescribed.fixed[dof]) {
         // Every copy prescribed, no gluing rows: the paper's count (k-1 gluing + 1
         // Dirichlet per component) and B stays orthonormal (ALGORITHMS.md 2).
         for (LO j = 0; j < k; ++j) {
@@ -195,6 +202,9 @@ void numberRows(RowList& list, int numSubdomains, int numRanks, int keepForRank,
     }
   }
   for (int p = 0; p < numRanks; ++p) B.firstRowOfRank[p + 1] += B.firstRowOfRank[p];
+  for (const auto& [s, dof] : list.eliminated)
+    if (keepAll || (s >= firstKept && s < endKept)) B.blocks[s].eliminated.push_back(dof);
+  for (auto& blk : B.blocks) std::sort(blk.eliminated.begin(), blk.eliminated.end());
   // Row ids: the position in the order by key alone (keys are unique), i.e. the numbering
   // that one rank uses.
   std::vector<size_t> byKey(order);
@@ -217,7 +227,7 @@ ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decom
   // (1) Copies of every global node, in ascending subdomain order (ALGORITHMS.md 2).
   const NodeCopies copies = nodeCopies(decomposition, mesh.numNodes());
   const Prescribed prescribed = prescribedComponents(mesh, spec);
-  const RowContext ctx{copies, prescribed, decomposition.numSubdomains(), numRanks};
+  const RowContext ctx{copies, prescribed, decomposition.numSubdomains(), numRanks, spec.eliminateZeroComponents};
   RowList list;
   ConstraintMatrix B;
   B.overlappingConditions.assign(prescribed.overlapping.begin(), prescribed.overlapping.end());
@@ -248,7 +258,7 @@ void keepRankRows(ConstraintMatrix& B, int rank, int firstOwned, int endOwned) {
     kept.rowPtr.shrink_to_fit();
     kept.dof.shrink_to_fit();
     kept.value.shrink_to_fit();
-    B.blocks[s] = std::move(kept);
+    B.blocks[s] = std::move(kept);  // a foreign subdomain's eliminated dofs are not needed
   }
 }
 

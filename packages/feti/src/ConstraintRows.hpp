@@ -69,6 +69,8 @@ struct RowList {
   std::vector<Entry> entries;
   /// (displacement condition, its part of c) of the rows (Row::firstPart): ConstraintMatrix::prescribedParts.
   std::vector<std::pair<int, double>> parts;
+  /// (subdomain, local dof) of the components eliminated instead of given rows.
+  std::vector<std::pair<int, LO>> eliminated;
   Row begin() const {
     Row row;
     row.firstEntry = entries.size();
@@ -129,6 +131,7 @@ struct RowContext {
   const NodeCopies& copies;
   const Prescribed& prescribed;
   int numSubdomains, numRanks;
+  bool eliminateZeroComponents = false;  ///< ConstraintSpec::eliminateZeroComponents
   /// A row belongs to the rank that owns the lowest subdomain it touches (header).
   int ownerOf(const Entry* entries, size_t count) const {
     int lowest = numSubdomains;

@@ -12,6 +12,7 @@
 #include "tribos/core/Errors.hpp"
 #include "tribos/core/Format.hpp"
 #include "tribos/core/ReproducibleSum.hpp"
+#include "SymmetricEigen.hpp"
 
 namespace tribos::feti {
 
@@ -87,6 +88,25 @@ struct RowPart {
   std::array<double, kModes> c;
 };
 
+/// A component eliminated from K_s (SubdomainBlock::eliminated) restrains its body as a
+/// Dirichlet row would: one part each, counted by the owner of its subdomain (`ranks`: this
+/// rank and the number of ranks), numbered after B's rows.
+void addEliminatedParts(const mesh::Mesh& mesh, const mesh::Decomposition& decomposition, const ConstraintMatrix& B,
+                        const std::vector<BodyFrame>& frames, const std::pair<int, int>& ranks,
+                        std::vector<RowPart>& parts) {
+  GO next = B.numRows;
+  for (int s = 0; s < decomposition.numSubdomains(); ++s) {
+    const auto& sub = decomposition.subdomains[s];
+    const bool mine = mesh::ownerRank(s, decomposition.numSubdomains(), ranks.second) == ranks.first;
+    for (LO dof : B.blocks[s].eliminated) {
+      RowPart part{next++, sub.body, {}};
+      if (!mine) continue;
+      for (int j = 0; j < kModes; ++j) part.c[j] = modeValue(j, dof % 3, mesh.coords[sub.nodes[dof / 3]], frames[sub.body]);
+      parts.push_back(part);
+    }
+  }
+}
+
 /// Every (row, body) part of C for the rows [firstRow, endRow), summed over the blocks: a row
 /// touches a few subdomains, possibly of different bodies (contact), and only the sum over its
 /// copies is the row. The parts are stored once (counted first, no growth by doubling): at
@@ -94,7 +114,7 @@ struct RowPart {
 /// (doc/measurements/scalability.md); now a rank holds the parts of its own rows.
 std::vector<RowPart> rowsOfC(const mesh::Mesh& mesh, const mesh::Decomposition& decomposition,
                              const ConstraintMatrix& B, const std::vector<BodyFrame>& frames, GO firstRow,
-                             GO endRow) {
+                             GO endRow, const std::pair<int, int>& ranks) {
   auto mine = [&](GO row) { return row >= firstRow && row < endRow; };
   size_t count = 0;
   for (int s = 0; s < decomposition.numSubdomains(); ++s)
@@ -115,6 +135,7 @@ std::vector<RowPart> rowsOfC(const mesh::Mesh& mesh, const mesh::Decomposition& 
       parts.push_back(part);
     }
   }
+  addEliminatedParts(mesh, decomposition, B, frames, ranks, parts);
   // Merge the parts of the same (row, body), in subdomain order (a stable sort: the sums do
   // not depend on which rank does them).
   std::stable_sort(parts.begin(), parts.end(),
@@ -170,45 +191,6 @@ std::vector<double> gramMatrix(const std::vector<RowPart>& parts, int numBodies,
   std::vector<double> gram(static_cast<size_t>(n) * n);
   for (size_t k = 0; k < gram.size(); ++k) gram[k] = core::SumBins::combine(&slots[kSlots * k]);
   return gram;
-}
-
-std::vector<double> symmetricEigen(std::vector<double>& A, int n, std::vector<double>& vectors) {
-  vectors.assign(static_cast<size_t>(n) * n, 0.0);
-  for (int i = 0; i < n; ++i) vectors[static_cast<size_t>(i) * n + i] = 1.0;
-  const auto at = [&](std::vector<double>& M, int i, int j) -> double& { return M[static_cast<size_t>(i) * n + j]; };
-  double frobenius = 0.0;
-  for (double v : A) frobenius += v * v;
-  for (int sweep = 0; sweep < 100; ++sweep) {
-    double off = 0.0;
-    for (int p = 0; p < n; ++p)
-      for (int q = p + 1; q < n; ++q) off += at(A, p, q) * at(A, p, q);
-    if (off <= 1e-32 * frobenius) break;  // off-diagonal at round-off: converged (or A = 0)
-    for (int p = 0; p < n; ++p)
-      for (int q = p + 1; q < n; ++q) {
-        const double apq = at(A, p, q);
-        if (apq == 0.0) continue;
-        // The rotation (c, s) that zeroes A(p, q): t = tan of its angle, the smaller root.
-        const double theta = (at(A, q, q) - at(A, p, p)) / (2.0 * apq);
-        const double t = (theta >= 0 ? 1.0 : -1.0) / (std::abs(theta) + std::hypot(theta, 1.0));
-        const double c = 1.0 / std::hypot(t, 1.0), s = t * c;
-        for (int k = 0; k < n; ++k) {  // A := A J, V := V J
-          const double akp = at(A, k, p), akq = at(A, k, q);
-          at(A, k, p) = c * akp - s * akq;
-          at(A, k, q) = s * akp + c * akq;
-          const double vkp = at(vectors, k, p), vkq = at(vectors, k, q);
-          at(vectors, k, p) = c * vkp - s * vkq;
-          at(vectors, k, q) = s * vkp + c * vkq;
-        }
-        for (int k = 0; k < n; ++k) {  // A := J^T A
-          const double apk = at(A, p, k), aqk = at(A, q, k);
-          at(A, p, k) = c * apk - s * aqk;
-          at(A, q, k) = s * apk + c * aqk;
-        }
-      }
-  }
-  std::vector<double> values(n);
-  for (int i = 0; i < n; ++i) values[i] = at(A, i, i);
-  return values;
 }
 
 /// Orthonormal basis of the kernel of C (eigenvectors of C^T C below the tolerance).
@@ -307,7 +289,8 @@ std::vector<FreeMotion> freeRigidMotions(const mesh::Mesh& mesh, const mesh::Dec
     firstRow = B.firstRowOfRank[comm->getRank()];
     endRow = B.firstRowOfRank[comm->getRank() + 1];
   }
-  const auto parts = rowsOfC(mesh, decomposition, B, bodyFrames(mesh), firstRow, endRow);
+  const std::pair<int, int> ranks = comm ? std::pair<int, int>{comm->getRank(), comm->getSize()} : std::pair<int, int>{0, 1};
+  const auto parts = rowsOfC(mesh, decomposition, B, bodyFrames(mesh), firstRow, endRow, ranks);
   auto basis = kernelBasis(gramMatrix(parts, numBodies, comm), kModes * numBodies);
   toEchelonForm(basis);
   std::vector<FreeMotion> motions;

@@ -32,7 +32,7 @@ TotalFeti::TotalFeti(const mesh::Mesh& mesh, const mesh::Decomposition& decompos
     buildCoarseRows(mesh, decomposition);
     measureTraffic();  // before the coarse factor: "Auto" compares the coarse solve with it
     coarse_ = std::make_unique<CoarseProblem>(*G_, numSubdomains_, B_.numRows, gMax_, subdomainBytesPerF_, comm_,
-                                              settings_, profile_);
+                                              settings_, profile_, pinnedModes());
     coarse_->factorize();
   }
   if (settings_.deadline) settings_.deadline->check("the coarse problem", rawComm(*comm));
@@ -56,6 +56,7 @@ void TotalFeti::setRightHandSide(const std::vector<std::vector<double>>& fOwned,
                                    << " has " << local_[i]->system.f.size() << " dofs, its load "
                                    << fOwned[i].size());
     local_[i]->system.f = fOwned[i];
+    if (!local_[i]->eliminated.dof.empty()) eliminateLoads(local_[i]->system.f, local_[i]->eliminated);
   }
   c_ = cOwned;
   buildDualData();
@@ -86,6 +87,25 @@ void TotalFeti::buildMaps(int numOwned) {
   xOverlap_ = Teuchos::rcp(new DualVector(overlapMap_));
 }
 
+std::vector<char> TotalFeti::pinnedModes() const {
+  // The columns of R that eliminated components left 0, of every subdomain (owners know theirs).
+  std::vector<int> mine(6 * static_cast<size_t>(numSubdomains_), 0), all(mine.size(), 0);
+  for (const auto& L : local_)
+    for (int j = L->liveModes; j < 6; ++j) mine[6 * static_cast<size_t>(L->subdomain) + j] = 1;
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, static_cast<int>(mine.size()), mine.data(), all.data());
+  return std::vector<char>(all.begin(), all.end());
+}
+
+std::vector<EliminatedReaction> TotalFeti::eliminatedReactions(const std::vector<std::vector<double>>& u) const {
+  std::vector<EliminatedReaction> out;
+  for (size_t i = 0; i < local_.size(); ++i) {
+    const Local& L = *local_[i];
+    const std::vector<double> force = feti::eliminatedReactions(L.eliminated, u[i]);
+    for (size_t k = 0; k < force.size(); ++k) out.push_back({L.subdomain, L.eliminated.dof[k], force[k]});
+  }
+  return out;
+}
+
 void TotalFeti::setUpSubdomains(const mesh::Mesh& mesh, const mesh::Decomposition& decomposition,
                                 std::vector<fem::SubdomainSystem> owned) {
   const int numOwned = static_cast<int>(owned.size());
@@ -107,6 +127,8 @@ void TotalFeti::setUpSubdomains(const mesh::Mesh& mesh, const mesh::Decompositio
     L->block = &B_.blocks[L->subdomain];
     L->system = std::move(owned[i]);
     L->system.R = std::move(R[i]);
+    if (!L->block->eliminated.empty())
+      L->eliminated = eliminateComponents(L->system, L->block->eliminated, L->liveModes);
     for (GO row : L->block->rows) L->overlapIndex.push_back(overlapMap_->getLocalElement(rowId(row)));
     L->rowOrder.resize(L->m());
     std::iota(L->rowOrder.begin(), L->rowOrder.end(), 0);

@@ -29,6 +29,7 @@
 #include "tribos/core/Parallel.hpp"
 #include "tribos/core/PhaseTimer.hpp"
 #include "tribos/core/ReproducibleSum.hpp"
+#include "EliminatedComponents.hpp"
 #include "tribos/core/Timer.hpp"
 #include "tribos/feti/DistributedCoarseSolve.hpp"
 #include "tribos/fem/SubdomainSystem.hpp"
@@ -294,6 +295,8 @@ struct TotalFeti::Local {
   SubdomainSolver solver;
   std::vector<double> denseF;    ///< explicit F_s when requested (packLowerInRowOrder)
   DirichletBlocks dirichlet;     ///< the Dirichlet preconditioner's blocks of K (when requested)
+  EliminatedRows eliminated;     ///< the components eliminated from K_s (block->eliminated)
+  int liveModes = 6;             ///< R's columns that are rigid modes (the rest are 0: eliminated)
   std::vector<double> in, out, x, y;
   LO m() const { return static_cast<LO>(block->rows.size()); }
   LO n() const { return system.K.n; }

@@ -303,7 +303,7 @@ std::array<int, 3> gatherStateResults(const Scene& scene, const feti::Constraint
                                       const feti::TotalFeti& feti, const contact::ContactResult& result,
                                       MPI_Comm comm, const ContactFields* before, StepResults& out) {
   out.displacement = gatherDisplacement(scene, feti.firstOwnedSubdomain(), result.displacement, comm);
-  out.reaction = gatherReactions(scene, B, result.lambda, comm);
+  out.reaction = gatherReactions(scene, B, feti.eliminatedReactions(result.displacement), result.lambda, comm);
   gatherContactFields(scene, B, result.nodes, comm, out);
   addKinematicSlip(scene, B, out.displacement.value, before, out);
   std::array<int, 3> change = addPrescribedSlipFriction(scene, B, out.displacement.value, before, out.reaction, out);

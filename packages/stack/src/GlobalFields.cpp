@@ -117,6 +117,7 @@ void addDroppedContactForces(const feti::ConstraintMatrix& B, const PrescribedCo
 }  // namespace
 
 std::vector<std::array<double, 3>> gatherReactions(const Scene& scene, const feti::ConstraintMatrix& B,
+                                                   const std::vector<feti::EliminatedReaction>& eliminated,
                                                    const std::vector<double>& ownedLambda, MPI_Comm comm) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
@@ -129,6 +130,10 @@ std::vector<std::array<double, 3>> gatherReactions(const Scene& scene, const fet
     mine.add(3 * static_cast<long long>(node) + component, &force);
   });
   addDroppedContactForces(B, PrescribedComponents(scene), first, end, ownedLambda, mine);
+  for (const auto& r : eliminated) {
+    const LO node = scene.decomposition.subdomains[r.subdomain].nodes[r.dof / 3];
+    mine.add(3 * static_cast<long long>(node) + r.dof % 3, &r.force);
+  }
   const Records all = gatherToRoot(mine, comm);
   std::vector<std::array<double, 3>> out;
   if (rank != 0) return out;

@@ -22,6 +22,7 @@ feti::ConstraintSpec constraintSpec(const Scene& scene) {
   feti::ConstraintSpec spec;
   spec.dirichletNodeSets = scene.dirichletNodeSets;
   spec.displacementConditions = scene.displacementConditions;
+  spec.eliminateZeroComponents = scene.eliminateZeroComponents;
   // The conditions of step 1 (Load Steps/<name>/Active; later steps: ConditionSteps.hpp).
   for (const auto& active : scene.conditionActive) spec.presentConditions.push_back(active.front());
   for (const auto& one : scene.contacts) spec.interfaces.push_back(one.rows);
@@ -122,7 +123,7 @@ LinearFetiResult solveLinearFeti(const Scene& scene, std::vector<fem::SubdomainS
     const auto lam = lambda->getLocalViewHost(Tpetra::Access::ReadOnly);
     for (size_t i = 0; i < lam.extent(0); ++i) ownedLambda.push_back(lam(i, 0));
   }
-  result.reaction = gatherReactions(scene, B, ownedLambda, comm);
+  result.reaction = gatherReactions(scene, B, feti.eliminatedReactions(u), ownedLambda, comm);
   // Bonded interfaces: their forces are the contact rows' multipliers.
   if (!scene.contacts.empty()) {
     std::vector<double> residual;

@@ -248,6 +248,14 @@ void fetiParameters(ParameterList& pl) {
       "preconditioned in face (restricted to the free set)",
       Teuchos::Array<std::string>(core::namesOf(feti::kDualPreconditionerNames)), &pl);
   Teuchos::setStringToIntegralParameter<int>(
+      "Displacement Conditions", "Multipliers",
+      "how a displacement component prescribed to 0 is held (Dirichlet Node Sets; a Boundary/<name> of value 0 "
+      "that holds from the reference): \"Multipliers\" (a row of B per subdomain copy, T-FETI as the paper) or "
+      "\"Eliminated\" (removed from K_s; a subdomain's rigid modes are then those the eliminated components "
+      "leave free). Eliminated keeps F well conditioned where such rows cover most nodes of a thin body (a "
+      "plane-strain slice: doc/measurements/curved_iterations.md); other components keep their rows",
+      Teuchos::tuple<std::string>("Multipliers", "Eliminated"), &pl);
+  Teuchos::setStringToIntegralParameter<int>(
       "Coarse Factor Precision", "Auto",
       "contact solves: the factor of G G^T that SMALSE-M's projections use: \"Single\" (rounded to 4 bytes per "
       "value: half the bytes per coarse solve; SMALSE-M's penalty on G mu keeps the solution that of the exact "

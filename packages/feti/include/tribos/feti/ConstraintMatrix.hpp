@@ -107,6 +107,11 @@ struct ConstraintSpec {
   /// the reference mesh decides.
   const std::vector<std::array<double, 3>>* pairingDisplacement = nullptr;
   const ConstraintMatrix* solvedPairing = nullptr;
+  /// FETI/Displacement Conditions = Eliminated: a component prescribed to 0 (every Dirichlet
+  /// Node Set; a Boundary/<name> with value 0 that starts from the reference) gets no rows; its
+  /// dofs are listed in SubdomainBlock::eliminated and TotalFeti removes them from K_s
+  /// (doc/measurements/curved_iterations.md: the u_y = 0 rows of a thin plane-strain slice).
+  bool eliminateZeroComponents = false;
 };
 
 /// One slave contact node r with its projection and frame (DESIGN.md conventions).
@@ -158,11 +163,21 @@ struct ContactNode {
 };
 
 /// B_s: the rows of B that touch subdomain s, as a sparse (rows x local dofs) matrix.
+/// The force a support takes at a component eliminated from K_s (TotalFeti::eliminatedReactions).
+struct EliminatedReaction {
+  int subdomain;
+  LO dof;        ///< local dof of the subdomain
+  double force;
+};
+
 struct SubdomainBlock {
   std::vector<GO> rows;      ///< global row ids, ascending
   std::vector<LO> rowPtr;    ///< rows.size() + 1
   std::vector<LO> dof;       ///< local dof (3 * local node + component)
   std::vector<double> value;
+  /// Local dofs prescribed to 0 and eliminated from K_s instead of given rows
+  /// (ConstraintSpec::eliminateZeroComponents), ascending; owned subdomains only.
+  std::vector<LO> eliminated;
 };
 
 /// What the contact search and the mortar integration found on one interface (every pair,

@@ -248,6 +248,10 @@ class TotalFeti {
   std::vector<std::vector<double>> recoverDisplacements(const DualVector& lambda,
                                                         const std::vector<double>& alpha) const;
 
+  /// The reactions at the components eliminated from K_s (FETI/Displacement Conditions =
+  /// Eliminated): (K_s u_s - f_s) at each, for the owned subdomains' displacements u.
+  std::vector<EliminatedReaction> eliminatedReactions(const std::vector<std::vector<double>>& u) const;
+
   /// 1/2 u^T K u - f^T u summed over all subdomains (collective).
   double energy(const std::vector<std::vector<double>>& u) const;
   /// ||f||_inf over all subdomains (collective).
@@ -286,6 +290,8 @@ class TotalFeti {
   // body modes and (3) the owned subdomains' structures; (3) their factorisations; (5) e, d~
   // and lambda_Im.
   void buildMaps(int numOwned);
+  /// Per coarse row (6 per subdomain), 1 where R's column is 0 (eliminated components), all ranks.
+  std::vector<char> pinnedModes() const;
   void setUpSubdomains(const mesh::Mesh& mesh, const mesh::Decomposition& decomposition,
                        std::vector<fem::SubdomainSystem> owned);
   void factorizeSubdomains(const mesh::Mesh& mesh, const mesh::Decomposition& decomposition);

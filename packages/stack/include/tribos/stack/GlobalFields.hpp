@@ -29,6 +29,7 @@ GlobalDisplacement gatherDisplacement(const Scene& scene, int firstOwned, const 
 /// multipliers of this rank's rows [B.firstRowOfRank[rank], B.firstRowOfRank[rank + 1]).
 /// Collective over `comm`.
 std::vector<std::array<double, 3>> gatherReactions(const Scene& scene, const feti::ConstraintMatrix& B,
+                                                   const std::vector<feti::EliminatedReaction>& eliminated,
                                                    const std::vector<double>& ownedLambda, MPI_Comm comm);
 
 /// The applied load: the sum of the nodal loads f_s of every subdomain (each traction and

@@ -79,6 +79,9 @@ struct Scene {
   std::vector<PretensionSection> pretensions;  ///< Pretension/<name> sublists (a load history)
   /// Solver/Pairing Updates for a contact problem; 0 for a linear scene.
   int pairingUpdates = 0;
+  /// FETI/Displacement Conditions = Eliminated: components prescribed to 0 leave K_s instead of
+  /// getting rows of B (feti::ConstraintSpec::eliminateZeroComponents).
+  bool eliminateZeroComponents = false;
   double meshSeconds = 0.0, decompositionSeconds = 0.0;
 };
 

@@ -1,0 +1,36 @@
+#pragma once
+// Internal to feti/: displacement components prescribed to 0 and eliminated from K_s instead
+// of enforced by rows of B (FETI/Displacement Conditions = Eliminated; ConstraintSpec::
+// eliminateZeroComponents). Why: rows u_c = 0 on most nodes of a thin plane-strain slice make
+// F ill-conditioned however it is preconditioned (the Hertz cylinder at hc 0.05: kappa 4 478
+// with the rows, 20 without them; doc/measurements/curved_iterations.md).
+#include <vector>
+
+#include "tribos/fem/SubdomainSystem.hpp"
+
+namespace tribos::feti {
+
+/// What the elimination took out of one subdomain's system: the rows of K_s and the loads
+/// at the eliminated dofs, for their reactions K u - f.
+struct EliminatedRows {
+  std::vector<LO> dof;          ///< ascending local dofs
+  std::vector<LO> rowPtr{0};    ///< dof.size() + 1
+  std::vector<LO> colInd;
+  std::vector<double> values;
+  std::vector<double> load;     ///< f_s at each dof as last given (setLoads)
+};
+
+/// Removes `dofs` (ascending) from `system`: their rows are kept in the result, rows and
+/// columns of K set to 0 but the diagonal (so that K_s u = f gives u = 0 there), and R
+/// replaced by the rigid modes that vanish at those dofs (orthonormal, first), the other
+/// columns 0: G's rows for those modes vanish, and the coarse problem pins them (CoarseProblem).
+/// The live column count is returned in `liveModes`.
+EliminatedRows eliminateComponents(fem::SubdomainSystem& system, const std::vector<LO>& dofs, int& liveModes);
+
+/// f at the eliminated dofs kept (EliminatedRows::load) and set to 0.
+void eliminateLoads(std::vector<double>& f, EliminatedRows& rows);
+
+/// The reaction at each eliminated dof: (K_s u)_dof - f_dof with the rows as they were.
+std::vector<double> eliminatedReactions(const EliminatedRows& rows, const std::vector<double>& u);
+
+}  // namespace tribos::feti

@@ -1,0 +1,77 @@
+// FETI/Displacement Conditions = Eliminated (issue 46): components prescribed to 0 leave K_s
+// instead of getting rows of B, the subdomains' rigid modes shrink to those the eliminated
+// components leave free, and the coarse problem pins the others. The discrete problem is the
+// same, so the solution must be the one with multipliers to the solver's tolerance: energy,
+// contact forces, reactions (now K u - f at the eliminated dofs) and the force balance, on a
+// clamped cantilever (linear T-FETI), the paper's clamped bricks (every subdomain of the
+// clamped faces loses all six modes) and a Hertz cylinder with Coulomb friction on a thin
+// plane-strain slice (u_y = 0 on both end faces: the scene it is for).
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "RunCommand.hpp"
+#include "TestPaths.hpp"
+
+namespace {
+nlohmann::json solve(const std::string& input, const std::string& settings, const std::string& conditions) {
+  char tmpl[] = "/tmp/tribos_eliminated_XXXXXX";
+  if (!::mkdtemp(tmpl)) return {};
+  const std::filesystem::path summary = std::filesystem::path(tmpl) / "s.json";
+  const std::string command = std::string(TRIBOS_DRIVER) + " --input " +
+                              tribos::test::quote(tribos::test::sourceDir() + "/input/" + input) + " " + settings +
+                              " --set 'FETI/Displacement Conditions=" + conditions +
+                              "' --set Solver/Verbose=false --summary " + summary.string();
+  const auto run = tribos::test::runCommand(command);
+  EXPECT_EQ(run.status, 0) << command << "\n" << run.output;
+  nlohmann::json j;
+  if (std::ifstream in(summary); in) j = nlohmann::json::parse(in);
+  std::filesystem::remove_all(tmpl);
+  return j;
+}
+
+double relative(double a, double b) { return std::abs(a - b) / std::max(std::abs(b), 1e-300); }
+
+// The same solution both ways: strain energy, normal force, every support's reaction (relative to
+// the largest), the force balance.
+void expectSameSolution(const std::string& input, const std::string& settings, double tolerance) {
+  const auto rows = solve(input, settings, "Multipliers");
+  const auto eliminated = solve(input, settings, "Eliminated");
+  ASSERT_FALSE(rows.is_null());
+  ASSERT_FALSE(eliminated.is_null());
+  ASSERT_TRUE(eliminated["converged"].get<bool>()) << eliminated["message"];
+  EXPECT_LT(eliminated["n_dual"].get<long long>(), rows["n_dual"].get<long long>());
+  EXPECT_LE(relative(eliminated["strain_energy"], rows["strain_energy"]), tolerance);
+  if (rows.contains("total_normal_force"))
+    EXPECT_LE(relative(eliminated["total_normal_force"], rows["total_normal_force"]), tolerance);
+  double largest = 0.0;
+  for (const auto& [name, force] : rows["reactions"].items())
+    for (int d = 0; d < 3; ++d) largest = std::max(largest, std::abs(force[d].get<double>()));
+  ASSERT_GT(largest, 0.0);
+  for (const auto& [name, force] : rows["reactions"].items()) {
+    SCOPED_TRACE(name);
+    ASSERT_TRUE(eliminated["reactions"].contains(name));
+    for (int d = 0; d < 3; ++d)
+      EXPECT_LE(std::abs(eliminated["reactions"][name][d].get<double>() - force[d].get<double>()), tolerance * largest);
+  }
+  EXPECT_LE(eliminated["force_balance"].get<double>(), 1e-8);
+}
+}  // namespace
+
+TEST(eliminatedConditions, clampedCantileverAsWithMultipliers) {
+  expectSameSolution("cantilever_hex8.xml", "--set FETI/Max\\ Iterations=1000", 1e-5);
+}
+
+TEST(eliminatedConditions, paperBricksEverySubdomainOfTheClampsPinned) {
+  expectSameSolution("two_bricks.xml", "--set 'Mesh/Subdomains Per Brick=2x1x1' --set 'Mesh/H Over h=3'", 1e-5);
+}
+
+TEST(eliminatedConditions, planeStrainSliceCoulombAsWithMultipliers) {
+  expectSameSolution("hertz_cylinder.xml",
+                     "--set Mesh/File=meshes/hertz_cylinder_h0.2.exo --set 'Contact/Friction Model=Coulomb'", 1e-5);
+}
