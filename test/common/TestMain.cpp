@@ -16,6 +16,7 @@
 
 #include "tribos/core/Parallel.hpp"
 #include "tribos/core/RankErrors.hpp"
+#include "tribos/core/SingletonStart.hpp"
 
 namespace {
 class MeetAfterEachTest : public ::testing::EmptyTestEventListener {
@@ -62,6 +63,7 @@ void abortJobOnUncaughtException() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  tribos::core::chooseQuickSingletonStart();  // a test run without mpirun starts in 0.04 s, not 0.4 s
   MPI_Init(&argc, &argv);
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
