@@ -75,3 +75,10 @@ TEST(eliminatedConditions, planeStrainSliceCoulombAsWithMultipliers) {
   expectSameSolution("hertz_cylinder.xml",
                      "--set Mesh/File=meshes/hertz_cylinder_h0.2.exo --set 'Contact/Friction Model=Coulomb'", 1e-5);
 }
+
+// A load history whose grip takes hold after a preload (Load Steps/grip/Active {0, 1, 1}): the
+// grip starts where step 1 left its nodes (a base that is not 0: rows), the clamp below is
+// eliminated; the constraints are rebuilt when the grip takes hold.
+TEST(eliminatedConditions, gripAddedAfterAPreloadAsWithMultipliers) {
+  expectSameSolution("../test/integration/grip_after_preload.xml", "", 1e-5);
+}
