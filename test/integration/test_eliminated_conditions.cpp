@@ -64,7 +64,7 @@ void expectSameSolution(const std::string& input, const std::string& settings, d
 }  // namespace
 
 TEST(eliminatedConditions, clampedCantileverAsWithMultipliers) {
-  expectSameSolution("cantilever_hex8.xml", "--set FETI/Max\\ Iterations=1000", 1e-5);
+  expectSameSolution("cantilever_hex8.xml", "", 1e-5);
 }
 
 TEST(eliminatedConditions, paperBricksEverySubdomainOfTheClampsPinned) {

@@ -7,6 +7,7 @@
 #include "tribos/feti/ConstraintMatrix.hpp"
 
 #include "ConstraintRows.hpp"
+#include "EliminatedComponents.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -96,6 +97,39 @@ Prescribed prescribedComponents(const mesh::Mesh& mesh, const ConstraintSpec& sp
 using namespace rows;
 
 namespace {
+/// A component prescribed to 0 from the reference (no base): what elimination may take out of K_s.
+bool eliminable(const Prescribed& p, size_t dof) { return p.fixed[dof] && p.value[dof] == 0.0 && p.base[dof] == 0.0; }
+
+/// Per subdomain, whether it eliminates its zero components (ConstraintSpec::eliminateZeroComponents):
+/// not where they are few (under kFewComponents of its dofs) and hold a rigid mode only weakly
+/// (weakestRestraint under kWeakRestraint): eliminated there, K_s keeps a nearly rigid motion
+/// held at a small patch, whose compliance enters F. Measured (doc/measurements/curved_iterations.md):
+/// a subdomain of the Cattaneo sphere touching its symmetry plane at 35 of its 1 233 dofs holds
+/// a mode at 5.3e-3 and made ||PFP|| 17 times larger eliminated; the plane-strain slices' subdomains
+/// hold theirs at 3.7e-3 and more but with 70 % of their dofs, and eliminated are what makes F
+/// well conditioned. Neither number alone separates them.
+constexpr double kWeakRestraint = 1e-2;
+constexpr double kFewComponents = 0.05;
+
+std::vector<char> subdomainsThatEliminate(const mesh::Mesh& mesh, const mesh::Decomposition& decomposition,
+                                          const Prescribed& prescribed) {
+  std::vector<char> out(decomposition.subdomains.size(), 0);
+  for (size_t s = 0; s < out.size(); ++s) {
+    const auto& nodes = decomposition.subdomains[s].nodes;
+    std::vector<std::array<double, 3>> coords;
+    std::vector<LO> dofs;
+    for (size_t k = 0; k < nodes.size(); ++k) {
+      coords.push_back(mesh.coords[nodes[k]]);
+      for (int c = 0; c < 3; ++c)
+        if (eliminable(prescribed, 3 * static_cast<size_t>(nodes[k]) + c)) dofs.push_back(static_cast<LO>(3 * k + c));
+    }
+    if (dofs.empty()) continue;
+    const bool few = static_cast<double>(dofs.size()) < kFewComponents * 3.0 * static_cast<double>(nodes.size());
+    out[s] = !(few && weakestRestraint(coords, dofs) < kWeakRestraint);
+  }
+  return out;
+}
+
 /// (3) Gluing rows (Helmert basis of the differences of the copies) per free component, and
 /// displacement rows per prescribed component.
 void addGluingAndDirichletRows(LO numNodes, const RowContext& ctx, RowList& list) {
@@ -106,17 +140,16 @@ void addGluingAndDirichletRows(LO numNodes, const RowContext& ctx, RowList& list
     const int owner = k > 1 ? mesh::ownerRank(ctx.copies.of(n, 0).subdomain, ctx.numSubdomains, ctx.numRanks) : 0;
     for (int c = 0; c < 3; ++c) {
       const size_t dof = 3 * static_cast<size_t>(n) + c;
-      if (ctx.prescribed.fixed[dof] && ctx.eliminateZeroComponents && ctx.prescribed.value[dof] == 0.0 &&
-          ctx.prescribed.base[dof] == 0.0) {
-        // Eliminated from K_s instead (TotalFeti): no rows.
-        for (LO j = 0; j < k; ++j) list.eliminated.push_back({ctx.copies.of(n, j).subdomain, 3 * ctx.copies.of(n, j).localNode + c});
-        continue;
-      }
       if (ctx.prescribed.fixed[dof]) {
         // Every copy prescribed, no gluing rows: the paper's count (k-1 gluing + 1
-        // Dirichlet per component) and B stays orthonormal (ALGORITHMS.md 2).
+        // Dirichlet per component) and B stays orthonormal (ALGORITHMS.md 2). A copy in a
+        // subdomain that eliminates its zero components has none (TotalFeti takes it out of K_s).
         for (LO j = 0; j < k; ++j) {
           const Copy& cp = ctx.copies.of(n, j);
+          if (!ctx.eliminateIn.empty() && ctx.eliminateIn[cp.subdomain] && eliminable(ctx.prescribed, dof)) {
+            list.eliminated.push_back({cp.subdomain, 3 * cp.localNode + c});
+            continue;
+          }
           Row row = list.begin();
           row.kind = RowKind::Dirichlet;
           list.append({cp.subdomain, 3 * cp.localNode + c, 1.0});
@@ -227,7 +260,8 @@ ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decom
   // (1) Copies of every global node, in ascending subdomain order (ALGORITHMS.md 2).
   const NodeCopies copies = nodeCopies(decomposition, mesh.numNodes());
   const Prescribed prescribed = prescribedComponents(mesh, spec);
-  const RowContext ctx{copies, prescribed, decomposition.numSubdomains(), numRanks, spec.eliminateZeroComponents};
+  RowContext ctx{copies, prescribed, decomposition.numSubdomains(), numRanks};
+  if (spec.eliminateZeroComponents) ctx.eliminateIn = subdomainsThatEliminate(mesh, decomposition, prescribed);
   RowList list;
   ConstraintMatrix B;
   B.overlappingConditions.assign(prescribed.overlapping.begin(), prescribed.overlapping.end());

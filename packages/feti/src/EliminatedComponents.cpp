@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "SymmetricEigen.hpp"
 
@@ -13,15 +14,22 @@ constexpr int kModes = 6;
 /// marks a rigid mode that vanishes at every eliminated dof.
 constexpr double kVanishing = 1e-10;
 
-/// R := R T, T the orthonormal basis of the kernel of C R (C: the rows of the eliminated dofs),
-/// padded with zero columns to 6; returns the number of live columns.
-int modesVanishingAt(std::vector<double>& R, LO n, const std::vector<LO>& dofs) {
-  std::vector<double> gram(kModes * kModes, 0.0), vectors;
+/// The eigenvalues and eigenvectors (columns, row-major) of (C R)^T (C R), C the rows of `dofs`.
+std::vector<double> restraintGram(const std::vector<double>& R, LO n, const std::vector<LO>& dofs,
+                                  std::vector<double>& vectors) {
+  std::vector<double> gram(kModes * kModes, 0.0);
   for (LO d : dofs)
     for (int i = 0; i < kModes; ++i)
       for (int j = 0; j < kModes; ++j)
         gram[kModes * i + j] += R[static_cast<size_t>(i) * n + d] * R[static_cast<size_t>(j) * n + d];
-  const std::vector<double> values = symmetricEigen(gram, kModes, vectors);
+  return symmetricEigen(gram, kModes, vectors);
+}
+
+/// R := R T, T the orthonormal basis of the kernel of C R (C: the rows of the eliminated dofs),
+/// padded with zero columns to 6; returns the number of live columns.
+int modesVanishingAt(std::vector<double>& R, LO n, const std::vector<LO>& dofs) {
+  std::vector<double> vectors;
+  const std::vector<double> values = restraintGram(R, n, dofs, vectors);
   double largest = 1.0;
   for (double v : values) largest = std::max(largest, v);
   std::vector<double> reduced(R.size(), 0.0);
@@ -40,6 +48,18 @@ int modesVanishingAt(std::vector<double>& R, LO n, const std::vector<LO>& dofs) 
   return live;
 }
 }  // namespace
+
+double weakestRestraint(const std::vector<std::array<double, 3>>& coords, const std::vector<LO>& dofs) {
+  if (dofs.empty()) return std::numeric_limits<double>::infinity();
+  const std::vector<double> R = fem::rigidBodyModes(coords);
+  std::vector<double> vectors;
+  const std::vector<double> values = restraintGram(R, static_cast<LO>(3 * coords.size()), dofs, vectors);
+  double largest = 1.0, weakest = std::numeric_limits<double>::infinity();
+  for (double v : values) largest = std::max(largest, v);
+  for (double v : values)
+    if (v > kVanishing * largest) weakest = std::min(weakest, v);
+  return weakest;
+}
 
 EliminatedRows eliminateComponents(fem::SubdomainSystem& system, const std::vector<LO>& dofs, int& liveModes) {
   fem::CsrMatrix& K = system.K;

@@ -4,6 +4,7 @@
 // eliminateZeroComponents). Why: rows u_c = 0 on most nodes of a thin plane-strain slice make
 // F ill-conditioned however it is preconditioned (the Hertz cylinder at hc 0.05: kappa 4 478
 // with the rows, 20 without them; doc/measurements/curved_iterations.md).
+#include <array>
 #include <vector>
 
 #include "tribos/fem/SubdomainSystem.hpp"
@@ -26,6 +27,13 @@ struct EliminatedRows {
 /// columns 0: G's rows for those modes vanish, and the coarse problem pins them (CoarseProblem).
 /// The live column count is returned in `liveModes`.
 EliminatedRows eliminateComponents(fem::SubdomainSystem& system, const std::vector<LO>& dofs, int& liveModes);
+
+/// How firmly `dofs` (local dofs of a subdomain with nodes at `coords`) hold the rigid modes
+/// they restrain: the smallest eigenvalue of (C R)^T (C R) above the vanishing ones, R the
+/// orthonormal rigid modes (1: a mode held at every dof; +inf: none held). A small value is a
+/// mode held at a few dofs only (a corner, a short edge): eliminated there, K_s keeps a nearly
+/// rigid motion whose compliance enters F (ConstraintMatrix keeps such subdomains' rows).
+double weakestRestraint(const std::vector<std::array<double, 3>>& coords, const std::vector<LO>& dofs);
 
 /// f at the eliminated dofs kept (EliminatedRows::load) and set to 0.
 void eliminateLoads(std::vector<double>& f, EliminatedRows& rows);

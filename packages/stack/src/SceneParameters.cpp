@@ -252,8 +252,10 @@ void fetiParameters(ParameterList& pl) {
       "how a displacement component prescribed to 0 is held (Dirichlet Node Sets; a Boundary/<name> of value 0 "
       "that holds from the reference): \"Multipliers\" (a row of B per subdomain copy, T-FETI as the paper) or "
       "\"Eliminated\" (removed from K_s; a subdomain's rigid modes are then those the eliminated components "
-      "leave free). Eliminated keeps F well conditioned where such rows cover most nodes of a thin body (a "
-      "plane-strain slice: doc/measurements/curved_iterations.md); other components keep their rows",
+      "leave free; a subdomain where they are few and hold a rigid mode only weakly keeps their rows). Eliminated "
+      "keeps F well conditioned where such rows cover most nodes of a thin body (a plane-strain slice); on the "
+      "paper's clamped bricks the rows do better (doc/measurements/curved_iterations.md); other components keep "
+      "their rows",
       Teuchos::tuple<std::string>("Multipliers", "Eliminated"), &pl);
   Teuchos::setStringToIntegralParameter<int>(
       "Coarse Factor Precision", "Auto",

@@ -20,8 +20,8 @@ struct Piece {
   std::vector<LO> dofs;  // the y components of the nodes on the face y = min
 };
 
-Piece brickWithFaceHeldInY() {
-  const mesh::TwoBricksSpec spec{{2, 1, 1}, 2};
+Piece brickWithFaceHeldInY(int hOverH = 2) {
+  const mesh::TwoBricksSpec spec{{2, 1, 1}, hOverH};
   const auto mesh = mesh::generateTwoBricks(spec);
   const auto d = mesh::buildDecomposition(mesh, mesh::structuredPartition(mesh, spec));
   Piece p;
@@ -101,4 +101,18 @@ TEST(EliminatedComponents, generalizedInverseAndReactionsOfTheReducedSystem) {
   ASSERT_EQ(reaction.size(), p.dofs.size());
   for (size_t i = 0; i < p.dofs.size(); ++i)
     EXPECT_NEAR(reaction[i], KoriginalU[p.dofs[i]] - p.original.f[p.dofs[i]], 1e-9 * scale);
+}
+
+// How firmly eliminated components hold the modes they restrain (the rule that ConstraintMatrix
+// uses to keep a subdomain's rows): a whole face held in y holds its three modes firmly; y held
+// at two neighbouring nodes of a 7 x 7 x 7 node subdomain restrains the translation and a
+// rotation weakly.
+TEST(EliminatedComponents, aWholeFaceHoldsFirmlyTwoNodesDoNot) {
+  const Piece p = brickWithFaceHeldInY(6);
+  EXPECT_GE(feti::weakestRestraint(p.coords, p.dofs), 1e-2);
+  const std::vector<LO> twoNodes = {p.dofs[0], p.dofs[1]};
+  const double weak = feti::weakestRestraint(p.coords, twoNodes);
+  EXPECT_LT(weak, 1e-2);
+  EXPECT_GT(weak, 0.0);
+  EXPECT_TRUE(std::isinf(feti::weakestRestraint(p.coords, {})));
 }
