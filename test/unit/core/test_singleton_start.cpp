@@ -4,6 +4,8 @@
 // it needs first.)
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cstdlib>
 #include <string>
 
@@ -15,6 +17,7 @@ const char* const kLaunchers[] = {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK
 void clearAll() {
   for (const char* name : kLaunchers) unsetenv(name);
   unsetenv("OMPI_MCA_ess_singleton_isolated");
+  unsetenv("OMPI_MCA_orte_jobfam_session_dir");
   unsetenv("OMPI_MCA_pml");
 }
 std::string value(const char* name) {
@@ -28,6 +31,8 @@ TEST(SingletonStart, aProcessWithoutLauncherGetsTheIsolatedObOneStart) {
   EXPECT_TRUE(tribos::core::chooseQuickSingletonStart());
   EXPECT_EQ(value("OMPI_MCA_ess_singleton_isolated"), "1");
   EXPECT_EQ(value("OMPI_MCA_pml"), "ob1");
+  // A session directory of its own: isolated singletons would share one.
+  EXPECT_NE(value("OMPI_MCA_orte_jobfam_session_dir").find("." + std::to_string(getpid())), std::string::npos);
   EXPECT_FALSE(tribos::core::chooseQuickSingletonStart());  // already chosen: nothing changes
 }
 
@@ -39,6 +44,7 @@ TEST(SingletonStart, aLaunchedProcessKeepsTheSitesChoice) {
     EXPECT_FALSE(tribos::core::chooseQuickSingletonStart());
     EXPECT_EQ(value("OMPI_MCA_pml"), "(unset)");
     EXPECT_EQ(value("OMPI_MCA_ess_singleton_isolated"), "(unset)");
+    EXPECT_EQ(value("OMPI_MCA_orte_jobfam_session_dir"), "(unset)");
   }
 }
 

@@ -10,7 +10,9 @@ namespace tribos::core {
 
 /// Before MPI_Init: when no launcher started this process (none of OMPI_COMM_WORLD_SIZE,
 /// PMIX_RANK, PMI_RANK, PMI_SIZE is set), sets OMPI_MCA_ess_singleton_isolated=1 (no daemon)
-/// and OMPI_MCA_pml=ob1 (no UCX) unless the environment already chooses them. Processes that
+/// with a session directory of the process's own (OMPI_MCA_orte_jobfam_session_dir: isolated
+/// singletons would otherwise share one) and OMPI_MCA_pml=ob1 (no UCX), each unless the
+/// environment already chooses it (a user's own isolated setting keeps Open MPI's directory). Processes that
 /// mpirun or srun start keep the site's choice (UCX is what carries InfiniBand). Returns
 /// whether it set anything.
 bool chooseQuickSingletonStart();
