@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "tribos/core/Errors.hpp"
+#include "tribos/stack/OutputRegistry.hpp"
 #include "tribos/stack/RunReport.hpp"
 
 namespace tribos::driver {
@@ -44,15 +45,13 @@ void HistoryResults::take(const stack::ContactSolveResult& soFar, size_t i) {
   stack::addResultsToSummary(stress, balance, extra);
   extras_.push_back(extra);
   if (!draft_) return;
-  nlohmann::json entry = stack::stepSummary(soFar, i);
-  entry.update(extra);
   OutputStep out;
   out.time = soFar.steps[i].time;
   out.displacement = &step.displacement.value;
   out.reaction = &step.reaction;
   out.stress = &stress;
   if (!scene_.contacts.empty()) out.contact = &step;
-  out.globals = globalValues(entry);
+  out.globals = stack::globalVariables(stack::withStresses(stack::outcomeOf(soFar, i), stress, balance));
   append(out);
 }
 

@@ -4,7 +4,6 @@
 #include <Teuchos_ParameterList.hpp>
 
 #include <array>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -22,7 +21,7 @@ struct OutputStep {
   const std::vector<std::array<double, 3>>* reaction = nullptr;
   const stack::StressResults* stress = nullptr;
   const stack::ContactFields* contact = nullptr;  ///< scenes with contact interfaces
-  std::vector<mesh::GlobalValue> globals;
+  std::vector<mesh::GlobalValue> globals;  ///< stack::globalVariables of the step
 };
 
 /// Everything the Exodus result shows besides the mesh: one time step, or one per load step.
@@ -43,9 +42,5 @@ void writeOutput(const std::string& path, const stack::Scene& scene, const Outpu
 /// The result file says how it was made: the command line and the effective parameter list
 /// (defaults filled in) as XML, one info record per line.
 std::vector<std::string> infoRecords(int argc, char** argv, const Teuchos::ParameterList& params);
-
-/// Per-step global variables: the summary's counts and KKT residuals (numbers only), of the
-/// summary itself or of one entry of its steps.
-std::vector<mesh::GlobalValue> globalValues(const nlohmann::json& summary);
 
 }  // namespace tribos::driver

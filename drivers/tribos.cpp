@@ -51,6 +51,7 @@
 #include "tribos/feti/Solvability.hpp"
 #include "tribos/stack/RankData.hpp"
 #include "tribos/stack/Results.hpp"
+#include "tribos/stack/OutputRegistry.hpp"
 #include "tribos/stack/RunReport.hpp"
 #include "tribos/stack/Scene.hpp"
 #include "tribos/stack/SceneParameters.hpp"
@@ -58,7 +59,6 @@
 
 namespace {
 using namespace tribos;
-using driver::globalValues;
 using driver::infoRecords;
 using driver::OutputData;
 using driver::OutputStep;
@@ -230,11 +230,6 @@ void writeResults(int argc, char** argv, const RunStart& start, const stack::Sce
   const auto& [cl, params, meshFile, resultFiles, deadline, total] = start;
   std::string writeError;
   if (resultFiles.exodus) {
-    // Per-step global variables: a load history's from its steps' entries, else the summary's.
-    const bool history = summary.contains("steps");
-    const size_t first = taken ? taken->taken() : 0;
-    for (size_t k = 0; k < output.steps.size(); ++k)
-      output.steps[k].globals = globalValues(history ? summary["steps"][first + k] : summary);
     output.info = infoRecords(argc, argv, params);
     try {
       if (taken)
@@ -292,6 +287,11 @@ std::vector<OutputStep> resultSteps(const stack::Scene& scene, const stack::Scen
     const auto balance = stack::forceBalance(scene, *out.reaction, appliedLoad, magnitude);
     out.time = history ? summary["steps"][k]["time"].get<double>() : 1.0;
     if (history) stack::addResultsToSummary(s, balance, summary["steps"][k]);
+    // The step's global variables (stack/OutputRegistry.hpp), from its results.
+    const stack::StepOutcome outcome = !solve.contactProblem ? stack::outcomeOf(solve.linear)
+                                       : history             ? stack::outcomeOf(solve.contactSolve, k)
+                                                             : stack::outcomeOf(solve.contactSolve);
+    out.globals = stack::globalVariables(stack::withStresses(outcome, s, balance));
     if (!last) continue;
     stack::addResultsToSummary(s, balance, summary);
     std::cout << "  strain energy " << s.strainEnergy << "; applied load (" << appliedLoad[0] << ", "

@@ -8,6 +8,7 @@
 #include "tribos/core/RankErrors.hpp"
 #include "tribos/core/Validators.hpp"
 #include "tribos/mesh/ExodusIO.hpp"
+#include "tribos/stack/OutputRegistry.hpp"
 
 namespace tribos::stack {
 namespace {
@@ -94,7 +95,7 @@ std::vector<std::array<double, 3>> fileDisplacement(const mesh::ExodusData& data
   const mesh::TimeStep& step = data.steps[static_cast<size_t>(k - 1)];
   std::vector<std::array<double, 3>> u(data.mesh.coords.size());
   for (int c = 0; c < 3; ++c) {
-    const std::string name = std::string("displ_") + "xyz"[c];
+    const std::string name = displacementField(c);
     const auto& values = nodalField(step, name, where);
     requirePlausible(values, name, false, where);
     for (size_t n = 0; n < u.size(); ++n) u[n][c] = values[n];
@@ -127,8 +128,8 @@ RestartState readRestart(const std::string& file, const Scene& scene, const feti
   RestartState state;
   state.file = file;
   for (const auto& step : data.steps) {
-    const double* number = globalValue(step, "load_step");
-    const double* converged = globalValue(step, "converged");
+    const double* number = globalValue(step, variable::kLoadStep);
+    const double* converged = globalValue(step, variable::kConverged);
     core::requireInput(number && converged, where + ": no global variables load_step and converged (not a result of "
                                                     "a tribos load history)");
     requireStepNumber(*number, state.step + 1, where);
@@ -157,7 +158,7 @@ RestartState readRestart(const std::string& file, const Scene& scene, const feti
   }
   // A file cut inside its last step reads the missing values as zeros (issue 44: exit 0 with
   // the friction memory lost); results before this check have no sum, and are taken as they are.
-  if (const double* sum = globalValue(*last, "contact_memory_sum")) {
+  if (const double* sum = globalValue(*last, variable::kContactMemorySum)) {
     const double now = contactMemorySum(t.contactTangentialT1, t.contactTangentialT2, t.contactAccumulatedSlip);
     core::requireInput(std::abs(now - *sum) <= 1e-12 * std::abs(*sum),
                        where + ": load step " + std::to_string(state.step) + "'s contact memory sums to " +
@@ -165,7 +166,7 @@ RestartState readRestart(const std::string& file, const Scene& scene, const feti
                            " with it: the file is cut or damaged");
   }
   for (const auto& one : scene.contacts) {
-    const std::string name = (one.rows.name.empty() ? std::string("contact") : one.rows.name) + "_dissipated_energy";
+    const std::string name = interfaceVariable(one.rows.name, variable::kDissipatedEnergy);
     const double* energy = globalValue(*last, name);
     core::requireInput(energy != nullptr, where + ": no global variable " + name + " (the scene's " + one.rows.list() +
                                               " is not in that result)");
@@ -173,12 +174,12 @@ RestartState readRestart(const std::string& file, const Scene& scene, const feti
     t.interfaces.back().dissipatedEnergy = *energy;
     requirePlausible(*energy, name, where);
   }
-  const double* total = globalValue(*last, "dissipated_energy");
+  const double* total = globalValue(*last, variable::kDissipatedEnergy);
   core::requireInput(total != nullptr, where + ": no global variable dissipated_energy");
   t.dissipatedEnergy = *total;
-  requirePlausible(*total, "dissipated_energy", where);
+  requirePlausible(*total, variable::kDissipatedEnergy, where);
   for (const auto& section : scene.pretensions) {
-    const std::string name = section.name + "_pretension_shortening";
+    const std::string name = sectionVariable(section.name, variable::kSectionShortening);
     const double* shortening = globalValue(*last, name);
     core::requireInput(shortening != nullptr, where + ": no global variable " + name + " (Pretension/" + section.name +
                                                   " is not in that result)");

@@ -8,6 +8,8 @@
 #include <iomanip>
 #include <sstream>
 
+#include "tribos/stack/OutputRegistry.hpp"
+
 namespace tribos::stack {
 
 namespace {
@@ -75,42 +77,6 @@ nlohmann::json historyJson(const std::vector<OuterIterationRecord>& history) {
 }
 
 // The contact solve's part of the summary.
-/// One entry per contact interface (ContactSolveResult::interfaces): its name, surfaces,
-/// friction model, normal force, resultant contact force, friction force (the sum of the nodal
-/// tangential force lengths), node counts, peak pressure and the largest opening and overlap
-/// after deformation.
-nlohmann::json interfaceSummary(const ContactFields& c) {
-  nlohmann::json list = nlohmann::json::array();
-  for (const auto& i : c.interfaces)
-    list.push_back({{"name", i.name},
-                    {"interface", i.surfaces},
-                    {"friction_model", core::nameOf(contact::kFrictionModelNames, i.law.model)},
-                    {"normal_force", i.normalForce},
-                    {"contact_force", i.force},
-                    {"friction_force", i.frictionForce},
-                    {"no_contact", i.counts[0]},
-                    {"stick", i.counts[1]},
-                    {"slip", i.counts[2]},
-                    {"peak_pressure", i.peakPressure},
-                    {"largest_opening", i.largestOpening},
-                    {"largest_overlap", i.largestOverlap},
-                    {"dissipated_energy", i.dissipatedEnergy}});
-  return list;
-}
-
-/// The KKT residuals of the contact conditions (contact::KktReport) and their tolerance.
-nlohmann::json contactKktJson(const contact::KktReport& kkt, double tolerance) {
-  return {{"equilibrium", kkt.equilibrium},
-          {"gluing_dirichlet", kkt.equality},
-          {"non_penetration", kkt.nonPenetration},
-          {"complementarity", kkt.complementarity},
-          {"normal_sign", kkt.normalSign},
-          {"friction_admissibility", kkt.frictionAdmissibility},
-          {"slip_rule", kkt.slipRule},
-          {"stick_rule", kkt.stickRule},
-          {"tolerance", tolerance}};
-}
-
 nlohmann::json factorsJson(const std::vector<std::pair<std::string, double>>& factors) {
   nlohmann::json out = nlohmann::json::object();
   for (const auto& [name, factor] : factors) out[name] = factor;
@@ -128,7 +94,7 @@ nlohmann::json stepsJson(const ContactSolveResult& c) {
 /// The console line of each interface (interfaceSummary's numbers).
 std::string interfaceLine(const ContactFields& c) {
   std::ostringstream line;
-  for (const auto& i : interfaceSummary(c))
+  for (const auto& i : interfaceSummary(c.interfaces))
     line << "  interface " << (i["name"].get<std::string>().empty() ? "" : i["name"].get<std::string>() + " ")
          << i["interface"].get<std::string>() << ": " << i["no_contact"].get<int>() << " no contact, "
          << i["stick"].get<int>() << " stick, " << i["slip"].get<int>() << " slip, normal force " << i["normal_force"].get<double>()
@@ -141,33 +107,23 @@ std::string interfaceLine(const ContactFields& c) {
 void addContactSummary(const ContactSolveResult& contactSolve, double tolerance, nlohmann::json& summary) {
   const auto& r = contactSolve.contact;
   summary["solver"] = contactSolve.chain;
-  summary["converged"] = r.converged;
+  addStepNumbers(outcomeOf(contactSolve), summary);  // counts, KKT residuals, interfaces (OutputRegistry.hpp)
   summary["message"] = r.message;
   summary["tolerance"] = tolerance;
-  summary["outer_iterations"] = r.counters.outerIterations;
-  summary["inner_iterations"] = r.counters.innerIterations;
   summary["cg_steps"] = r.counters.cgSteps;
   summary["expansion_steps"] = r.counters.expansionSteps;
   summary["proportioning_steps"] = r.counters.proportioningSteps;
-  summary["pfp_applications"] = r.counters.operatorApplications;
   summary["f_applications"] = contactSolve.fApplications;
   summary["factor_nonzeros"] = contactSolve.factorNonzeros;
   summary["bytes_per_f_application"] = contactSolve.bytesPerFApplication;
-  summary["fixed_point_iterations"] = r.fixedPointIterations;
   summary["fixed_point_change"] = r.fixedPointChange;
   summary["energy"] = r.energy;
-  summary["kkt"] = contactKktJson(r.kkt, r.kktTolerance);
-  summary["kkt"]["projected_gradient"] = r.counters.projectedGradient;
-  summary["kkt"]["equality_constraint"] = r.counters.equalityResidual;
-  summary["kkt"]["max_copy_jump"] = contactSolve.displacement.maxCopyJump;
   summary["contact_nodes"] = {{"no_contact", r.statusCounts[0]}, {"stick", r.statusCounts[1]},
                               {"slip", r.statusCounts[2]}};
   summary["history"] = historyJson(contactSolve.history);
   summary["total_normal_force"] = contactSolve.totalNormalForce;
   summary["total_contact_force"] = contactSolve.totalContactForce;
   summary["contact_force_on_master"] = contactSolve.totalContactForce;
-  summary["interfaces"] = interfaceSummary(contactSolve);
-  summary["dissipated_energy"] = contactSolve.dissipatedEnergy;
   if (!contactSolve.steps.empty()) summary["steps"] = stepsJson(contactSolve);
   // The pairings on the deformed bodies after each solve (Solver/Pairing Updates).
   summary["pairing_updates"] = nlohmann::json::array();
@@ -195,23 +151,16 @@ void addContactSummary(const ContactSolveResult& contactSolve, double tolerance,
 void addLinearSummary(const LinearFetiResult& linear, const std::string& chain, double tolerance,
                       nlohmann::json& summary) {
   summary["solver"] = chain;
-  summary["converged"] = linear.converged;
+  addStepNumbers(outcomeOf(linear), summary);  // counts, KKT residuals, bonded interfaces (OutputRegistry.hpp)
   summary["message"] = linear.message;
   summary["tolerance"] = tolerance;
-  summary["outer_iterations"] = linear.iterations;
-  summary["pfp_applications"] = linear.fApplications;
   summary["factor_nonzeros"] = linear.factorNonzeros;
   summary["bytes_per_f_application"] = linear.bytesPerFApplication;
   summary["condition_estimate"] = linear.conditionEstimate;
   if (!linear.interfaces.empty()) {  // bonded interfaces
     summary["total_normal_force"] = linear.totalNormalForce;
     summary["total_contact_force"] = linear.totalContactForce;
-    summary["interfaces"] = interfaceSummary(linear);
   }
-  summary["kkt"] = {{"projected_residual", linear.relativeResidual},
-                    {"equilibrium", linear.equilibriumResidual},
-                    {"equality_constraints", linear.constraintResidual},
-                    {"max_copy_jump", linear.maxCopyJump}};
   summary["times"]["factorization_s"] = linear.factorizationSeconds;
   summary["times"]["solve_s"] = linear.solveSeconds;
 }
@@ -249,39 +198,25 @@ std::string linearReport(const LinearFetiResult& linear) {
   return out.str();
 }
 
-/// A step's entry of the summary's steps.
-nlohmann::json stepEntry(const LoadStepRecord& k, const ContactFields& fields) {
-  return {{"step", k.step},
-          {"time", k.time},
-          {"ramp", k.factor},
-          {"factors", factorsJson(k.factors)},
-          {"converged", k.converged},
-          {"attempts", k.attempts},
-          {"cutbacks", k.cutbacks},
-          {"reached", k.reached},
-          {"outer_iterations", k.outerIterations},
-          {"pfp_applications", k.pfpApplications},
-          {"fixed_point_iterations", k.fixedPointIterations},
-          {"no_contact", k.statusCounts[0]},
-          {"stick", k.statusCounts[1]},
-          {"slip", k.statusCounts[2]},
-          {"message", k.message},
-          {"kkt", contactKktJson(k.kkt, k.kktTolerance)},
-          {"interfaces", interfaceSummary(fields)},
-          {"dissipated_energy", fields.dissipatedEnergy}};
-}
 }  // namespace
 
 nlohmann::json stepSummary(const ContactSolveResult& c, size_t i) {
   const auto& k = c.steps[i];
-  const ContactFields& fields = i < c.earlierSteps.size() ? c.earlierSteps[i] : c;
-  nlohmann::json entry = stepEntry(k, fields);
-  if (k.sections.empty()) return entry;
-  // Pretension sections: each one's tension and shortening at the step's end, and the solves
-  // of the step's tries (more than its attempts where a Force was iterated).
-  entry["solves"] = k.sectionSolves;
-  for (const auto& s : k.sections)
-    entry["pretension"].push_back({{"name", s.name}, {"force", s.force}, {"shortening", s.shortening}});
+  nlohmann::json entry = {{"time", k.time},
+                          {"ramp", k.factor},
+                          {"factors", factorsJson(k.factors)},
+                          {"attempts", k.attempts},
+                          {"cutbacks", k.cutbacks},
+                          {"reached", k.reached},
+                          {"no_contact", k.statusCounts[0]},
+                          {"stick", k.statusCounts[1]},
+                          {"slip", k.statusCounts[2]},
+                          {"message", k.message}};
+  // Its step number, counts, KKT residuals, interfaces and (pretension sections: each one's
+  // tension and shortening at the step's end) sections: OutputRegistry.hpp.
+  addStepNumbers(outcomeOf(c, i), entry);
+  // The solves of the step's tries (more than its attempts where a section's Force was iterated).
+  if (!k.sections.empty()) entry["solves"] = k.sectionSolves;
   return entry;
 }
 
@@ -454,12 +389,11 @@ void addTimersToSummary(const std::vector<core::PhaseTime>& phases, nlohmann::js
 /// Stresses, strain energy, reactions and the force balance (rank 0) into the summary.
 void addResultsToSummary(const StressResults& stress, const ForceBalance& balance,
                          nlohmann::json& summary) {
-  summary["strain_energy"] = stress.strainEnergy;
+  addStepNumbers(withStresses({}, stress, balance), summary);  // strain energy, force balance
   summary["reactions"] = nlohmann::json::object();
   for (const auto& r : balance.reactions) summary["reactions"][r.name] = r.force;
   summary["reaction_total"] = balance.totalReaction;
   summary["applied_load"] = balance.appliedLoad;
-  summary["force_balance"] = balance.relativeImbalance;
 }
 
 }  // namespace tribos::stack

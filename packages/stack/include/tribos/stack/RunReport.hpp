@@ -25,8 +25,8 @@ std::string setupReport(const std::string& input, const Scene& scene, const Setu
 /// The solve's part of the summary: the chain, convergence, counts, KKT residuals, times
 /// and (contact) the history, statuses and operator profile.
 void addSolveSummary(const SceneSolveResult& result, const Teuchos::ParameterList& tribos, nlohmann::json& summary);
-/// Step i of a load history as the summary's `steps` lists it (the step's record, counts, KKT
-/// residuals, interfaces); also what a checkpoint's global variables are read from.
+/// Step i of a load history as the summary's `steps` lists it (the step's record; its counts,
+/// KKT residuals and interfaces from the output registry, OutputRegistry.hpp).
 nlohmann::json stepSummary(const ContactSolveResult& c, size_t i);
 /// The console lines of the solve.
 std::string solveReport(const SceneSolveResult& result);
