@@ -1,4 +1,4 @@
-// libFuzzer target: the restart reader (Load Steps/Restart From; stack/src/Restart.cpp), issue 44.
+// libFuzzer target: the restart reader (Load Steps/Restart From; stack/history/src/Restart.cpp), issue 44.
 // A restart file is a tribos result, a netCDF file the Exodus library reads; what the reader
 // itself must survive is a result whose *values and layout* are damaged, and a file cut anywhere
 // (a job killed while writing). So the fuzz input is read as a list of edits to a valid 2-step
@@ -22,7 +22,7 @@
 #include <sstream>
 #include <string>
 
-#include "../../packages/stack/src/Restart.hpp"
+#include "tribos/stack/Restart.hpp"
 #include "tribos/core/Errors.hpp"
 #include "tribos/core/Parameters.hpp"
 #include "tribos/core/XmlParameters.hpp"

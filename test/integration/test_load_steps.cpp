@@ -1,6 +1,6 @@
 // Load Steps (issue 31, the ramp): every load and prescribed value ramped linearly over N steps,
 // each step a contact solve on the same operators (TotalFeti::setRightHandSide), friction on
-// the slip increment since the last step (stack/src/LoadHistory.hpp). A proportional history
+// the slip increment since the last step (stack/history/include/tribos/stack/LoadHistory.hpp). A proportional history
 // reaches the one-step answer where nothing depends on the path: frictionless contact, and
 // Coulomb contact whose every node slides (or sticks) the same way all along. Measured at
 // eps = 1e-9 (4 steps against 1): frictionless bricks 0 (the same bits), Coulomb bricks

@@ -85,7 +85,7 @@ struct ConstraintSpec {
   std::vector<std::string> dirichletNodeSets;  ///< node sets with u = 0 (all components)
   std::vector<DisplacementCondition> displacementConditions;
   /// Per displacement condition, whether it has rows in this B (Load Steps/<name>/Active of the
-  /// steps B serves; stack/src/ConditionSteps.hpp); empty: every one. Absent conditions keep
+  /// steps B serves; stack/solve/src/ConditionSteps.hpp); empty: every one. Absent conditions keep
   /// their index, so that PrescribedPart::condition and the factor tables still name them.
   std::vector<char> presentConditions;
   /// Per displacement condition (empty, or a null entry: the reference), the displacement of
@@ -94,7 +94,7 @@ struct ConstraintSpec {
   /// goes into c alone (PrescribedPart::value stays the condition's value, which factors scale).
   std::vector<const std::vector<std::array<double, 3>>*> conditionBase;
   std::vector<ContactInterfaceSpec> interfaces;  ///< none: no contact
-  /// A pairing on the deformed bodies (stack/src/PairingUpdate.cpp; issue 41): the displacement
+  /// A pairing on the deformed bodies (stack/solve/src/PairingUpdate.cpp; issue 41): the displacement
   /// u of every global node of a solved state, and that state's pairing (its B). Each slave node
   /// keeps the pairing it had unless the bodies at x + u show it wrong (DeformedPairing.cpp):
   /// a node without rows there lies inside the master by more than 1e-3 of the master face's

@@ -42,7 +42,7 @@ struct ContactInterface {
 
 /// A bolt pretension section (Pretension/<name>): the two surfaces of a Bonded interface, a cut
 /// through a bolt, pulled into each other along the interface's normal by a shortening s (the
-/// tied normal rows read (u_slave - chi u_master) . nu = s instead of 0; stack/src/Pretension.hpp).
+/// tied normal rows read (u_slave - chi u_master) . nu = s instead of 0; stack/history/include/tribos/stack/Pretension.hpp).
 struct PretensionSection {
   std::string name;
   size_t interface = 0;   ///< index into Scene::contacts (Bonded)
@@ -71,7 +71,7 @@ struct Scene {
   std::vector<std::vector<double>> displacementFactors;
   /// Per displacement condition, whether it holds in each step (Load Steps/<name>/Active, else
   /// every step): a condition that takes hold after step 1 holds its nodes where the step
-  /// before left them (stack/src/ConditionSteps.hpp).
+  /// before left them (stack/solve/src/ConditionSteps.hpp).
   std::vector<std::vector<char>> conditionActive;
   /// Load Steps/Times: the time of each step in the results (default: the ramp k / N).
   std::vector<double> stepTimes;

@@ -23,9 +23,9 @@
 
 namespace tribos::stack {
 
-struct SectionState;           // ContactSolve.hpp
-struct ContactSolveResult;     // ContactSolve.hpp
-struct LinearFetiResult;       // LinearFetiSolve.hpp
+struct SectionState;        // SolveResults.hpp
+struct ContactSolveResult;  // SolveResults.hpp
+struct LinearFetiResult;    // SolveResults.hpp
 
 /// What one time step's numbers are made of, typed. Absent: not part of this kind of run (the
 /// inner iterations of a history's step, the dissipated energy of a linear solve) or not

@@ -16,29 +16,6 @@
 
 namespace tribos::stack {
 
-struct SceneSolveResult {
-  bool contactProblem = false;     ///< which stack ran: contactSolve, else linear
-  ContactSolveResult contactSolve;
-  LinearFetiResult linear;
-  std::string chain;               ///< the solver chain built, in words
-
-  bool converged() const { return contactProblem ? contactSolve.contact.converged : linear.converged; }
-  const std::string& message() const { return contactProblem ? contactSolve.contact.message : linear.message; }
-  /// Per global node, rank 0 only.
-  const std::vector<std::array<double, 3>>& displacement() const {
-    return contactProblem ? contactSolve.displacement.value : linear.displacement;
-  }
-  const std::vector<std::array<double, 3>>& reaction() const {
-    return contactProblem ? contactSolve.reaction : linear.reaction;
-  }
-  const std::array<double, 3>& appliedLoad() const {
-    return contactProblem ? contactSolve.appliedLoad : linear.appliedLoad;
-  }
-  double appliedLoadMagnitude() const {
-    return contactProblem ? contactSolve.appliedLoadMagnitude : linear.appliedLoadMagnitude;
-  }
-};
-
 /// Whether the scene is solved as a contact problem (a contact pair that is not bonded).
 bool isContactProblem(const Scene& scene);
 

@@ -1,4 +1,4 @@
-#include "Restart.hpp"
+#include "tribos/stack/Restart.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 #include "tribos/stack/Scene.hpp"
 
-#include "Pretension.hpp"
+#include "PretensionInput.hpp"
 
 #include <Teuchos_Array.hpp>
 #include <Teuchos_ParameterList.hpp>

@@ -13,7 +13,7 @@
 #include <functional>
 #include <vector>
 
-#include "Restart.hpp"
+#include "tribos/stack/Restart.hpp"
 #include "tribos/stack/ContactSolve.hpp"
 
 namespace tribos::stack {

@@ -24,9 +24,9 @@
 #include "tribos/stack/RootGather.hpp"
 #include "tribos/stack/SceneParameters.hpp"
 #include "tribos/stack/SolveBudget.hpp"
-#include "HistorySolve.hpp"
-#include "LoadHistory.hpp"
-#include "Restart.hpp"
+#include "tribos/stack/HistorySolve.hpp"
+#include "tribos/stack/LoadHistory.hpp"
+#include "tribos/stack/Restart.hpp"
 
 namespace tribos::stack {
 
@@ -325,16 +325,6 @@ void setAppliedLoad(const std::vector<std::vector<double>>& f, MPI_Comm comm, St
 }
 
 }  // namespace
-
-void releaseNodalFields(StepResults& step) {
-  for (const auto& field : kContactNodalFields) std::vector<double>().swap(step.*field.values);
-  std::vector<std::array<double, 3>>().swap(step.displacement.value);
-  std::vector<std::array<double, 3>>().swap(step.reaction);
-}
-
-void releaseWrittenSteps(ContactSolveResult& result) {
-  for (size_t i = 0; i + 1 < result.earlierSteps.size(); ++i) releaseNodalFields(result.earlierSteps[i]);
-}
 
 namespace {
 

@@ -13,8 +13,8 @@
 #include "tribos/feti/ConstraintMatrix.hpp"
 #include "tribos/feti/TotalFeti.hpp"
 #include "tribos/qp/SmalseM.hpp"
-#include "tribos/stack/ContactSolve.hpp"
-#include "LoadHistory.hpp"
+#include "tribos/stack/SolveResults.hpp"
+#include "tribos/stack/LoadHistory.hpp"
 
 namespace tribos::stack {
 

@@ -16,20 +16,14 @@
 #include <vector>
 
 #include "tribos/contact/ContactSolver.hpp"
-#include "tribos/stack/ContactSolve.hpp"
-#include "LoadHistory.hpp"
+#include "tribos/stack/SolveResults.hpp"
+#include "tribos/stack/LoadHistory.hpp"
 
 namespace Teuchos {
 class ParameterList;
 }
 
 namespace tribos::stack {
-
-/// Reads the Pretension/<name> sublists into scene.pretensions (after the contact interfaces):
-/// an Interface of the scene with Friction Model Bonded, one section per interface, Force or
-/// Shortening (one of them, > 0), Steps at most Load Steps/Number Of Steps; a scene with a
-/// section is solved as a load history. Throws core::InputError naming the parameter.
-void readPretensions(const Teuchos::ParameterList& list, const std::string& source, Scene& scene);
 
 /// The tension section p of `history` carries in a solved state (its multipliers `lambda` on
 /// this rank's rows): -sum rowScale lambda over its normal rows, the same bits on every layout.

@@ -5,8 +5,7 @@
 
 #include "tribos/contact/ContactSolver.hpp"
 #include "tribos/core/EnumNames.hpp"
-#include "tribos/stack/ContactSolve.hpp"
-#include "tribos/stack/LinearFetiSolve.hpp"
+#include "tribos/stack/SolveResults.hpp"
 
 namespace tribos::stack {
 

@@ -1,4 +1,4 @@
-#include "LoadHistory.hpp"
+#include "tribos/stack/LoadHistory.hpp"
 
 #include <algorithm>
 #include <cmath>

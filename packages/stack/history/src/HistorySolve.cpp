@@ -1,4 +1,4 @@
-#include "HistorySolve.hpp"
+#include "tribos/stack/HistorySolve.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <utility>
 
 #include "tribos/stack/GlobalFields.hpp"
-#include "Pretension.hpp"
+#include "tribos/stack/Pretension.hpp"
 
 namespace tribos::stack {
 

@@ -1,22 +1,19 @@
 #pragma once
-/// \file ContactSolve.hpp
-/// The scene -> contact solver wiring: the solver stack T-FETI (coarse projector, F) ->
-/// SMALSE-M -> MPGP -> friction law, built from the parameter list, and the results mapped
-/// back onto the user's global mesh.
-#include <mpi.h>
-
+/// \file SolveResults.hpp
+/// What a solve hands to the results and the report, whichever stack ran: a contact solve's
+/// (ContactSolveResult: its counts, its load steps' records and states), a linear solve's
+/// (LinearFetiResult) and the scene's (SceneSolveResult). Plain data: the solve pipeline
+/// (stack/solve/) fills them, the output registry and the report (stack/results/,
+/// stack/report/) read them.
+#include <array>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tribos/contact/ContactSolver.hpp"
-#include "tribos/core/Timer.hpp"
 #include "tribos/stack/ContactFields.hpp"
 #include "tribos/stack/GlobalFields.hpp"
-
-namespace Teuchos {
-class ParameterList;
-}
 
 namespace tribos::stack {
 
@@ -72,7 +69,7 @@ struct StepResults : ContactFields {
   double appliedLoadMagnitude = 0.0;    ///< sum of their lengths (loadMagnitude)
 };
 
-/// One pairing on the deformed bodies after a solve (Solver/Pairing Updates; stack/src/PairingUpdate.cpp).
+/// One pairing on the deformed bodies after a solve (Solver/Pairing Updates; stack/solve/src/PairingUpdate.cpp).
 struct PairingUpdateRecord {
   int update = 0;              ///< 1, 2, ...
   long long paired = 0;        ///< contact nodes of the pairing on the deformed bodies
@@ -124,21 +121,52 @@ void releaseNodalFields(StepResults& step);
 /// continues from).
 void releaseWrittenSteps(ContactSolveResult& result);
 
-/// Solver settings from the validated "Tribos" list and the scene's interfaces (exposed for
-/// tests and perf tools).
-contact::FrictionSettings frictionSettings(const Scene& scene, const Teuchos::ParameterList& tribos);
-qp::SmalseSettings smalseSettings(const Teuchos::ParameterList& tribos);
+/// The linear solve; its contact fields (ContactFields) where the scene's interfaces are all
+/// bonded (tied), empty without contact.
+struct LinearFetiResult : ContactFields {
+  bool converged = false;
+  std::string message;              ///< "converged", or which limit ended the iterations
+  int iterations = 0;
+  long long fApplications = 0;
+  long long factorNonzeros = 0;       ///< feti::TotalFeti::factorNonzeros
+  double bytesPerFApplication = 0.0;  ///< feti::TotalFeti::bytesPerFApplication
+  double relativeResidual = 0.0;    ///< ||P r|| / ||P h||
+  double conditionEstimate = 0.0;   ///< Lanczos estimate of kappa(P F P | Ker G) (preconditioned)
+  double equilibriumResidual = 0.0; ///< max ||K_s u_s - f_s + B_s^T lambda_s||_inf / ||f||_inf
+  double constraintResidual = 0.0;  ///< ||B u - c|| / (||B|| ||u||) (= ||B u - c|| / ||u||, rows unit norm)
+  double factorizationSeconds = 0.0, solveSeconds = 0.0;
+  /// Displacement of every global node (mean over its subdomain copies); rank 0 only.
+  std::vector<std::array<double, 3>> displacement;
+  /// Largest difference between two copies of a node (gluing error), rank 0 only.
+  double maxCopyJump = 0.0;
+  /// Reaction force per global node (gatherReactions), rank 0 only.
+  std::vector<std::array<double, 3>> reaction;
+  std::array<double, 3> appliedLoad{};  ///< sum of the nodal loads (every rank)
+  double appliedLoadMagnitude = 0.0;    ///< sum of their lengths (loadMagnitude)
+};
 
-/// The chain solveContactScene builds, in words (printed at the start of a run).
-std::string describeContactChain(const Scene& scene, const Teuchos::ParameterList& tribos);
+/// The result of a scene's solve, whichever stack ran (SceneSolve.hpp).
+struct SceneSolveResult {
+  bool contactProblem = false;     ///< which stack ran: contactSolve, else linear
+  ContactSolveResult contactSolve;
+  LinearFetiResult linear;
+  std::string chain;               ///< the solver chain built, in words
 
-/// Solves a contact scene (Friction Model None, Tresca or Coulomb). `owned`: this rank's
-/// assembled systems, consumed. Solver/Max Seconds counts from `runStart` (the start of the
-/// run; by default this call) and covers the factorisation. With Scene::pairingUpdates, the
-/// slave nodes are paired again on the deformed bodies after the solve, and the problem solved
-/// again where that changed the pairing (PairingUpdate.cpp). Collective over `comm`.
-ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
-                                     const feti::ConstraintMatrix& B, const Teuchos::ParameterList& tribos,
-                                     MPI_Comm comm, core::Stopwatch runStart = {}, const StepObserver& afterStep = {});
+  bool converged() const { return contactProblem ? contactSolve.contact.converged : linear.converged; }
+  const std::string& message() const { return contactProblem ? contactSolve.contact.message : linear.message; }
+  /// Per global node, rank 0 only.
+  const std::vector<std::array<double, 3>>& displacement() const {
+    return contactProblem ? contactSolve.displacement.value : linear.displacement;
+  }
+  const std::vector<std::array<double, 3>>& reaction() const {
+    return contactProblem ? contactSolve.reaction : linear.reaction;
+  }
+  const std::array<double, 3>& appliedLoad() const {
+    return contactProblem ? contactSolve.appliedLoad : linear.appliedLoad;
+  }
+  double appliedLoadMagnitude() const {
+    return contactProblem ? contactSolve.appliedLoadMagnitude : linear.appliedLoadMagnitude;
+  }
+};
 
 }  // namespace tribos::stack
