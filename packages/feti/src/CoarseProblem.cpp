@@ -2,14 +2,14 @@
 // factor and precision, and its solves.
 #include "CoarseProblem.hpp"
 
-#include "TotalFetiParts.hpp"
+#include "CoarseSpace.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 namespace tribos::feti {
 
-CoarseProblem::CoarseProblem(const TotalFeti::CoarseRows& G, int numSubdomains, GO numRowsOfB, double gMax,
+CoarseProblem::CoarseProblem(const CoarseRows& G, int numSubdomains, GO numRowsOfB, double gMax,
                              double subdomainBytesPerF, Teuchos::RCP<const Teuchos::Comm<int>> comm,
                              const TotalFetiSettings& settings, OperatorProfile& profile, std::vector<char> pinnedModes)
     : G_(G),
@@ -31,7 +31,7 @@ void CoarseProblem::buildPattern() {
   // by one rank, which holds all its entries g_{s,r} (buildCoarseRows): the pairs of its owned
   // rows, gathered from every rank, are the whole pattern. The gathered lists are as long as
   // the pattern itself (which every rank holds in any case), not as long as B.
-  const TotalFeti::CoarseRows& G = G_;
+  const CoarseRows& G = G_;
   std::vector<long long> pairs;  // s * numSubdomains + t, sorted and unique
   for (LO r = 0; r < G.numRows; ++r)
     for (LO e = G.rowStart[r]; e < G.rowStart[r + 1]; ++e)
@@ -64,7 +64,7 @@ LO CoarseProblem::blockOf(int s, int t) const {
 }
 
 std::vector<LO> CoarseProblem::touchedBlocks(const std::vector<char>* ownedRowMask, std::vector<LO>& slotOf) const {
-  const TotalFeti::CoarseRows& G = G_;
+  const CoarseRows& G = G_;
   slotOf.assign(static_cast<size_t>(blockStart_[numSubdomains_]), -1);
   for (LO r = 0; r < G.numRows; ++r) {
     if (ownedRowMask && !(*ownedRowMask)[r]) continue;
@@ -88,7 +88,7 @@ std::vector<double> CoarseProblem::sumOwnedRows(const std::vector<char>* ownedRo
   // different layouts. |g_s[a] g_t[c]| <= gMax^2; at most one term per row of B. The slots
   // hold exact sums, so rank 0 may add the ranks' slots in any order. Each row's g_{s,r} are
   // decoded once (rowG) for all its pairs.
-  const TotalFeti::CoarseRows& G = G_;
+  const CoarseRows& G = G_;
   const core::SumBins bins(gMax_ * gMax_, static_cast<long long>(numRowsOfB_));
   constexpr size_t kBlock = kSlots * 36;
   std::vector<double> local(kBlock * numTouched, 0.0);
@@ -136,7 +136,7 @@ void CoarseProblem::depositOuterProduct(const std::vector<double>& g, const int*
 }
 
 bool CoarseProblem::sameSubdomains(LO a, LO b) const {
-  const TotalFeti::CoarseRows& G = G_;
+  const CoarseRows& G = G_;
   return std::equal(G.rowSubdomain.begin() + G.rowStart[a], G.rowSubdomain.begin() + G.rowStart[a + 1],
                     G.rowSubdomain.begin() + G.rowStart[b], G.rowSubdomain.begin() + G.rowStart[b + 1]);
 }

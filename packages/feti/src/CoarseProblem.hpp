@@ -15,16 +15,18 @@
 
 namespace tribos::feti {
 
+struct CoarseRows;  // CoarseSpace.hpp
+
 class CoarseProblem {
  public:
   /// y = G G^T x (replicated vectors of length l): the products of iterative refinement.
   using Product = std::function<void(const std::vector<double>& x, std::vector<double>& y)>;
 
-  /// G: the owned rows of G (TotalFeti::CoarseRows); gMax = max |g_{s,r,j}| over all ranks
+  /// G: the owned rows of G (CoarseRows); gMax = max |g_{s,r,j}| over all ranks
   /// (the scale of the reproducible sums); subdomainBytesPerF: the bytes of the subdomain
   /// solves of one F application (what "Auto" precision compares the coarse solves with).
   /// Builds the block pattern (collective); factorize() assembles and factorises.
-  CoarseProblem(const TotalFeti::CoarseRows& G, int numSubdomains, GO numRowsOfB, double gMax,
+  CoarseProblem(const CoarseRows& G, int numSubdomains, GO numRowsOfB, double gMax,
                 double subdomainBytesPerF, Teuchos::RCP<const Teuchos::Comm<int>> comm,
                 const TotalFetiSettings& settings, OperatorProfile& profile, std::vector<char> pinnedModes = {});
   ~CoarseProblem();
@@ -84,7 +86,7 @@ class CoarseProblem {
   /// before and after.
   std::pair<bool, double> roundToSingle();
 
-  const TotalFeti::CoarseRows& G_;
+  const CoarseRows& G_;
   int numSubdomains_;
   /// Per coarse row, 1 where G's row is 0 (a rigid mode that eliminated components removed):
   /// its diagonal is set to the largest other one, so that G G^T stays regular and the row's

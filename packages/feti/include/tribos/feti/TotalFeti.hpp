@@ -41,7 +41,10 @@ class Deadline;
 namespace tribos::feti {
 
 class DistributedCoarseSolve;
-class CoarseProblem;
+class SubdomainSet;
+class Preconditioners;
+class CoarseSpace;
+class PrimalRecovery;
 
 /// The rows I leave a rigid body mode free (G_I G_I^T singular): no constraint active at the
 /// end holds some body, e.g. a load beyond what contact and friction can carry.
@@ -153,7 +156,7 @@ class TotalFeti {
             const Teuchos::RCP<const Teuchos::Comm<int>>& comm, const TotalFetiSettings& settings);
   ~TotalFeti();
 
-  Teuchos::RCP<const DualMap> dualMap() const { return dualMap_; }
+  Teuchos::RCP<const DualMap> dualMap() const;
   Teuchos::RCP<DualVector> createDualVector() const;
   GO numDual() const { return B_.numRows; }
   int numCoarse() const { return 6 * numSubdomains_; }  ///< l
@@ -183,7 +186,7 @@ class TotalFeti {
   /// Keep the factor of G G^T through releaseCoarseFactor (a history: G G^T does not change
   /// between its steps, so it is factorised once, at the cost of holding it beside
   /// G_I G_I^T's during each step's recovery).
-  void keepCoarseFactor(bool keep) { keepCoarseFactor_ = keep; }
+  void keepCoarseFactor(bool keep);
   /// y = P x = x - G^T (G G^T)^{-1} G x (y may be x). With `ofX`, also the coordinates
   /// of Q x = x - P x it computes on the way: G x and (G G^T)^{-1} G x (the bits of
   /// coarseCoordinates(x)), so that a caller who needs them does not compute them again.
@@ -267,8 +270,8 @@ class TotalFeti {
 
   long long fApplications() const { return fApplications_; }
   const OperatorProfile& profile() const { return profile_; }
-  int firstOwnedSubdomain() const { return firstOwned_; }
-  int numOwnedSubdomains() const { return static_cast<int>(local_.size()); }
+  int firstOwnedSubdomain() const;
+  int numOwnedSubdomains() const;
   const SubdomainSolver& subdomainSolver(int i) const;
   double factorizationSeconds() const { return factorizationSeconds_; }
   /// Stored entries of the subdomain factors, all ranks (the summary's factor_nonzeros).
@@ -280,74 +283,28 @@ class TotalFeti {
   /// the time of one product from below (doc/measurements/performance.md).
   double bytesPerFApplication() const { return bytesPerFApplication_; }
   /// sum of n_s over all subdomains (the same on every layout).
-  long long primalDofs() const { return primalDofs_; }
-
-  struct Local;       ///< one owned subdomain (implementation detail, defined in TotalFeti.cpp)
-  struct CoarseRows;  ///< G on the owned rows (implementation detail, defined in TotalFeti.cpp)
+  long long primalDofs() const;
 
  private:
-  // The constructor's steps (TotalFeti.cpp): (1) the dual and overlap maps; (2) the rigid
-  // body modes and (3) the owned subdomains' structures; (3) their factorisations; (5) e, d~
-  // and lambda_Im.
-  void buildMaps(int numOwned);
-  /// Per coarse row (6 per subdomain), 1 where R's column is 0 (eliminated components), all ranks.
-  std::vector<char> pinnedModes() const;
-  void setUpSubdomains(const mesh::Mesh& mesh, const mesh::Decomposition& decomposition,
-                       std::vector<fem::SubdomainSystem> owned);
-  void factorizeSubdomains(const mesh::Mesh& mesh, const mesh::Decomposition& decomposition);
+  // The constructor's steps (TotalFeti.cpp): (1)-(3) the owned subdomains, their maps and
+  // factors (SubdomainSet); (4) G and G G^T (CoarseSpace), after the traffic of F is known;
+  // (5) e, d~ and lambda_Im.
   void buildDualData();
-  // x (owned) -> overlap values -> per-subdomain op -> each row's entries summed into y (owned).
-  template <class LocalOp>
-  void applyBlockwise(const DualVector& x, DualVector& y, LocalOp op) const;
   /// y = B K^dagger B^T x, or B K^+ B^T x without `removeKernel` (implicit F only).
   void applyF(const DualVector& x, DualVector& y, bool removeKernel) const;
-  /// Builds contributionStart_/contribution_ from the subdomains' overlap indices.
-  void gatherOverlapContributions();
-  /// x on the overlap rows (x's own values when the overlap is the owned rows).
-  const double* overlapValues(const DualVector& x) const;
-
-  /// The dual maps' global id of row r of B (B.rowId; r itself for a B without ids).
-  GO rowId(GO r) const { return B_.rowId.empty() ? r : B_.rowId[r]; }
+  /// Sets factorNonzeros_ and bytesPerFApplication_ (collective).
+  void measureTraffic();
 
   const ConstraintMatrix& B_;
   Teuchos::RCP<const Teuchos::Comm<int>> comm_;
   TotalFetiSettings settings_;
-  int numSubdomains_ = 0, firstOwned_ = 0;
-  std::vector<std::unique_ptr<Local>> local_;
-  Teuchos::RCP<const DualMap> dualMap_, overlapMap_;
-  Teuchos::RCP<const Tpetra::Import<LO, GO>> importer_;
-  bool overlapIsOwned_ = false;  ///< one rank: the overlap map is the owned map
-  Teuchos::RCP<DualVector> xOverlap_;  ///< applyBlockwise's, allocated once
-  /// Per overlap row, where its sum comes from: contribution_[k] for k in
-  /// [contributionStart_[row], contributionStart_[row + 1]) points into a subdomain's `out`.
-  std::vector<LO> contributionStart_;
-  std::vector<const double*> contribution_;
-  /// Several ranks: the subdomains' `out` entries travel one by one to the owner of their
-  /// row (source: entry (s, r) of the owned subdomains, first entry of each at
-  /// entrySourceFirst_; target: the entries of the owned rows, G_'s order), which adds them
-  /// in ascending subdomain order: a row of three or more subdomains (mortar contact) sums
-  /// in the same order on every layout, not pre-summed per rank.
-  Teuchos::RCP<DualVector> entrySource_, entryTarget_;
-  Teuchos::RCP<const Tpetra::Import<LO, GO>> entryImport_;
-  std::vector<LO> entrySourceFirst_;
-  /// G on the owned rows and of the owned subdomains in the compact geometric form (CoarseRows), from
-  /// the frames of the subdomains (one all-reduce at set-up) and the mesh's coordinates.
-  void buildCoarseRows(const mesh::Mesh& mesh, const mesh::Decomposition& decomposition);
-  /// Sets factorNonzeros_ and bytesPerFApplication_ (collective).
-  void measureTraffic();
-  /// The entries of G x of this rank's subdomains (the others zero; length l, not reduced),
-  /// from x on the overlap rows.
-  void applyGOwnedSubdomains(const double* xOverlap, double* gx) const;
-  /// G x = the sum of every rank's applyGOwnedSubdomains (exact: one nonzero term each).
-  void reduceCoarse(std::vector<double>& local, double* gx) const;
-  double gMax_ = 0.0;            ///< max |g_{s,r,j}| over all ranks
-  long long primalDofs_ = 0;     ///< sum of n_s over all subdomains
-
-  std::unique_ptr<CoarseRows> G_;           ///< G on the owned rows
-  std::unique_ptr<CoarseProblem> coarse_;   ///< G G^T, its factor and solves (CoarseProblem.hpp)
-  bool keepCoarseFactor_ = false;           ///< releaseCoarseFactor keeps it (keepCoarseFactor)
-  /// Coarse work vectors of project() and solveCoarse(), allocated once (length l).
-  mutable std::vector<double> coarseLocal_, coarseVector_;
+  int numSubdomains_ = 0;
+  // The components (feti/src/BlockKernels.hpp lists them); TotalFeti orders their set-up and
+  // composes them (F, P F, d~, lambda_Im, alpha).
+  std::unique_ptr<SubdomainSet> subdomains_;         ///< owned subdomains, dual layout, blockwise sums
+  std::unique_ptr<Preconditioners> preconditioners_;  ///< lumped and Dirichlet blocks
+  std::unique_ptr<CoarseSpace> coarse_;              ///< G, G G^T, the projector
+  std::unique_ptr<PrimalRecovery> recovery_;         ///< alpha, u, residuals
   std::vector<double> e_;
   Teuchos::RCP<DualVector> dTilde_, lambdaIm_;
   std::vector<double> c_;  ///< c on the owned rows (ownedC)

@@ -1,9 +1,12 @@
-// TotalFeti's coarse space: G = R^T B^T in the compact form of CoarseRows, G x and G^T a (paper Sec. 4.2).
-#include "TotalFetiParts.hpp"
+// The coarse space (CoarseSpace.hpp): G = R^T B^T in the compact form of CoarseRows, G x and
+// G^T a (paper Sec. 4.2), and the projector P with its coarse solves.
+#include "CoarseSpace.hpp"
+
+#include "CoarseProblem.hpp"
 
 namespace tribos::feti {
 
-void TotalFeti::CoarseRows::geometric(const CoarseTerm& t, double* g) const {
+void CoarseRows::geometric(const CoarseTerm& t, double* g) const {
   const size_t slot = t.code >> 2;
   const int d = static_cast<int>(t.code & 3u);
   if (d == 3) {
@@ -14,7 +17,7 @@ void TotalFeti::CoarseRows::geometric(const CoarseTerm& t, double* g) const {
   for (int j = 0; j < 6; ++j) g[j] *= t.c;
 }
 
-void TotalFeti::CoarseRows::rowG(LO rowOrderEntry, double* g) const {
+void CoarseRows::rowG(LO rowOrderEntry, double* g) const {
   double geo[6];
   geometric(term[rowEntry[rowOrderEntry]], geo);
   transposedProduct(M(rowSubdomain[rowOrderEntry]), geo, g);
@@ -28,7 +31,7 @@ using EntryData = Tpetra::MultiVector<Scalar, LO, GO>;
 /// local node) and one full slot per (subdomain, row) of the rank (G x and G^T a share them).
 class CoarseTermBuilder {
  public:
-  explicit CoarseTermBuilder(TotalFeti::CoarseRows& G) : G_(G) {}
+  explicit CoarseTermBuilder(CoarseRows& G) : G_(G) {}
   /// The term of row i of block b (subdomain s); index left to the caller.
   CoarseTerm operator()(int s, const SubdomainBlock& b, LO i, const double* data) {
     const LO first = b.rowPtr[i];
@@ -56,7 +59,7 @@ class CoarseTermBuilder {
     TEUCHOS_TEST_FOR_EXCEPTION(slot >= (1u << 30), std::length_error, "tribos::feti: too many coarse slots on a rank");
     return 4 * slot + static_cast<std::uint32_t>(d);
   }
-  TotalFeti::CoarseRows& G_;
+  CoarseRows& G_;
   std::map<std::pair<int, LO>, std::uint32_t> coordSlot_;
   std::map<std::pair<int, GO>, std::uint32_t> fullSlot_;
 };
@@ -70,7 +73,7 @@ struct RowEntry {
   int kind;
 };
 
-using Locals = std::vector<std::unique_ptr<TotalFeti::Local>>;
+using Locals = std::vector<std::unique_ptr<OwnedSubdomain>>;
 
 /// The frames (centre, scale, M_s: kFrame numbers) of the owned subdomains, by their owner
 /// (which has R_s), zeros elsewhere; -0.0 made +0.0 so that the sum with the other ranks'
@@ -79,7 +82,7 @@ std::vector<double> ownedFrames(const Locals& local, const mesh::Mesh& mesh, con
                                 int numSubdomains) {
   std::vector<double> frames(kFrame * static_cast<size_t>(numSubdomains), 0.0);
   core::forEachSubdomain(static_cast<int>(local.size()), [&](int i) {
-    const TotalFeti::Local& L = *local[i];
+    const OwnedSubdomain& L = *local[i];
     double* frame = &frames[kFrame * static_cast<size_t>(L.subdomain)];
     subdomainFrame(mesh, decomposition.subdomains[L.subdomain].nodes, L.system.R, frame);
     for (int j = 0; j < kFrame; ++j) frame[j] += 0.0;
@@ -94,7 +97,7 @@ void fillEntryData(const Locals& local, const mesh::Mesh& mesh, const mesh::Deco
                    const std::vector<double>& frames, const std::vector<LO>& firstSource, EntryData& dataSource) {
   auto data = dataSource.getLocalViewHost(Tpetra::Access::OverwriteAll);
   core::forEachSubdomain(static_cast<int>(local.size()), [&](int i) {
-    const TotalFeti::Local& L = *local[i];
+    const OwnedSubdomain& L = *local[i];
     const SubdomainBlock& b = *L.block;
     const double* frame = &frames[kFrame * static_cast<size_t>(L.subdomain)];
     const auto& nodes = decomposition.subdomains[L.subdomain].nodes;
@@ -138,7 +141,7 @@ void dataOf(const View& view, LO e, double* out) {
 /// chunk, then subdomain, then kind, then row (entries are in row order: a stable sort by
 /// (chunk, subdomain, kind) keeps the rows ascending within a kind), with the runs and their
 /// kind groups. `data`: each entry's 6 numbers (fillEntryData, imported to the row's owner).
-void storeRowTerms(TotalFeti::CoarseRows& G, const std::vector<RowEntry>& entries, const ConstraintMatrix& B,
+void storeRowTerms(CoarseRows& G, const std::vector<RowEntry>& entries, const ConstraintMatrix& B,
                    const EntryData& data, CoarseTermBuilder& termOf) {
   G.rowStart.assign(G.numRows + 1, 0);
   G.rowSubdomain.resize(entries.size());
@@ -190,14 +193,14 @@ void storeRowTerms(TotalFeti::CoarseRows& G, const std::vector<RowEntry>& entrie
 /// G x's terms of the owned subdomains: their own blocks, every row (the same slots where
 /// shared); by kind (component d = 0, 1, 2 of one-term rows, then the full entries), in
 /// rowOrder within a kind. `data`: fillEntryData's.
-void storeOwnedTerms(TotalFeti::CoarseRows& G, const Locals& local, const std::vector<LO>& firstSource,
+void storeOwnedTerms(CoarseRows& G, const Locals& local, const std::vector<LO>& firstSource,
                      const EntryData& data, CoarseTermBuilder& termOf) {
   const auto view = data.getLocalViewHost(Tpetra::Access::ReadOnly);
   double numbers[6];
   G.ownedTerm.clear();
   G.ownedStart.clear();
   for (size_t i = 0; i < local.size(); ++i) {
-    const TotalFeti::Local& L = *local[i];
+    const OwnedSubdomain& L = *local[i];
     for (int kind = 0; kind < 4; ++kind) {
       G.ownedStart.push_back(static_cast<LO>(G.ownedTerm.size()));
       for (LO r : L.rowOrder) {
@@ -214,50 +217,53 @@ void storeOwnedTerms(TotalFeti::CoarseRows& G, const Locals& local, const std::v
 }
 }  // namespace
 
-void TotalFeti::buildCoarseRows(const mesh::Mesh& mesh, const mesh::Decomposition& decomposition) {
+CoarseSpace::CoarseSpace(SubdomainSet& subdomains, const mesh::Mesh& mesh, const mesh::Decomposition& decomposition,
+                         OperatorProfile& profile)
+    : subdomains_(subdomains), profile_(profile) {
   // Entry (s, r) = row r of B in block s, global id r * numSubdomains + s: the same id on every
   // rank without any rank knowing the sizes of the blocks it does not own. Source: the entries
   // of the owned subdomains; target: the entries of the owned rows (the rank has those rows of
   // every block, feti::keepRankRows). One import of 6 numbers per entry (the data of its
   // CoarseTerm), also applyBlockwise's entry-wise sums (several ranks); M_s travels by one
   // all-reduce of kFrame numbers per subdomain.
-  const int rank = comm_->getRank();
-  const GO S = numSubdomains_;
+  const auto& comm = subdomains_.comm();
+  const ConstraintMatrix& B = subdomains_.constraints();
+  const Locals& owned = subdomains_.all();
+  const int numSubdomains = subdomains_.numSubdomains();
+  const int rank = comm->getRank();
+  const GO S = numSubdomains;
   std::vector<GO> ids;
-  for (const auto& L : local_)
+  for (const auto& L : owned)
     for (GO row : L->block->rows) ids.push_back(row * S + L->subdomain);
   const auto invalid = Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid();
-  auto source = Teuchos::rcp(new DualMap(invalid, Teuchos::ArrayView<const GO>(ids.data(), ids.size()), 0, comm_));
-  std::vector<LO> firstSource(numOwnedSubdomains() + 1, 0);  // first source entry of each owned subdomain
-  for (int i = 0; i < numOwnedSubdomains(); ++i) firstSource[i + 1] = firstSource[i] + local_[i]->m();
-  std::vector<double> frames = ownedFrames(local_, mesh, decomposition, numSubdomains_);
+  auto source = Teuchos::rcp(new DualMap(invalid, Teuchos::ArrayView<const GO>(ids.data(), ids.size()), 0, comm));
+  std::vector<LO> firstSource(subdomains_.numOwned() + 1, 0);  // first source entry of each owned subdomain
+  for (int i = 0; i < subdomains_.numOwned(); ++i) firstSource[i + 1] = firstSource[i] + owned[i]->m();
+  std::vector<double> frames = ownedFrames(owned, mesh, decomposition, numSubdomains);
   EntryData dataSource(source, 6);
-  fillEntryData(local_, mesh, decomposition, frames, firstSource, dataSource);
-  if (comm_->getSize() > 1) {
+  fillEntryData(owned, mesh, decomposition, frames, firstSource, dataSource);
+  if (comm->getSize() > 1) {
     std::vector<double> mine = frames;
-    Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, static_cast<int>(frames.size()), mine.data(), frames.data());
+    Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, static_cast<int>(frames.size()), mine.data(), frames.data());
   }
 
   auto G = std::make_unique<CoarseRows>();
-  G->firstRow = B_.firstRowOfRank[rank];
-  G->numRows = static_cast<LO>(B_.firstRowOfRank[rank + 1] - G->firstRow);
-  const std::vector<RowEntry> entries = ownedRowEntries(B_, G->firstRow, G->numRows, numSubdomains_);
+  G->firstRow = B.firstRowOfRank[rank];
+  G->numRows = static_cast<LO>(B.firstRowOfRank[rank + 1] - G->firstRow);
+  const std::vector<RowEntry> entries = ownedRowEntries(B, G->firstRow, G->numRows, numSubdomains);
   ids.resize(entries.size());
   for (size_t e = 0; e < entries.size(); ++e) ids[e] = (G->firstRow + entries[e].row) * S + entries[e].subdomain;
-  auto target = Teuchos::rcp(new DualMap(invalid, Teuchos::ArrayView<const GO>(ids.data(), ids.size()), 0, comm_));
+  auto target = Teuchos::rcp(new DualMap(invalid, Teuchos::ArrayView<const GO>(ids.data(), ids.size()), 0, comm));
   auto entryImport = Teuchos::rcp(new Tpetra::Import<LO, GO>(source, target));
   EntryData dataTarget(target, 6);
   dataTarget.doImport(dataSource, *entryImport, Tpetra::INSERT);
-  if (!overlapIsOwned_) {  // applyBlockwise's entry-wise sums (several ranks)
-    entryImport_ = entryImport;
-    entrySource_ = Teuchos::rcp(new DualVector(source));
-    entryTarget_ = Teuchos::rcp(new DualVector(target));
-    entrySourceFirst_ = firstSource;
-  }
+  if (!subdomains_.overlapIsOwned())  // applyBlockwise's entry-wise sums (several ranks)
+    subdomains_.sumEntriesAtRowOwners(entryImport, Teuchos::rcp(new DualVector(source)),
+                                      Teuchos::rcp(new DualVector(target)), firstSource, &G->rowStart);
 
   CoarseTermBuilder termOf(*G);
-  storeRowTerms(*G, entries, B_, dataTarget, termOf);
-  storeOwnedTerms(*G, local_, firstSource, dataSource, termOf);
+  storeRowTerms(*G, entries, B, dataTarget, termOf);
+  storeOwnedTerms(*G, owned, firstSource, dataSource, termOf);
   G->basis.resize(36 * static_cast<size_t>(S));
   for (GO s = 0; s < S; ++s)
     std::copy(frames.data() + kFrame * s + 4, frames.data() + kFrame * (s + 1), G->basis.data() + 36 * s);
@@ -270,12 +276,12 @@ void TotalFeti::buildCoarseRows(const mesh::Mesh& mesh, const mesh::Decompositio
     G->rowG(static_cast<LO>(e), g);
     for (double v : g) gMax = std::max(gMax, std::abs(v));
   }
-  gMax_ = core::globalMax(comm_.get(), gMax);
+  gMax_ = core::globalMax(comm.get(), gMax);
   profile_.gEntries = static_cast<long long>(G->rowSubdomain.size());
   profile_.gRows = G->numRows;
   G_ = std::move(G);
-  coarseLocal_.assign(numCoarse(), 0.0);
-  coarseVector_.assign(numCoarse(), 0.0);
+  local_.assign(numCoarse(), 0.0);
+  vector_.assign(numCoarse(), 0.0);
 }
 
 
@@ -319,7 +325,7 @@ void sumComponent(const CoarseTerm* __restrict t, const CoarseTerm* end, const d
 }
 
 // (G x)_s of the i-th owned subdomain into gx[6 s, 6 s + 6) (applyGOwnedSubdomains).
-void sumOwnedSubdomain(const TotalFeti::CoarseRows& G, int i, const double* xOverlap, double* gx) {
+void sumOwnedSubdomain(const CoarseRows& G, int i, const double* xOverlap, double* gx) {
   const CoarseTerm* t = G.ownedTerm.data();
   const LO* start = &G.ownedStart[6 * static_cast<size_t>(i)];
   const int subdomain = start[5];
@@ -345,7 +351,7 @@ void sumOwnedSubdomain(const TotalFeti::CoarseRows& G, int i, const double* xOve
 }
 }  // namespace
 
-void TotalFeti::applyGOwnedSubdomains(const double* xOverlap, double* gx) const {
+void CoarseSpace::applyGOwnedSubdomains(const double* xOverlap, double* gx) const {
   // (G x)_s = M_s^T sum over the rows r of B_s of g'_{s,r} x_r, by the owner of s (threads
   // over the owned subdomains), in a fixed order of its terms (CoarseRows::ownedTerm): the same sum in
   // the same order on every layout. The other entries stay zero, so the all-reduce adds one
@@ -357,7 +363,7 @@ void TotalFeti::applyGOwnedSubdomains(const double* xOverlap, double* gx) const 
   // of them per task (at least 8 tasks per thread), so that the shared counter of the dynamic
   // schedule (a cache line that moves between the cores at every grab) is not touched 500
   // times per G x. Each subdomain writes only its own 6 entries: the same bits for any grouping.
-  const int numOwned = numOwnedSubdomains();
+  const int numOwned = subdomains_.numOwned();
   const int group = std::max(1, std::min(kGxSubdomains, numOwned / (8 * core::numThreads())));
   core::forEachSubdomain((numOwned + group - 1) / group, [&](int task) {
     const int end = std::min(numOwned, (task + 1) * group);
@@ -366,24 +372,25 @@ void TotalFeti::applyGOwnedSubdomains(const double* xOverlap, double* gx) const 
 }
 
 
-void TotalFeti::reduceCoarse(std::vector<double>& local, double* gx) const {
-  if (comm_->getSize() == 1)
+void CoarseSpace::reduce(std::vector<double>& local, double* gx) const {
+  const auto& comm = *subdomains_.comm();
+  if (comm.getSize() == 1)
     std::copy(local.begin(), local.end(), gx);
   else
-    Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, numCoarse(), local.data(), gx);
+    Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, numCoarse(), local.data(), gx);
 }
 
-void TotalFeti::applyG(const DualVector& x, std::vector<double>& gx) const {
-  applyGOwnedSubdomains(overlapValues(x), coarseLocal_.data());
+void CoarseSpace::applyG(const DualVector& x, std::vector<double>& gx) const {
+  applyGOwnedSubdomains(subdomains_.overlapValues(x), local_.data());
   gx.resize(numCoarse());
-  reduceCoarse(coarseLocal_, gx.data());
+  reduce(local_, gx.data());
 }
 
 namespace detail {
 // rowSum[r] += c (b0 + ba p~_a + bb p~_b) over the one-term entries [first, end) of component
 // D of one run (distinct rows: no chain between consecutive updates).
 template <int D>
-void addComponent(const TotalFeti::CoarseRows& G, LO first, LO end, double b0, double ba, double bb,
+void addComponent(const CoarseRows& G, LO first, LO end, double b0, double ba, double bb,
                   double* __restrict rowSum) {
   constexpr int a = kFirstOther<D>, b = kSecondOther<D>;
   const CoarseTerm* __restrict t = G.term.data();
@@ -396,7 +403,7 @@ void addComponent(const TotalFeti::CoarseRows& G, LO first, LO end, double b0, d
 
 // y_r = x_r - sum over the entries of row r of g_{s,r} . a_s, for the owned rows (y may be
 // x: each row reads its x_r before writing y_r).
-void subtractGt(const TotalFeti::CoarseRows& G, const double* a, const double* x, double* y) {
+void subtractGt(const CoarseRows& G, const double* a, const double* x, double* y) {
   core::forEachSubdomain(G.numChunks(), [&](int c) {
     const LO first = c * kRowChunk, end = std::min<LO>(G.numRows, first + kRowChunk);
     double* __restrict rowSum = G.rowSum.data();
@@ -432,13 +439,80 @@ void subtractGt(const TotalFeti::CoarseRows& G, const double* a, const double* x
 }
 }  // namespace detail
 
-void TotalFeti::applyGt(const std::vector<double>& a, DualVector& y) const {
+void CoarseSpace::applyGt(const std::vector<double>& a, DualVector& y) const {
   // y = G^T a = 0 - (-G^T a) (set-up only: lambda_Im)
   std::vector<double> minusA(a.size());
   for (size_t i = 0; i < a.size(); ++i) minusA[i] = -a[i];
   y.putScalar(0.0);
   double* yd = readWrite(y);
   subtractGt(*G_, minusA.data(), yd, yd);
+}
+
+
+CoarseSpace::~CoarseSpace() = default;
+
+void CoarseSpace::setUpProblem(double subdomainBytesPerF, const TotalFetiSettings& settings,
+                               std::vector<char> pinnedModes) {
+  problem_ = std::make_unique<CoarseProblem>(*G_, subdomains_.numSubdomains(), subdomains_.constraints().numRows,
+                                             gMax_, subdomainBytesPerF, subdomains_.comm(), settings, profile_,
+                                             std::move(pinnedModes));
+  problem_->factorize();
+}
+
+void CoarseSpace::solve(std::vector<double>& a) const { problem_->solve(a); }
+
+void CoarseSpace::solveExactly(std::vector<double>& a) const {
+  // Products G G^T x as G (G^T x) for the refinement of a single-precision factor's solves.
+  problem_->solveExactly(a, [this](const std::vector<double>& x, std::vector<double>& y) {
+    DualVector v(subdomains_.dualMap());
+    applyGt(x, v);
+    applyG(v, y);
+  });
+}
+
+void CoarseSpace::release() const {
+  if (!keep_) problem_->release();
+}
+
+void CoarseSpace::project(const DualVector& x, DualVector& y, CoarseCoordinates* ofX) const {
+  // y = x - G^T (G G^T)^{-1} G x on the owned rows: x on the overlap rows (several ranks),
+  // one all-reduce of length l, no allocation.
+  ++profile_.projections;
+  core::Stopwatch watch;
+  applyGOwnedSubdomains(subdomains_.overlapValues(x), local_.data());
+  profile_.gSeconds += watch.seconds();
+  watch.restart();
+  reduce(local_, vector_.data());
+  profile_.coarseReduceSeconds += watch.seconds();
+  if (ofX) ofX->gx.assign(vector_.begin(), vector_.end());
+  solve(vector_);
+  if (ofX) ofX->a.assign(vector_.begin(), vector_.end());
+  watch.restart();
+  const double* xd = readOnly(x);
+  double* yd = &x == &y ? readWrite(y) : y.getLocalViewHost(Tpetra::Access::OverwriteAll).data();
+  if (&x == &y) xd = yd;
+  subtractGt(*G_, vector_.data(), xd, yd);
+  profile_.gSeconds += watch.seconds();
+}
+
+void CoarseSpace::projectExactly(const DualVector& x, DualVector& y) const {
+  if (!problem_->single()) {
+    project(x, y);  // exact already
+    return;
+  }
+  std::vector<double> a;
+  applyG(x, a);
+  solveExactly(a);
+  DualVector gta(subdomains_.dualMap());
+  applyGt(a, gta);
+  y.update(1.0, x, -1.0, gta, 0.0);
+}
+
+void CoarseSpace::coordinates(const DualVector& x, std::vector<double>& gx, std::vector<double>& a) const {
+  ++profile_.coarseCoordinates;
+  applyG(x, gx);
+  a = gx;
+  solve(a);
 }
 
 

@@ -1,9 +1,9 @@
-// TotalFeti's dual preconditioners: lumped B K B^T and Dirichlet B S B^T (ALGORITHMS.md 9).
-#include "TotalFetiParts.hpp"
+// The dual preconditioners (Preconditioners.hpp).
+#include "Preconditioners.hpp"
 
 namespace tribos::feti {
 
-namespace detail {
+namespace {
 // The rows `rows` and columns with position[col] >= 0 of K, columns renumbered by `position`;
 // `upper`: only the columns at or after the row's own position (rows = the columns, ascending).
 KBlock extractBlock(const fem::CsrMatrix& K, const std::vector<LO>& rows, const std::vector<LO>& position,
@@ -41,9 +41,8 @@ KBlock extractBlock(const fem::CsrMatrix& K, const std::vector<LO>& rows, const 
 }
 
 // K_bb (both preconditioners) and, for the Dirichlet one (`interiorToo`), K_ii's factor and K_ib.
-void buildPreconditionerBlocks(TotalFeti::Local& L, bool interiorToo, Factorization factorization,
-                               const SparseCholeskyOptions& options) {
-  DirichletBlocks& D = L.dirichlet;
+void buildBlocks(const OwnedSubdomain& L, DirichletBlocks& D, bool interiorToo, Factorization factorization,
+                 const SparseCholeskyOptions& options) {
   std::vector<char> touched(L.n(), 0);
   for (LO d : L.block->dof) touched[d] = 1;
   std::vector<LO> boundary, interior;
@@ -66,35 +65,37 @@ void buildPreconditionerBlocks(TotalFeti::Local& L, bool interiorToo, Factorizat
   D.Kib = extractBlock(L.system.K, interiorOrdered, boundaryPosition);
   D.t.assign(interior.size(), 0.0);
 }
-}  // namespace detail
+}  // namespace
 
-void TotalFeti::applyLumped(const DualVector& x, DualVector& y) const {
-  TEUCHOS_TEST_FOR_EXCEPTION(!settings_.lumpedPreconditioner && !settings_.dirichletPreconditioner, std::logic_error,
-                             "tribos::feti::TotalFeti::applyLumped: construct with "
-                             "settings.lumpedPreconditioner = true");
-  core::Stopwatch watch;
-  applyBlockwise(x, y, [](Local& L, bool) {
+Preconditioners::Preconditioners(int numOwned, bool dirichlet, Factorization factorization,
+                                       const SparseCholeskyOptions& options)
+    : blocks_(numOwned), dirichlet_(dirichlet), factorization_(factorization), options_(options) {}
+
+Preconditioners::~Preconditioners() = default;
+
+void Preconditioners::build(const OwnedSubdomain& L, int i) {
+  buildBlocks(L, blocks_[i], dirichlet_, factorization_, options_);
+}
+
+void Preconditioners::applyLumped(const SubdomainSet& set, const DualVector& x, DualVector& y) const {
+  const int first = set.firstOwned();
+  set.applyBlockwise(x, y, [this, first](OwnedSubdomain& L, bool) {
     // out = B_s K_bb B_s^T in: B_s^T in is zero off b, and B_s reads b only. Each row of K_bb
     // adds its terms in K's column order less the ones that multiply those zeros, with K_ji
     // for K_ij below the diagonal (the stored triangle): B_s K B_s^T to rounding.
-    DirichletBlocks& D = L.dirichlet;
+    DirichletBlocks& D = blocks_[L.subdomain - first];
     scatterTerms(D.terms, L.in.data(), D.xb.data(), static_cast<LO>(D.xb.size()));
     D.Kbb.applySymmetric(D.xb.data(), D.yb.data());
     gatherTerms(D.terms, D.yb.data(), L.out.data(), L.m());
   });
-  ++profile_.preconditionerApplications;
-  profile_.preconditionerSeconds += watch.seconds();
 }
 
-void TotalFeti::applyDirichlet(const DualVector& x, DualVector& y) const {
-  TEUCHOS_TEST_FOR_EXCEPTION(!settings_.dirichletPreconditioner, std::logic_error,
-                             "tribos::feti::TotalFeti::applyDirichlet: construct with "
-                             "settings.dirichletPreconditioner = true");
-  core::Stopwatch watch;
-  applyBlockwise(x, y, [](Local& L, bool) {
+void Preconditioners::applyDirichlet(const SubdomainSet& set, const DualVector& x, DualVector& y) const {
+  const int first = set.firstOwned();
+  set.applyBlockwise(x, y, [this, first](OwnedSubdomain& L, bool) {
     // x_b = B_s^T in; y_b = K_bb x_b - K_ib^T K_ii^{-1} K_ib x_b; out = B_s y_b. Per subdomain,
     // in one fixed order: the same bits on every rank and thread layout.
-    DirichletBlocks& D = L.dirichlet;
+    DirichletBlocks& D = blocks_[L.subdomain - first];
     scatterTerms(D.terms, L.in.data(), D.xb.data(), static_cast<LO>(D.xb.size()));
     D.Kbb.applySymmetric(D.xb.data(), D.yb.data());
     if (D.interiorFactor) {
@@ -104,9 +105,6 @@ void TotalFeti::applyDirichlet(const DualVector& x, DualVector& y) const {
     }
     gatherTerms(D.terms, D.yb.data(), L.out.data(), L.m());
   });
-  ++profile_.preconditionerApplications;
-  profile_.preconditionerSeconds += watch.seconds();
 }
-
 
 }  // namespace tribos::feti

@@ -1,6 +1,8 @@
-// TotalFeti's recovery: alpha from lambda (paper (14)), u, B u and the residuals of the discrete problem.
+// The primal recovery (PrimalRecovery.hpp): alpha from lambda (paper (14)), u, B u and the
+// residuals of the discrete problem.
+#include "PrimalRecovery.hpp"
+
 #include "CoarseProblem.hpp"
-#include "TotalFetiParts.hpp"
 
 namespace tribos::feti {
 
@@ -9,27 +11,23 @@ namespace {
 constexpr double kSingularReciprocalCondition = 1e-10;
 }  // namespace
 
-std::vector<double> TotalFeti::rigidBodyCoefficients(const DualVector& lambda,
-                                                     const std::vector<char>& ownedRowMask) const {
-  return rigidBodyCoefficients(lambda, ownedRowMask, {});
-}
+PrimalRecovery::PrimalRecovery(const SubdomainSet& subdomains, const CoarseSpace& coarse,
+                               const TotalFetiSettings& settings)
+    : subdomains_(subdomains), coarse_(coarse), settings_(settings) {}
 
-std::vector<double> TotalFeti::rigidBodyCoefficients(const DualVector& lambda, const std::vector<char>& ownedRowMask,
-                                                     const std::vector<RowCombination>& combinations) const {
-  const core::ScopedSeconds timed(profile_.rigidCoefficientsSeconds);
-  TEUCHOS_TEST_FOR_EXCEPTION(ownedRowMask.size() != static_cast<size_t>(G_->numRows), std::invalid_argument,
+std::vector<double> PrimalRecovery::rigidBodyCoefficients(DualVector& residual, const std::vector<char>& ownedRowMask,
+                                                          const std::vector<TotalFeti::RowCombination>& combinations) const {
+  TEUCHOS_TEST_FOR_EXCEPTION(ownedRowMask.size() != static_cast<size_t>(coarse_.rows().numRows), std::invalid_argument,
                              "tribos::feti::TotalFeti::rigidBodyCoefficients: the mask has "
-                                 << ownedRowMask.size() << " entries, this rank owns " << G_->numRows << " rows");
-  DualVector residual(dualMap_);
-  applyF(lambda, residual);
-  residual.update(-1.0, *dTilde_, 1.0);
+                                 << ownedRowMask.size() << " entries, this rank owns " << coarse_.rows().numRows
+                                 << " rows");
   {
     // G_I^T alpha = (F lambda - d~)_I; a combination w contributes w (w . (F lambda - d~)_{a,b}).
     auto data = residual.getLocalViewHost(Tpetra::Access::ReadWrite);
     std::vector<double> combined(combinations.size());
     for (size_t k = 0; k < combinations.size(); ++k) {
       const auto& c = combinations[k];
-      combined[k] = coarse_->sameSubdomains(c.a, c.b) ? c.wa * data(c.a, 0) + c.wb * data(c.b, 0) : 0.0;
+      combined[k] = coarse_.problem().sameSubdomains(c.a, c.b) ? c.wa * data(c.a, 0) + c.wb * data(c.b, 0) : 0.0;
     }
     for (size_t i = 0; i < data.extent(0); ++i)
       if (!ownedRowMask[i]) data(i, 0) = 0.0;
@@ -39,11 +37,11 @@ std::vector<double> TotalFeti::rigidBodyCoefficients(const DualVector& lambda, c
     }
   }
   std::vector<double> alpha;
-  applyG(residual, alpha);
+  coarse_.applyG(residual, alpha);
   // Assembled, factorised and solved on rank 0 (as G G^T: onRootThenBroadcast).
-  fem::CsrMatrix GiGit = coarse_->assemble(&ownedRowMask, combinations.empty() ? nullptr : &combinations);
+  fem::CsrMatrix GiGit = coarse_.problem().assemble(&ownedRowMask, combinations.empty() ? nullptr : &combinations);
   onRootThenBroadcast(
-      *comm_, alpha,
+      *subdomains_.comm(), alpha,
       [&] {
         auto factor = makeSparseCholesky(settings_.factorization, settings_.factorOptions);
         try {
@@ -70,29 +68,19 @@ std::vector<double> TotalFeti::rigidBodyCoefficients(const DualVector& lambda, c
   return alpha;
 }
 
-std::vector<double> TotalFeti::rigidBodyCoefficients(const DualVector& lambda) const {
-  const core::ScopedSeconds timed(profile_.rigidCoefficientsSeconds);
-  DualVector residual(dualMap_);
-  applyF(lambda, residual);
-  residual.update(-1.0, *dTilde_, 1.0);
-  std::vector<double> alpha;
-  applyG(residual, alpha);
-  solveCoarseExactly(alpha);
-  return alpha;
-}
-
-void TotalFeti::applyB(const std::vector<std::vector<double>>& u, DualVector& y) const {
-  applyBlockwise(y, y, [&u, this](Local& L, bool) {
-    applyBlock(*L.block, u[L.subdomain - firstOwned_].data(), L.out.data());
+void PrimalRecovery::applyB(const std::vector<std::vector<double>>& u, DualVector& y) const {
+  const int first = subdomains_.firstOwned();
+  subdomains_.applyBlockwise(y, y, [&u, first](OwnedSubdomain& L, bool) {
+    applyBlock(*L.block, u[L.subdomain - first].data(), L.out.data());
   });
 }
 
-double TotalFeti::equilibriumResidual(const DualVector& lambda, const std::vector<std::vector<double>>& u,
+double PrimalRecovery::equilibriumResidual(const DualVector& lambda, const std::vector<std::vector<double>>& u,
                                       double* forceScale) const {
-  const double* lo = overlapValues(lambda);
+  const double* lo = subdomains_.overlapValues(lambda);
   double worst[2] = {0.0, 0.0}, global[2] = {0.0, 0.0};  // the residual, the largest force
-  for (size_t i = 0; i < local_.size(); ++i) {
-    Local& L = *local_[i];
+  for (int i = 0; i < subdomains_.numOwned(); ++i) {
+    OwnedSubdomain& L = subdomains_.owned(i);
     for (LO r = 0; r < L.m(); ++r) L.in[r] = lo[L.overlapIndex[r]];
     applyBlockTranspose(*L.block, L.rowOrder, L.in.data(), L.x.data(), L.n());
     L.system.K.apply(u[i].data(), L.y.data());
@@ -111,37 +99,37 @@ double TotalFeti::equilibriumResidual(const DualVector& lambda, const std::vecto
       keepLarger(worst[1], std::max({std::abs(L.system.f[k]), std::abs(L.x[k]), terms}));
     }
   }
-  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 2, worst, global);
+  Teuchos::reduceAll(*subdomains_.comm(), Teuchos::REDUCE_MAX, 2, worst, global);
   if (forceScale) *forceScale = global[1];
   return global[0];
 }
 
-double TotalFeti::energy(const std::vector<std::vector<double>>& u) const {
+double PrimalRecovery::energy(const std::vector<std::vector<double>>& u) const {
   // One term per dof, summed independently of the layout (core::ReproducibleSum.hpp).
   std::vector<double> terms;
-  for (size_t i = 0; i < local_.size(); ++i) {
-    Local& L = *local_[i];
+  for (int i = 0; i < subdomains_.numOwned(); ++i) {
+    OwnedSubdomain& L = subdomains_.owned(i);
     L.system.K.apply(u[i].data(), L.y.data());
     for (LO k = 0; k < L.n(); ++k) terms.push_back(0.5 * u[i][k] * L.y[k] - L.system.f[k] * u[i][k]);
   }
-  return core::reproducibleSum(comm_.get(), terms.data(), terms.size(), primalDofs_);
+  return core::reproducibleSum(subdomains_.comm().get(), terms.data(), terms.size(), subdomains_.primalDofs());
 }
 
-double TotalFeti::loadNormInf() const {
+double PrimalRecovery::loadNormInf() const {
   double local = 0.0;
-  for (const auto& L : local_)
+  for (const auto& L : subdomains_.all())
     for (double v : L->system.f) local = std::max(local, std::abs(v));
   double global = 0.0;
-  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 1, &local, &global);
+  Teuchos::reduceAll(*subdomains_.comm(), Teuchos::REDUCE_MAX, 1, &local, &global);
   return global;
 }
 
-std::vector<std::vector<double>> TotalFeti::recoverDisplacements(const DualVector& lambda,
-                                                                 const std::vector<double>& alpha) const {
-  const double* lo = overlapValues(lambda);
-  std::vector<std::vector<double>> u(local_.size());
-  core::forEachSubdomain(numOwnedSubdomains(), [&](int i) {
-    Local& L = *local_[i];
+std::vector<std::vector<double>> PrimalRecovery::recoverDisplacements(const DualVector& lambda,
+                                                                      const std::vector<double>& alpha) const {
+  const double* lo = subdomains_.overlapValues(lambda);
+  std::vector<std::vector<double>> u(subdomains_.numOwned());
+  core::forEachSubdomain(subdomains_.numOwned(), [&](int i) {
+    OwnedSubdomain& L = subdomains_.owned(i);
     const LO n = L.n();
     for (LO r = 0; r < L.m(); ++r) L.in[r] = lo[L.overlapIndex[r]];
     applyBlockTranspose(*L.block, L.rowOrder, L.in.data(), L.x.data(), n);
@@ -154,5 +142,15 @@ std::vector<std::vector<double>> TotalFeti::recoverDisplacements(const DualVecto
   return u;
 }
 
+
+std::vector<EliminatedReaction> PrimalRecovery::eliminatedReactions(const std::vector<std::vector<double>>& u) const {
+  std::vector<EliminatedReaction> out;
+  for (int i = 0; i < subdomains_.numOwned(); ++i) {
+    const OwnedSubdomain& L = subdomains_.owned(i);
+    const std::vector<double> force = feti::eliminatedReactions(L.eliminated, u[i]);
+    for (size_t k = 0; k < force.size(); ++k) out.push_back({L.subdomain, L.eliminated.dof[k], force[k]});
+  }
+  return out;
+}
 
 }  // namespace tribos::feti
