@@ -35,8 +35,8 @@ std::vector<char> inactiveRows(const feti::ConstraintMatrix& B, int rank, const 
   const auto& lc = problem.contact();
   for (size_t k = 0; k < lc.node.size(); ++k) {
     const LO r = lc.normalRow[k];
-    if (lam(r, 0) > tinyForce || lc.model[k] == FrictionModel::Bonded) inactive[r] = 1;
-    if (lc.model[k] == FrictionModel::Bonded)
+    if (lam(r, 0) > tinyForce || tiesSurfaces(lc.model[k])) inactive[r] = 1;
+    if (tiesSurfaces(lc.model[k]))
       for (LO t : lc.tangentialRow[k])
         if (t >= 0) inactive[t] = 1;
     if (lc.ellipse[k] < 0) continue;
@@ -84,7 +84,7 @@ RecoveredLambda recoverPrimal(const feti::TotalFeti& feti, const feti::Constrain
   // The scale of the normal-sign and friction residuals: the contact forces of the inequality
   // rows (a bonded interface's tension would loosen them).
   for (size_t k = 0; k < lc.node.size(); ++k)
-    if (lc.model[k] != FrictionModel::Bonded)
+    if (!tiesSurfaces(lc.model[k]))
       out.lambdaNuMax = std::max(out.lambdaNuMax, std::abs(lam(lc.normalRow[k], 0)));
   out.lambdaNuMax = globalMax(comm, out.lambdaNuMax);
   // The force scale of the status tests: the largest multiplier of any row (gluing and
@@ -190,7 +190,7 @@ ContactNodeResult bondedNodeResult(const NodeContext& x, const feti::ContactNode
 ContactNodeResult contactNodeResult(const NodeContext& x, const feti::ContactNode& node, size_t k,
                                     ContactResiduals& res) {
   const auto& lc = x.lc;
-  if (lc.model[k] == FrictionModel::Bonded) return bondedNodeResult(x, node, k, res);
+  if (tiesSurfaces(lc.model[k])) return bondedNodeResult(x, node, k, res);
   const LO r = lc.normalRow[k];
   const double gap = x.bu(r, 0) - x.c[r];  // N u - c <= 0
   res.penetration = std::max(res.penetration, gap);
@@ -208,11 +208,11 @@ ContactNodeResult contactNodeResult(const NodeContext& x, const feti::ContactNod
   // In contact without friction the node slides freely: "slip". A frictional node without
   // tangential rows is held along both tangents on both sides (a symmetry axis): "stick".
   const bool touching = x.lam(r, 0) > x.tinyForce;
-  const bool heldAlongTangents = lc.ellipse[k] >= 0 || lc.model[k] != FrictionModel::None;
+  const bool heldAlongTangents = lc.ellipse[k] >= 0 || hasTangentialRows(lc.model[k]);
   out.status = !touching ? ContactStatus::NoContact : (heldAlongTangents ? ContactStatus::Stick : ContactStatus::Slip);
   if (lc.ellipse[k] < 0) return out;
   // The bound of the friction law: Coulomb's is lambda_nu itself, Tresca's the given g.
-  const double g = lc.model[k] == FrictionModel::Coulomb ? std::max(x.lam(r, 0), 0.0) : x.slip[k];
+  const double g = boundFollowsNormalForce(lc.model[k]) ? std::max(x.lam(r, 0), 0.0) : x.slip[k];
   out.slipBound = node.rowScale * g;
   const auto lt = tangential(lc, x.lam, k);
   const auto v = tangentialSlip(x, node, k, lt, out);

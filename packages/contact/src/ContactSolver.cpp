@@ -92,7 +92,7 @@ constexpr int kStickRuleRounds = 3;
 
 bool onlyTheStickRuleFailed(const FrictionSettings& friction, double kktTolerance, const ContactResult& result) {
   // "Paper" stops as the paper does, and the gate then judges it (doc/parameters.md): no rounds.
-  if (!friction.uses(FrictionModel::Coulomb) || friction.fixedPoint != FixedPoint::Inexact ||
+  if (!friction.successiveApproximations() || friction.fixedPoint != FixedPoint::Inexact ||
       friction.slipBoundTest != SlipBoundTest::Epsilon)
     return false;
   if (!result.counters.converged || result.counters.nonFinite) return false;
@@ -103,10 +103,6 @@ bool onlyTheStickRuleFailed(const FrictionSettings& friction, double kktToleranc
   return k.stickRule > kktTolerance;
 }
 }  // namespace
-
-bool FrictionSettings::uses(FrictionModel model) const {
-  return std::any_of(laws.begin(), laws.end(), [model](const FrictionLaw& law) { return law.model == model; });
-}
 
 bool FrictionSettings::successiveApproximations() const {
   return std::any_of(laws.begin(), laws.end(), [](const FrictionLaw& law) { return law.boundFollowsNormalForce(); });
@@ -146,7 +142,7 @@ ContactResult solveContact(const feti::TotalFeti& feti, const feti::ConstraintMa
                                    << " values for " << m.extent(0) << " owned rows");
     for (size_t i = 0; i < m.extent(0); ++i) m(i, 0) = initialLambda[i] - lIm(i, 0);
   }
-  if (!initialLambda.empty() && friction.uses(FrictionModel::Coulomb)) problem.setSlipBounds(problem.impliedSlip(*mu));
+  if (!initialLambda.empty() && friction.successiveApproximations()) problem.setSlipBounds(problem.impliedSlip(*mu));
   const SmalseRun run = [&](const qp::OuterHook& hook, double knownNormA) {
     if (!(knownNormA > 0.0)) knownNormA = warm.normA;
     tally.add(smalse.solve(A, Q, problem.rightHandSide(), problem.omega(), *mu, hook, knownNormA));

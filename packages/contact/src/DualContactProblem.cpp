@@ -82,7 +82,7 @@ DualContactProblem::DualContactProblem(const feti::TotalFeti& feti, const feti::
   buildRightHandSide();
   buildOmega(friction);
   buildStoppingScale();
-  const bool mine = std::find(lc_.model.begin(), lc_.model.end(), FrictionModel::Coulomb) != lc_.model.end();
+  const bool mine = std::any_of(lc_.model.begin(), lc_.model.end(), [](FrictionModel m) { return boundFollowsNormalForce(m); });
   coulombNodes_ = globalMax(comm_, mine ? 1.0 : 0.0) > 0.0;
 }
 
@@ -110,7 +110,7 @@ void DualContactProblem::buildStoppingScale() {
   {
     auto v = open->getLocalViewHost(Tpetra::Access::ReadWrite);
     for (size_t k = 0; k < lc_.node.size(); ++k) {
-      if (lc_.model[k] == FrictionModel::Bonded) continue;  // tied: its gap is held, it drives
+      if (tiesSurfaces(lc_.model[k])) continue;  // tied: its gap is held, it drives
       const auto& node = B_.contact[lc_.node[k]];
       const double gap = node.rowScale * std::max(node.gap, 0.0);
       v(lc_.normalRow[k], 0) = gap;
@@ -168,7 +168,7 @@ std::vector<double> DualContactProblem::impliedSlip(const qp::Vector& mu) const 
   const auto lIm = feti_.lambdaIm().getLocalViewHost(Tpetra::Access::ReadOnly);
   std::vector<double> g(slip_);
   for (size_t k = 0; k < g.size(); ++k)
-    if (lc_.model[k] == FrictionModel::Coulomb)
+    if (boundFollowsNormalForce(lc_.model[k]))
       g[k] = std::max(m(lc_.normalRow[k], 0) + lIm(lc_.normalRow[k], 0), 0.0);
   return g;
 }
@@ -190,7 +190,7 @@ std::vector<double> DualContactProblem::interfaceNormalForces(const qp::Vector& 
 double DualContactProblem::relativeChange(const std::vector<double>& gNew, const std::vector<double>& gOld) const {
   std::vector<double> dTerms(gNew.size(), 0.0), nTerms(gNew.size(), 0.0);
   for (size_t k = 0; k < gNew.size(); ++k) {
-    if (lc_.model[k] != FrictionModel::Coulomb) continue;
+    if (!boundFollowsNormalForce(lc_.model[k])) continue;
     dTerms[k] = (gNew[k] - gOld[k]) * (gNew[k] - gOld[k]);
     nTerms[k] = gOld[k] * gOld[k];
   }
@@ -203,7 +203,7 @@ double DualContactProblem::coulombExcess(const qp::Vector& current) const {
   const auto lIm = feti_.lambdaIm().getLocalViewHost(Tpetra::Access::ReadOnly);
   double excess = 0.0, normalMax = 0.0;
   for (size_t k = 0; k < lc_.node.size(); ++k) {
-    if (lc_.model[k] != FrictionModel::Coulomb) continue;
+    if (!boundFollowsNormalForce(lc_.model[k])) continue;
     const double lambdaNu = m(lc_.normalRow[k], 0) + lIm(lc_.normalRow[k], 0);
     normalMax = std::max(normalMax, std::abs(lambdaNu));
     if (lc_.ellipse[k] < 0) continue;

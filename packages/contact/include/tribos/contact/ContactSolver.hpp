@@ -27,8 +27,6 @@ struct FrictionSettings {
   /// The law of each contact interface, indexed by feti::ContactNode::interface. Bonded
   /// interfaces keep their rows as equalities (tied) beside the others' inequalities.
   std::vector<FrictionLaw> laws{FrictionLaw{}};
-  /// True when some interface's law is `model`.
-  bool uses(FrictionModel model) const;
   /// True when some interface's bound follows its normal force (Coulomb): the solve then runs
   /// successive approximations of the slip bound.
   bool successiveApproximations() const;

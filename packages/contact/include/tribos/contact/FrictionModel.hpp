@@ -18,21 +18,28 @@ inline constexpr core::EnumNames<FrictionModel, 4> kFrictionModelNames{{{"None",
 /// The friction law of one contact interface (Contact, or Contact/<name>), and what each law
 /// implies for the rows, the bound on the tangential force and the messages: the one place
 /// that asks which model it is, so the scene, the report and the solve ask the law instead.
+/// What each model implies, the one place that names the models (FrictionLaw's queries and the
+/// contact solver's per-node arrays ask these; a new law answers them here).
+/// Bonded: the contact rows are equalities that tie the surfaces where they are (a linear
+/// scene when every interface is bonded), never inequalities of a contact solve.
+inline bool tiesSurfaces(FrictionModel m) { return m == FrictionModel::Bonded; }
+/// Rows along t1 and t2: every law but None (frictionless contact has normal rows only).
+inline bool hasTangentialRows(FrictionModel m) { return m != FrictionModel::None; }
+/// Coulomb: the bound on the tangential force is F lambda_nu, followed by successive
+/// approximations of the slip bound (paper Section 4, ALGORITHMS.md 10).
+inline bool boundFollowsNormalForce(FrictionModel m) { return m == FrictionModel::Coulomb; }
+/// Tresca: the bound is the given slip bound g per node, not F lambda_nu.
+inline bool boundIsGiven(FrictionModel m) { return m == FrictionModel::Tresca; }
+
 struct FrictionLaw {
   FrictionModel model = FrictionModel::Coulomb;
   double F1 = 0.3, F2 = 0.3;       ///< friction coefficients along t1, t2
   double slipBound = 0.0;          ///< Tresca: g as a nodal force [force]
 
-  /// Bonded: the contact rows are equalities that tie the surfaces where they are (a linear
-  /// scene when every interface is bonded), never inequalities of a contact solve.
-  bool tiesSurfaces() const { return model == FrictionModel::Bonded; }
-  /// Rows along t1 and t2: every law but None (frictionless contact has normal rows only).
-  bool hasTangentialRows() const { return model != FrictionModel::None; }
-  /// Coulomb: the bound on the tangential force is F lambda_nu, followed by successive
-  /// approximations of the slip bound (paper Section 4, ALGORITHMS.md 10).
-  bool boundFollowsNormalForce() const { return model == FrictionModel::Coulomb; }
-  /// Tresca: the bound is the given slip bound g per node, not F lambda_nu.
-  bool boundIsGiven() const { return model == FrictionModel::Tresca; }
+  bool tiesSurfaces() const { return contact::tiesSurfaces(model); }
+  bool hasTangentialRows() const { return contact::hasTangentialRows(model); }
+  bool boundFollowsNormalForce() const { return contact::boundFollowsNormalForce(model); }
+  bool boundIsGiven() const { return contact::boundIsGiven(model); }
   /// The coefficient of the friction capacity F N quoted in messages: the larger of F1 and F2;
   /// 0 without friction.
   double capacityCoefficient() const { return model == FrictionModel::None ? 0.0 : std::max(F1, F2); }
