@@ -44,7 +44,7 @@ void copyTet(const double (*x)[3], double t[4][3]) {
 
 double solidStiffness(ElementType type, const double (*x)[3], double lambda, double mu, double* Ke) {
   const int n = mesh::elementShape(type).numNodes, dofs = 3 * n;
-  if (type == ElementType::Tet4) {
+  if (mesh::elementShape(type).linearSimplex) {  // closed form
     double t[4][3], K[12][12];
     copyTet(x, t);
     const double V = tetStiffness(t, lambda, mu, K);
@@ -75,7 +75,7 @@ double solidStiffness(ElementType type, const double (*x)[3], double lambda, dou
 
 double solidVolumeForce(ElementType type, const double (*x)[3], const double b[3], double* fe) {
   const int n = mesh::elementShape(type).numNodes;
-  if (type == ElementType::Tet4) {
+  if (mesh::elementShape(type).linearSimplex) {  // closed form
     double t[4][3], load[12];
     copyTet(x, t);
     const double V = tetVolumeForce(t, b, load);
@@ -96,7 +96,7 @@ double solidVolumeForce(ElementType type, const double (*x)[3], const double b[3
 
 ElementStress solidStress(ElementType type, const double (*x)[3], const double* u, double lambda, double mu) {
   ElementStress out;
-  if (type == ElementType::Tet4) {
+  if (mesh::elementShape(type).linearSimplex) {  // closed form
     double t[4][3];
     copyTet(x, t);
     out.volume = tetStress(t, u, lambda, mu, out.eps, out.sigma);

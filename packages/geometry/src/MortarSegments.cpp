@@ -50,7 +50,11 @@ Polygon referenceDomain(mesh::FaceType type) {
 /// steps from the centre (one step on an affine face). False where the tangents degenerate or
 /// the steps do not settle.
 bool referencePointOf(const SlaveBasis& basis, const Vec3& y, Point2& xi) {
-  xi = basis.type() == mesh::FaceType::Quad4 ? Point2{0.0, 0.0} : Point2{1.0 / 3.0, 1.0 / 3.0};
+  const mesh::FaceTypeShape& shape = mesh::faceTypeShape(basis.type());
+  xi = {0.0, 0.0};  // the centre: the mean of the catalogue's reference vertices
+  for (int v = 0; v < shape.numVertices; ++v)
+    for (int c = 0; c < 2; ++c) xi[c] += shape.referenceNodes[v][c];
+  for (int c = 0; c < 2; ++c) xi[c] /= shape.numVertices;
   for (int step = 0; step < kMaxProjectionSteps; ++step) {
     const mesh::FaceGeometry g = mesh::faceGeometry(basis.type(), basis.coordinates().data(), xi[0], xi[1]);
     const Vec3 r = minus(y, g.point);
@@ -73,7 +77,7 @@ bool imageOf(const SlaveBasis& basis, const MasterSurface& master, LO f, Polygon
   const FaceCoordinates& x = master.faceCoordinates(f);
   image.clear();
   for (int v = 0; v < face.numVertices; ++v) {
-    for (int k : {v, face.numNodes == 6 ? 3 + v : -1}) {
+    for (int k : {v, face.numNodes > face.numVertices ? face.numVertices + v : -1}) {  // the edge's mid node after it
       if (k < 0) continue;
       Point2 xi;
       if (!referencePointOf(basis, x[k], xi)) return false;

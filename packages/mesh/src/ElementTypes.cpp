@@ -14,11 +14,11 @@ constexpr ElementShape kShapes[kNumElementTypes] = {
     // "TETRA": meshio 5 maps "TETRA4" to a cell type it does not know (KeyError 'tetra4').
     {"TETRA", "4-node tetrahedron", 4, 4, 4,
      {{3, 3, {0, 1, 3}}, {3, 3, {1, 2, 3}}, {3, 3, {0, 3, 2}}, {3, 3, {0, 2, 1}}},
-     {"TETRA", "TETRA4", "TET4", "TET"}, 4, {0, 1, 2, 3}, {0, 1, 3, 2}},
+     {"TETRA", "TETRA4", "TET4", "TET"}, 4, {0, 1, 2, 3}, {0, 1, 3, 2}, true},
     // Mid-edge nodes 4:(0,1) 5:(1,2) 6:(2,0) 7:(0,3) 8:(1,3) 9:(2,3).
     {"TETRA10", "10-node tetrahedron", 10, 4, 4,
      {{3, 6, {0, 1, 3, 4, 8, 7}}, {3, 6, {1, 2, 3, 5, 9, 8}}, {3, 6, {0, 3, 2, 7, 9, 6}}, {3, 6, {0, 2, 1, 6, 5, 4}}},
-     {"TETRA", "TETRA10", "TET10"}, 11, {0, 1, 2, 3, 4, 5, 6, 7, 9, 8}, {0, 1, 3, 2, 4, 8, 7, 6, 5, 9}},
+     {"TETRA", "TETRA10", "TET10"}, 11, {0, 1, 2, 3, 4, 5, 6, 7, 9, 8}, {0, 1, 3, 2, 4, 8, 7, 6, 5, 9}, false},
     {"HEX8", "8-node hexahedron", 8, 8, 6,
      {{4, 4, {0, 1, 5, 4}},
       {4, 4, {1, 2, 6, 5}},
@@ -26,11 +26,11 @@ constexpr ElementShape kShapes[kNumElementTypes] = {
       {4, 4, {0, 4, 7, 3}},
       {4, 4, {0, 3, 2, 1}},
       {4, 4, {4, 5, 6, 7}}},
-     {"HEX", "HEX8", "HEXAHEDRON"}, 5, {0, 1, 2, 3, 4, 5, 6, 7}, {4, 5, 6, 7, 0, 1, 2, 3}},
+     {"HEX", "HEX8", "HEXAHEDRON"}, 5, {0, 1, 2, 3, 4, 5, 6, 7}, {4, 5, 6, 7, 0, 1, 2, 3}, false},
     // "WEDGE": meshio 5 does not know "WEDGE6" (KeyError); both are Exodus names of it.
     {"WEDGE", "6-node prism", 6, 6, 5,
      {{4, 4, {0, 1, 4, 3}}, {4, 4, {1, 2, 5, 4}}, {4, 4, {0, 3, 5, 2}}, {3, 3, {0, 2, 1}}, {3, 3, {3, 4, 5}}},
-     {"WEDGE", "WEDGE6"}, 6, {0, 1, 2, 3, 4, 5}, {3, 4, 5, 0, 1, 2}},
+     {"WEDGE", "WEDGE6"}, 6, {0, 1, 2, 3, 4, 5}, {3, 4, 5, 0, 1, 2}, false},
 };
 }  // namespace
 

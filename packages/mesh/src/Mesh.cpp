@@ -68,7 +68,7 @@ void elementCoordinates(const Mesh& mesh, LO element, double x[][3]) {
 }  // namespace
 
 double Mesh::elementVolume(LO element) const {
-  if (elementType(element) != ElementType::Tet4) {
+  if (!elementShape(elementType(element)).linearSimplex) {
     double x[kMaxElementNodes][3];
     elementCoordinates(*this, element, x);
     return elementMeasure(elementType(element), x).volume;
@@ -153,7 +153,7 @@ void requireValidElements(const Mesh& mesh, const Fail& fail) {
       fail(mesh.elementLabel(e) + " is degenerate (volume " + core::formatNumber(volume) + " for a longest edge of " +
            core::formatNumber(edge) + ")");
     if (volume < 0.0) fail(mesh.elementLabel(e) + " is inverted (volume " + core::formatNumber(volume) + ")");
-    if (mesh.elementType(e) == ElementType::Tet4) continue;  // its Jacobian is constant: the volume says it all
+    if (elementShape(mesh.elementType(e)).linearSimplex) continue;  // its Jacobian is constant: the volume says it all
     double x[kMaxElementNodes][3];
     elementCoordinates(mesh, e, x);
     const double smallest = elementMeasure(mesh.elementType(e), x).smallestScaledJacobian;

@@ -47,6 +47,9 @@ struct ElementShape {
   /// The mirror image: node k of the reversed element is node mirrorNode[k] (for writers with
   /// the other orientation convention).
   int mirrorNode[kMaxElementNodes];
+  /// The linear tetrahedron: a constant Jacobian (its volume alone says whether it is valid)
+  /// and closed-form element kernels (fem::tetStiffness and its kin) instead of quadrature.
+  bool linearSimplex;
 };
 
 /// The shape of every type, indexed by ElementType.
