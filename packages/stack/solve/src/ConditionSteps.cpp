@@ -125,11 +125,13 @@ void requireEveryRunRestrained(const Scene& scene, MPI_Comm comm) {
 }
 }  // namespace
 
-ContactSolveResult solveConditionRuns(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
-                                      const feti::ConstraintMatrix& B, const Teuchos::ParameterList& tribos,
-                                      MPI_Comm comm, core::Stopwatch runStart, const StepObserver& afterStep) {
+ContactSolveResult solveConditionRuns(const ContactRun& contactRun, std::vector<fem::SubdomainSystem> owned,
+                                      const feti::ConstraintMatrix& B) {
+  const Scene& scene = contactRun.scene;
+  MPI_Comm comm = contactRun.comm;
+  const StepObserver& afterStep = contactRun.afterStep;
   requireEveryRunRestrained(scene, comm);
-  const std::string restartFile = tribos.sublist("Load Steps").get<std::string>("Restart From");
+  const std::string restartFile = contactRun.tribos.sublist("Load Steps").get<std::string>("Restart From");
   std::map<int, Displacement> at;  // the states conditions hold their nodes at
   std::optional<RestartState> from;
   int firstStep = 1;
@@ -158,8 +160,8 @@ ContactSolveResult solveConditionRuns(const Scene& scene, std::vector<fem::Subdo
     const feti::ConstraintMatrix& runB = run.first == 1 ? B : *rows;
     const HistoryPart part{from ? &*from : nullptr, run.last, &spec};
     result = scene.pairingUpdates > 0
-                 ? solveHistoryPairedAsItGoes(scene, std::move(systems), runB, tribos, comm, runStart, observe, part)
-                 : solveOnePairing(scene, std::move(systems), runB, tribos, comm, runStart, observe, part);
+                 ? solveHistoryPairedAsItGoes(contactRun.observedBy(observe), std::move(systems), runB, part)
+                 : solveOnePairing(contactRun.observedBy(observe), std::move(systems), runB, part);
     if (run.last == scene.loadSteps || !result.contact.converged) break;
     at[run.last] = stepDisplacement(result, result.earlierSteps.size(), scene.mesh.numNodes(), comm);
     appendRun(result, done);

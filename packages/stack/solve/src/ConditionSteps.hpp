@@ -14,6 +14,7 @@
 #include <map>
 #include <vector>
 
+#include "PairingUpdate.hpp"
 #include "tribos/stack/ContactSolve.hpp"
 
 namespace tribos::stack {
@@ -41,8 +42,7 @@ feti::ConstraintSpec constraintSpecAt(const Scene& scene, int first,
 /// (`B` and `owned` serve the run of step 1), paired as it goes where Scene::pairingUpdates,
 /// from Load Steps/Restart From's state when given. Steps, counts and pairing updates of every
 /// run in one result; `afterStep` sees every step converged so far. Collective.
-ContactSolveResult solveConditionRuns(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
-                                      const feti::ConstraintMatrix& B, const Teuchos::ParameterList& tribos,
-                                      MPI_Comm comm, core::Stopwatch runStart, const StepObserver& afterStep);
+ContactSolveResult solveConditionRuns(const ContactRun& contactRun, std::vector<fem::SubdomainSystem> owned,
+                                      const feti::ConstraintMatrix& B);
 
 }  // namespace tribos::stack

@@ -340,10 +340,13 @@ struct HistorySpan {
   const HistoryPart& part;
 };
 
-const ContactFields* solveHistory(const Scene& scene, const feti::ConstraintMatrix& B,
-                                  const Teuchos::ParameterList& stepsList, feti::TotalFeti& feti,
+const ContactFields* solveHistory(const ContactRun& contactRun, const feti::ConstraintMatrix& B, feti::TotalFeti& feti,
                                   const ContactChain& chain, LoadHistory& loads, const HistorySpan& span,
-                                  MPI_Comm comm, ContactSolveResult& out, const StepObserver& afterStep) {
+                                  ContactSolveResult& out) {
+  const Scene& scene = contactRun.scene;
+  const Teuchos::ParameterList& stepsList = contactRun.tribos.sublist("Load Steps");
+  MPI_Comm comm = contactRun.comm;
+  const StepObserver& afterStep = contactRun.afterStep;
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   const RestartState& restart = span.restart;
@@ -414,17 +417,18 @@ void checkPenetration(const Scene& scene, const feti::ConstraintMatrix& B, MPI_C
 }
 }  // namespace
 
-ContactSolveResult solveOnePairing(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
-                                   const feti::ConstraintMatrix& B, const Teuchos::ParameterList& tribos, MPI_Comm comm,
-                                   core::Stopwatch runStart, const StepObserver& afterStep,
-                                   const HistoryPart& part) {
+ContactSolveResult solveOnePairing(const ContactRun& contactRun, std::vector<fem::SubdomainSystem> owned,
+                                   const feti::ConstraintMatrix& B, const HistoryPart& part) {
+  const Scene& scene = contactRun.scene;
+  const Teuchos::ParameterList& tribos = contactRun.tribos;
+  MPI_Comm comm = contactRun.comm;
   ContactSolveResult out;
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   const auto& fetiList = tribos.sublist("FETI");
   feti::TotalFetiSettings settings = totalFetiSettings(fetiList, false);
   ContactChain chain{frictionSettings(scene, tribos), smalseSettings(tribos), dualPreconditioner(fetiList)};
-  const core::Deadline deadline(tribos.sublist("Solver").get<double>("Max Seconds"), runStart);
+  const core::Deadline deadline(tribos.sublist("Solver").get<double>("Max Seconds"), contactRun.runStart);
   settings.deadline = &deadline;
   WallClockBudget budget(deadline, comm);
   chain.smalse.stopRequested = budget.stopRequest();
@@ -456,7 +460,7 @@ ContactSolveResult solveOnePairing(const Scene& scene, std::vector<fem::Subdomai
   core::Stopwatch watch;
   const ContactFields* totalsBefore = nullptr;  // a history's totals before its last state
   if (history)
-    totalsBefore = solveHistory(scene, B, stepsList, feti, chain, *loads, {restart, part}, comm, out, afterStep);
+    totalsBefore = solveHistory(contactRun, B, feti, chain, *loads, {restart, part}, out);
   else  // warm where the multipliers of another pairing were carried to B (PairingUpdate.cpp)
     out.contact = contact::solveContact(feti, B, chain.friction, chain.smalse, chain.preconditioner,
                                         {part.startLambda, 0.0});

@@ -184,10 +184,12 @@ RestartState stateAfter(const ContactSolveResult& done, const feti::ConstraintMa
   return state;
 }
 
-ContactSolveResult solveHistoryPairedAsItGoes(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
-                                              const feti::ConstraintMatrix& B, const Teuchos::ParameterList& tribos,
-                                              MPI_Comm comm, core::Stopwatch runStart, const StepObserver& afterStep,
-                                              const HistoryPart& span) {
+ContactSolveResult solveHistoryPairedAsItGoes(const ContactRun& contactRun, std::vector<fem::SubdomainSystem> owned,
+                                              const feti::ConstraintMatrix& B, const HistoryPart& span) {
+  const Scene& scene = contactRun.scene;
+  const Teuchos::ParameterList& tribos = contactRun.tribos;
+  MPI_Comm comm = contactRun.comm;
+  const StepObserver& afterStep = contactRun.afterStep;
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   const bool verbose = tribos.sublist("Solver").get<bool>("Verbose");
@@ -209,7 +211,7 @@ ContactSolveResult solveHistoryPairedAsItGoes(const Scene& scene, std::vector<fe
   };
   HistoryPart first = span;
   first.stopWhen = changesAtStep;
-  ContactSolveResult part = solveOnePairing(scene, std::move(owned), B, tribos, comm, runStart, observe, first);
+  ContactSolveResult part = solveOnePairing(contactRun.observedBy(observe), std::move(owned), B, first);
   const std::string restartFile = part.restartFile;  // Load Steps/Restart From's, as the summary shows it
   const int restartStep = part.restartStep;
   std::unique_ptr<feti::ConstraintMatrix> held;
@@ -224,7 +226,7 @@ ContactSolveResult solveHistoryPairedAsItGoes(const Scene& scene, std::vector<fe
     std::vector<fem::SubdomainSystem> systems;
     assembleOwnedSubdomains(scene, comm, systems);
     check.newPart();
-    part = solveOnePairing(scene, std::move(systems), *rows, tribos, comm, runStart, observe,
+    part = solveOnePairing(contactRun.observedBy(observe), std::move(systems), *rows,
                            {from ? &*from : nullptr, span.lastStep, &spec, changesAtStep, std::move(start.lambda),
                             start.step});
   };

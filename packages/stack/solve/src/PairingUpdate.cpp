@@ -117,15 +117,16 @@ PairingUpdateRecord changesAt(const Scene& scene, const feti::ConstraintSpec& of
 ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
                                      const feti::ConstraintMatrix& B, const Teuchos::ParameterList& tribos,
                                      MPI_Comm comm, core::Stopwatch runStart, const StepObserver& afterStep) {
+  const ContactRun run{scene, tribos, comm, runStart, afterStep};
   if (scene.loadHistory && conditionRuns(scene).size() > 1)  // conditions switched between steps
-    return solveConditionRuns(scene, std::move(owned), B, tribos, comm, runStart, afterStep);
-  if (scene.pairingUpdates == 0) return solveOnePairing(scene, std::move(owned), B, tribos, comm, runStart, afterStep);
-  if (scene.loadHistory)
-    return solveHistoryPairedAsItGoes(scene, std::move(owned), B, tribos, comm, runStart, afterStep);
+    return solveConditionRuns(run, std::move(owned), B);
+  if (scene.pairingUpdates == 0) return solveOnePairing(run, std::move(owned), B);
+  if (scene.loadHistory) return solveHistoryPairedAsItGoes(run, std::move(owned), B);
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   const feti::ConstraintSpec spec = constraintSpec(scene);
-  ContactSolveResult out = solveOnePairing(scene, std::move(owned), B, tribos, comm, runStart);
+  const ContactRun unobserved = run.observedBy({});
+  ContactSolveResult out = solveOnePairing(unobserved, std::move(owned), B);
   std::vector<PairingUpdateRecord> records;
   std::unique_ptr<feti::ConstraintMatrix> current;  // the pairing of `out` when not B
   std::vector<std::array<double, 3>> pairedAt;        // the state `current` was paired at
@@ -155,7 +156,7 @@ ContactSolveResult solveContactScene(const Scene& scene, std::vector<fem::Subdom
     addPartCounts(out, spent);  // the solve that is superseded counts too
     HistoryPart warm;  // from the multipliers of the solve before, carried to the new rows
     warm.startLambda = feti::carryMultipliers(solved, out.contact.lambda, *next, comm);
-    out = solveOnePairing(scene, std::move(systems), *next, tribos, comm, runStart, {}, warm);
+    out = solveOnePairing(unobserved, std::move(systems), *next, warm);
     current = std::move(next);
     pairedAt = u;
   }

@@ -18,6 +18,22 @@
 
 namespace tribos::stack {
 
+/// What every solve of one contact run shares: the scene, its validated list, the communicator,
+/// the run's start (Solver/Max Seconds counts from it) and the observer of converged steps.
+struct ContactRun {
+  const Scene& scene;
+  const Teuchos::ParameterList& tribos;
+  MPI_Comm comm;
+  core::Stopwatch runStart;
+  StepObserver afterStep;
+  /// The same run with another observer (a part's own, or none).
+  ContactRun observedBy(StepObserver observer) const {
+    ContactRun run = *this;
+    run.afterStep = std::move(observer);
+    return run;
+  }
+};
+
 /// The part of a load history one solve covers (HistoryPairing.cpp, ConditionSteps.cpp).
 struct HistoryPart {
   /// The state it continues from (in memory, every rank); null: Load Steps/Restart From, or step 1.
@@ -38,10 +54,8 @@ struct HistoryPart {
 
 /// One solve on one pairing (ContactSolve.cpp): solveContactScene without pairing updates; a
 /// load history over the steps of `part`.
-ContactSolveResult solveOnePairing(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
-                                   const feti::ConstraintMatrix& B, const Teuchos::ParameterList& tribos, MPI_Comm comm,
-                                   core::Stopwatch runStart, const StepObserver& afterStep = {},
-                                   const HistoryPart& part = {});
+ContactSolveResult solveOnePairing(const ContactRun& contactRun, std::vector<fem::SubdomainSystem> owned,
+                                   const feti::ConstraintMatrix& B, const HistoryPart& part = {});
 
 /// A load history paired again as it goes (HistoryPairing.cpp): each converged step is checked
 /// as it is reached; the first whose state changes the pairing (newly inside, moved on) ends the
@@ -50,10 +64,8 @@ ContactSolveResult solveOnePairing(const Scene& scene, std::vector<fem::Subdomai
 /// and the history goes on from it). The result's pairingUpdates get one entry per check that
 /// changed the pairing, and one for the check that found it standing; its counts are every
 /// part's. Over the steps of `part` (its spec: what the rows are built from).
-ContactSolveResult solveHistoryPairedAsItGoes(const Scene& scene, std::vector<fem::SubdomainSystem> owned,
-                                              const feti::ConstraintMatrix& B, const Teuchos::ParameterList& tribos,
-                                              MPI_Comm comm, core::Stopwatch runStart, const StepObserver& afterStep,
-                                              const HistoryPart& part = {});
+ContactSolveResult solveHistoryPairedAsItGoes(const ContactRun& contactRun, std::vector<fem::SubdomainSystem> owned,
+                                              const feti::ConstraintMatrix& B, const HistoryPart& part = {});
 
 /// The contact rows at the displacement `u` (every rank), this rank's part, of the constraints
 /// `spec`: each slave node keeps its pairing in `solved` unless the bodies at x + u show it wrong
