@@ -14,23 +14,26 @@ namespace tribos::driver {
 namespace {
 // Issue 44: under `ulimit -s` 16-64 KiB the run ended in MPI_Init (exit 1, Open MPI's report of a
 // daemon that could not start) before any of tribos's code. The soft limit is raised where the
-// hard limit allows; a hard limit too small is said as such. Returns whether the limit changed.
-bool raiseStackLimit(int& status) {
+// hard limit allows; a hard limit too small is said as such (sayStackTooSmall).
+enum class StackLimit { Unchanged, Raised, TooSmall };
+StackLimit raiseStackLimit() {
   rlimit limit{};
-  if (getrlimit(RLIMIT_STACK, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return false;
+  if (getrlimit(RLIMIT_STACK, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return StackLimit::Unchanged;
   const rlim_t wanted = static_cast<rlim_t>(kWantedStackKiB) * 1024;
-  if (limit.rlim_cur >= wanted) return false;
+  if (limit.rlim_cur >= wanted) return StackLimit::Unchanged;
   const rlim_t raised = limit.rlim_max == RLIM_INFINITY ? wanted : std::min(wanted, limit.rlim_max);
-  if (raised < static_cast<rlim_t>(kMinStackKiB) * 1024) {
-    std::cerr << "tribos: error: the stack limit (ulimit -s) is " << limit.rlim_max / 1024
-              << " KiB at most; tribos needs at least " << kMinStackKiB << " KiB (Open MPI cannot start below about "
-              << "256 KiB): run it under ulimit -s " << kWantedStackKiB << " or more\n";
-    status = core::kExitBadInput;
-    return false;
-  }
-  if (raised <= limit.rlim_cur) return false;
+  if (raised < static_cast<rlim_t>(kMinStackKiB) * 1024) return StackLimit::TooSmall;
+  if (raised <= limit.rlim_cur) return StackLimit::Unchanged;
   limit.rlim_cur = raised;
-  return setrlimit(RLIMIT_STACK, &limit) == 0;
+  return setrlimit(RLIMIT_STACK, &limit) == 0 ? StackLimit::Raised : StackLimit::Unchanged;
+}
+
+void sayStackTooSmall() {
+  rlimit limit{};
+  getrlimit(RLIMIT_STACK, &limit);
+  std::cerr << "tribos: error: the stack limit (ulimit -s) is " << limit.rlim_max / 1024
+            << " KiB at most; tribos needs at least " << kMinStackKiB << " KiB (Open MPI cannot start below about "
+            << "256 KiB): run it under ulimit -s " << kWantedStackKiB << " or more\n";
 }
 
 // Issue 44's kin: under ulimit -f 4000 (KiB) Open MPI's PMIx could not create its lock file and
@@ -58,14 +61,23 @@ bool chooseSleepingThreads() {
 }
 }  // namespace
 
+bool prepareEnvironment() {
+  const bool stackRaised = raiseStackLimit() == StackLimit::Raised;
+  const bool policyChosen = chooseSleepingThreads();
+  return stackRaised || policyChosen;
+}
+
 int prepareProcess(char** argv) {
   if (!fileSizeLimitLetsMpiStart()) return core::kExitBadInput;
-  int status = 0;
-  const bool stackRaised = raiseStackLimit(status);
-  if (status != 0) return status;
+  const StackLimit stack = raiseStackLimit();
+  if (stack == StackLimit::TooSmall) {
+    sayStackTooSmall();
+    return core::kExitBadInput;
+  }
   const bool policyChosen = chooseSleepingThreads();
-  // Before MPI_Init, so mpirun sees one process; it costs about 0.05 s.
-  if (stackRaised || policyChosen) execv("/proc/self/exe", argv);
+  // Before MPI_Init, so mpirun sees one process; it costs about 0.03 s (a run started by the
+  // tribos launcher, drivers/Launcher.cpp, finds both done and does not execute again).
+  if (stack == StackLimit::Raised || policyChosen) execv("/proc/self/exe", argv);
   return 0;
 }
 

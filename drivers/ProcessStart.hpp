@@ -18,6 +18,12 @@ constexpr long kWantedStackKiB = 8192;
 /// lock file of about 4 MiB in MPI_Init (measured: 4000 KiB ends there, exit 1; 4500 starts).
 constexpr long kMinFileSizeKiB = 8192;
 
+/// What the tribos launcher (drivers/Launcher.cpp) sets before it runs the solver's image: the
+/// soft stack limit raised as prepareProcess raises it (where the hard limit allows) and
+/// OMP_WAIT_POLICY=PASSIVE as prepareProcess sets it. Says nothing: the solver checks and
+/// reports the limits itself. Returns whether either changed.
+bool prepareEnvironment();
+
 /// Refuses a file size limit below kMinFileSizeKiB. Raises a soft stack limit below kWantedStackKiB (up to the hard limit) and sets
 /// OMP_WAIT_POLICY=PASSIVE when the user chose no policy and runs more than one thread; then, if
 /// either changed, executes this binary again with the same arguments. Returns the exit status

@@ -3,7 +3,8 @@
 # every scene under input/, the Table 1 cells up to 2s = 256 (2x1x1 .. 8x4x4, H/h 2..5), and
 # friction variants on 1 and 2 ranks (Tresca, exact Coulomb, the Paper slip-bound test, no and
 # lumped preconditioner, a curved Coulomb contact, a capped run, an open gap, orthotropic).
-# A reshaping that must keep the bits (issue 29) gives the same output as the binary before it:
+# A reshaping that must keep the bits (issue 29) gives the same output as the binary before it
+# (a copy of build/bin with both tribos and tribos-solver, which the launcher runs from its folder):
 #   perf/tools/bit_identity.sh old/bin/tribos > before.txt
 #   perf/tools/bit_identity.sh build/bin/tribos > after.txt && diff before.txt after.txt
 # Each line: name, ranks, exit status, outer / inner / PFP / F applications (or slip-bound

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Packs build/bin/tribos with every shared library it needs and Open MPI's runtime (Debian 12
+# Packs build/bin/tribos (the launcher) and tribos-solver beside it with every shared library they need and Open MPI's runtime (Debian 12
 # layout) into one tarball, for a machine where nothing can be installed (same x86-64, glibc
 # at least Debian 12's 2.36). Extract it into / as root there:
 #   tar -xJf tribos-runtime.tar.xz -C /
@@ -16,12 +16,14 @@ multiarch=/usr/lib/x86_64-linux-gnu
 stage=$(mktemp -d)
 trap 'rm -rf "$stage"' EXIT
 mkdir -p "$stage/opt/tribos/bin" "$stage/opt/tribos/lib"
+solver=$(dirname "$binary")/tribos-solver  # the launcher runs it from its own folder
 cp "$binary" "$stage/opt/tribos/bin/tribos"
+cp "$solver" "$stage/opt/tribos/bin/tribos-solver"
 cp /usr/bin/orterun "$stage/opt/tribos/bin/mpirun"
 cp /usr/bin/orted "$stage/opt/tribos/bin/orted"
 
 # Libraries: those of the program, of mpirun/orted and of every Open MPI / PMIx plugin.
-objects=("$binary" /usr/bin/orterun /usr/bin/orted "$multiarch"/openmpi/lib/openmpi3/*.so "$multiarch"/pmix2/lib/pmix/*.so)
+objects=("$binary" "$solver" /usr/bin/orterun /usr/bin/orted "$multiarch"/openmpi/lib/openmpi3/*.so "$multiarch"/pmix2/lib/pmix/*.so)
 for o in "${objects[@]}"; do ldd "$o" | awk '/=> \//{print $1, $3}'; done | sort -u |
   while read -r soname path; do
     case "$soname" in
