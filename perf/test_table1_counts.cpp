@@ -5,6 +5,7 @@
 // is written into the baseline on purpose (and a later drift back up is caught from there).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -66,8 +67,16 @@ TEST(table1Counts, stayWithinTheBaselineBand) {
     std::printf("cell %s: outer %d (baseline %d), pfp %d (baseline %d)\n", name.c_str(), outer, outerBase, pfp,
                 pfpBase);
     std::fflush(stdout);
-    expectWithinBand("outer_iterations", outer, outerBase, outerBase - outerBand, outerBase + outerBand);
-    expectWithinBand("pfp_applications", pfp, pfpBase, pfpBase * (1.0 - pfpBand), pfpBase * (1.0 + pfpBand));
+    // A cell whose counts differ between machines (the same source and flags; round-off of the
+    // machine's libraries in a scene that amplifies it) lists what the others measured: the band
+    // then runs from the smallest to the largest of them.
+    int outerLow = outerBase, outerHigh = outerBase, pfpLow = pfpBase, pfpHigh = pfpBase;
+    for (const auto& other : cell.value("other_machines", nlohmann::json::array())) {
+      outerLow = std::min(outerLow, other["outer"].get<int>()), outerHigh = std::max(outerHigh, other["outer"].get<int>());
+      pfpLow = std::min(pfpLow, other["pfp"].get<int>()), pfpHigh = std::max(pfpHigh, other["pfp"].get<int>());
+    }
+    expectWithinBand("outer_iterations", outer, outerBase, outerLow - outerBand, outerHigh + outerBand);
+    expectWithinBand("pfp_applications", pfp, pfpBase, pfpLow * (1.0 - pfpBand), pfpHigh * (1.0 + pfpBand));
     RecordProperty("outer " + name, outer);
     RecordProperty("pfp " + name, pfp);
   }
