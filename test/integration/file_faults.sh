@@ -122,20 +122,27 @@ aResultThatCannotBeWritten)
     fail "the summary does not record the failed output"
   no_partial ;;
 aBudgetSpentInTheFactorisation)
-  # 32 subdomains of H/h = 14: the set-up takes about 0.65 s, the factorisation 3.7 s on two
-  # ranks (more on one), so a budget of 3 s lands in the factorisation. What is asserted is the
-  # phase, not the clock: where a loaded machine spent the budget before the factorisation
-  # began (the set-up more than 4x slower), the case runs again with twice the budget (the
-  # factorisation is then slower by as much), up to three times. It stops between two
-  # subdomains (0.23 s each, idle): within 1.5 s of the budget.
+  # 32 subdomains of H/h = 14: the set-up takes about 0.65 s, the factorisation 1.7-3.7 s on two
+  # ranks (machines differ; more on one), so a budget of 3 s lands in the factorisation on most.
+  # What is asserted is the phase, not the clock: where the budget ran out elsewhere (a loaded
+  # machine spent it in the set-up, a fast one had finished factorising), the case runs again with
+  # a budget halfway through the factorisation as that run's phase table measured it (Set-up plus
+  # half of "T-FETI: subdomain factors"), or twice the budget where the table has no factorisation,
+  # up to three times. It stops between two subdomains (0.23 s each, idle): within 1.5 s of the budget.
   budget=3
   for attempt in 1 2 3; do
     run budget --input "$scene" --set "Mesh/Subdomains Per Brick=4x2x2" --set "Mesh/H Over h=14" \
       --set "Solver/Max Seconds=$budget" --summary s.json --output r.exo
     grep -q -F "during the factorisation" budget.log && break
-    echo "file_faults.sh: attempt $attempt: Max Seconds = $budget ran out outside the factorisation (a loaded" \
-      "machine); again with $((2 * budget))"
-    budget=$((2 * budget))
+    setup=$(awk '$1 == "Set-up" { print $2; exit }' budget.log)
+    factors=$(awk '/T-FETI: subdomain factors/ { print $(NF - 1); exit }' budget.log)
+    if [ -n "$setup" ] && [ -n "$factors" ]; then
+      budget=$(awk -v s="$setup" -v f="$factors" 'BEGIN { printf "%g", int(100 * (s + 0.5 * f)) / 100 }')
+    else
+      budget=$(awk -v b="$budget" 'BEGIN { print 2 * b }')
+    fi
+    echo "file_faults.sh: attempt $attempt: the budget ran out outside the factorisation; again with $budget"
+    rm -f s.json r.exo
   done
   expect_status 3 "Max Seconds = $budget"
   expect_text budget "stopped: Solver/Max Seconds = $budget reached after"
