@@ -341,8 +341,9 @@ std::string setupReport(const std::string& input, const Scene& scene, const Setu
   out << "tribos: " << input << "\n"
       << "  mesh: " << scene.mesh.numNodes() << " nodes, " << scene.mesh.numElements() << " elements ("
       << elementTypeCounts(scene.mesh) << "), " << scene.mesh.numBlocks() << " bodies\n"
-      << "  subdomains: " << report.nSubdomains << " on " << report.nRanks << " rank(s) x " << report.nThreads
-      << " thread(s)\n"
+      << "  subdomains: " << report.nSubdomains
+      << (scene.subdomainChoice.empty() ? "" : " (" + scene.subdomainChoice + ")") << " on " << report.nRanks
+      << " rank(s) x " << report.nThreads << " thread(s)\n"
       << "  n_primal = " << report.nPrimal << ", n_dual = " << B.numRows << " (removed " << B.removedRedundantRows
       << " redundant rows), n_rigid = " << report.nRigid << "\n"
       << contactSearchLines(B)

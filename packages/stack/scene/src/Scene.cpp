@@ -19,6 +19,7 @@
 #include "tribos/mesh/TwoBricks.hpp"
 #include "tribos/stack/SameMeshOnEveryRank.hpp"
 #include "tribos/stack/SceneParameters.hpp"
+#include "tribos/stack/SubdomainCount.hpp"
 
 namespace tribos::stack {
 
@@ -76,6 +77,16 @@ std::string meshPath(const ParameterList& meshList, const std::string& source) {
   return file;
 }
 
+// Mesh/Subdomains, or the count chosen from the mesh where it is 0 (stack/SubdomainCount.hpp).
+int subdomainCount(const ParameterList& meshList, MPI_Comm comm, Scene& scene) {
+  int ranks = 1;
+  if (comm != MPI_COMM_NULL) MPI_Comm_size(comm, &ranks);
+  const auto choice = chooseSubdomainCount(meshList.get<int>("Subdomains"), scene.mesh.numNodes(),
+                                           scene.mesh.numBlocks(), meshList.get<int>("Nodes Per Subdomain"), ranks);
+  scene.subdomainChoice = choice.reason;
+  return choice.count;
+}
+
 void readMesh(const ParameterList& meshList, const std::string& source, MPI_Comm comm, Scene& scene) {
   core::Stopwatch watch;
   const auto decomposition = core::valueOf(kMeshDecompositionNames, meshList.get<std::string>("Decomposition"));
@@ -90,13 +101,13 @@ void readMesh(const ParameterList& meshList, const std::string& source, MPI_Comm
     scene.meshSeconds = watch.seconds();
     watch.restart();
     parts = decomposition == MeshDecomposition::Structured ? mesh::structuredPartition(scene.mesh, spec)
-                                          : mesh::metisPartition(scene.mesh, meshList.get<int>("Subdomains"));
+                                          : mesh::metisPartition(scene.mesh, subdomainCount(meshList, comm, scene));
   } else {
     const std::string file = meshPath(meshList, source);
     scene.mesh = comm == MPI_COMM_NULL ? mesh::readExodus(file).mesh : readMeshOnEveryRank(file, comm);
     scene.meshSeconds = watch.seconds();
     watch.restart();
-    parts = mesh::metisPartition(scene.mesh, meshList.get<int>("Subdomains"));
+    parts = mesh::metisPartition(scene.mesh, subdomainCount(meshList, comm, scene));
   }
   scene.decomposition = mesh::buildDecomposition(scene.mesh, parts);
   scene.decompositionSeconds = watch.seconds();

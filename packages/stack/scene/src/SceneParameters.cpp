@@ -93,10 +93,16 @@ void meshParameters(ParameterList& pl) {
   pl.set("File", std::string(""),
          "Exodus: path of the Exodus II mesh (TETRA, TETRA10, HEX8 and WEDGE6 blocks); relative paths are relative to the scene file "
          "(gmsh meshes: convert with tribos-msh2exo)");
-  pl.set("Subdomains", 4,
+  pl.set("Subdomains", 0,
          "Exodus, or Decomposition = METIS: number of subdomains (METIS parts, split among bodies "
-         "in proportion to their element counts; at least one per body)",
-         core::intRange(1, 1000000));
+         "in proportion to their element counts; at least one per body); 0: chosen from the mesh, one per "
+         "Nodes Per Subdomain nodes (at least one per body and one per rank)",
+         core::intRange(0, 1000000));
+  pl.set("Nodes Per Subdomain", 2000,
+         "Subdomains = 0: the mesh nodes per subdomain the count is chosen for (the measured optimum of the "
+         "curved scenes, doc/measurements/curved_iterations.md); a subdomain's size then stays the same as "
+         "the mesh is refined",
+         core::intRange(1, 100000000));
   Teuchos::setStringToIntegralParameter<int>(
       "Decomposition", "Structured",
       "\"Structured\": the brick grid of Subdomains Per Brick (Two Bricks only); \"METIS\": "

@@ -82,6 +82,8 @@ struct Scene {
   /// FETI/Displacement Conditions = Eliminated: components prescribed to 0 leave K_s instead of
   /// getting rows of B (feti::ConstraintSpec::eliminateZeroComponents).
   bool eliminateZeroComponents = false;
+  /// How the subdomain count was chosen where Mesh/Subdomains is 0 (empty where given).
+  std::string subdomainChoice;
   double meshSeconds = 0.0, decompositionSeconds = 0.0;
 };
 
