@@ -1,4 +1,4 @@
-// FETI/Displacement Conditions = Eliminated (issue 46): components prescribed to 0 leave K_s
+// FETI/Displacement Conditions = Eliminated and Automatic (issue 46): components prescribed to 0 leave K_s
 // instead of getting rows of B, the subdomains' rigid modes shrink to those the eliminated
 // components leave free, and the coarse problem pins the others. The discrete problem is the
 // same, so the solution must be the one with multipliers to the solver's tolerance: energy,
@@ -39,9 +39,10 @@ double relative(double a, double b) { return std::abs(a - b) / std::max(std::abs
 
 // The same solution both ways: strain energy, normal force, every support's reaction (relative to
 // the largest), the force balance.
-void expectSameSolution(const std::string& input, const std::string& settings, double tolerance) {
+void expectSameSolution(const std::string& input, const std::string& settings, double tolerance,
+                        const std::string& mode = "Eliminated") {
   const auto rows = solve(input, settings, "Multipliers");
-  const auto eliminated = solve(input, settings, "Eliminated");
+  const auto eliminated = solve(input, settings, mode);
   ASSERT_FALSE(rows.is_null());
   ASSERT_FALSE(eliminated.is_null());
   ASSERT_TRUE(eliminated["converged"].get<bool>()) << eliminated["message"];
@@ -74,6 +75,27 @@ TEST(eliminatedConditions, paperBricksEverySubdomainOfTheClampsPinned) {
 TEST(eliminatedConditions, planeStrainSliceCoulombAsWithMultipliers) {
   expectSameSolution("hertz_cylinder.xml",
                      "--set Mesh/File=meshes/hertz_cylinder_h0.2.exo --set 'Contact/Friction Model=Coulomb'", 1e-5);
+}
+
+// Automatic, the default: the plane-strain and symmetry components leave K_s, the clamp under
+// the block keeps its rows (between the two other modes in rows), the same solution.
+TEST(eliminatedConditions, automaticEliminatesAllButTheClamps) {
+  const std::string settings = "--set Mesh/File=meshes/hertz_cylinder_h0.2.exo --set 'Contact/Friction Model=Coulomb'";
+  expectSameSolution("hertz_cylinder.xml", settings, 1e-5, "Automatic");
+  const auto automatic = solve("hertz_cylinder.xml", settings, "Automatic");
+  const auto eliminated = solve("hertz_cylinder.xml", settings, "Eliminated");
+  EXPECT_GT(automatic["n_dual"].get<long long>(), eliminated["n_dual"].get<long long>());
+}
+
+// On the paper's bricks, clamped on whole faces and held nowhere else, Automatic is the rows:
+// the same dual dimension and the same iterations (Table 1 unchanged by the default).
+TEST(eliminatedConditions, automaticKeepsTheRowsOfTheClampedBricks) {
+  const std::string settings = "--set 'Mesh/Subdomains Per Brick=4x2x2' --set 'Mesh/H Over h=3'";
+  const auto rows = solve("two_bricks.xml", settings, "Multipliers");
+  const auto automatic = solve("two_bricks.xml", settings, "Automatic");
+  EXPECT_EQ(automatic["n_dual"], rows["n_dual"]);
+  EXPECT_EQ(automatic["pfp_applications"], rows["pfp_applications"]);
+  EXPECT_EQ(automatic["strain_energy"], rows["strain_energy"]);
 }
 
 // A load history whose grip takes hold after a preload (Load Steps/grip/Active {0, 1, 1}): the

@@ -98,9 +98,22 @@ using namespace rows;
 
 namespace {
 /// A component prescribed to 0 from the reference (no base): what elimination may take out of K_s.
-bool eliminable(const Prescribed& p, size_t dof) { return p.fixed[dof] && p.value[dof] == 0.0 && p.base[dof] == 0.0; }
+bool zeroFromTheReference(const Prescribed& p, size_t dof) {
+  return p.fixed[dof] && p.value[dof] == 0.0 && p.base[dof] == 0.0;
+}
+/// Whether `dof` leaves K_s under `rule` (ZeroComponents): Automatic keeps the rows of a node
+/// held in all three components. Measured (doc/measurements/curved_iterations.md): Table 1's
+/// bricks, clamped on whole faces, take the rows' counts this way (eliminated, up to 4x more);
+/// the plane-strain slices and symmetry planes keep what elimination gains.
+bool eliminable(const Prescribed& p, size_t dof, ZeroComponents rule) {
+  if (rule == ZeroComponents::Multipliers || !zeroFromTheReference(p, dof)) return false;
+  if (rule == ZeroComponents::Eliminated) return true;
+  const size_t first = dof - dof % 3;
+  return !(zeroFromTheReference(p, first) && zeroFromTheReference(p, first + 1) &&
+           zeroFromTheReference(p, first + 2));
+}
 
-/// Per subdomain, whether it eliminates its zero components (ConstraintSpec::eliminateZeroComponents):
+/// Per subdomain, whether it eliminates its zero components (ConstraintSpec::zeroComponents):
 /// not where they are few (under kFewComponents of its dofs) and hold a rigid mode only weakly
 /// (weakestRestraint under kWeakRestraint): eliminated there, K_s keeps a nearly rigid motion
 /// held at a small patch, whose compliance enters F. Measured (doc/measurements/curved_iterations.md):
@@ -112,7 +125,7 @@ constexpr double kWeakRestraint = 1e-2;
 constexpr double kFewComponents = 0.05;
 
 std::vector<char> subdomainsThatEliminate(const mesh::Mesh& mesh, const mesh::Decomposition& decomposition,
-                                          const Prescribed& prescribed) {
+                                          const Prescribed& prescribed, ZeroComponents rule) {
   std::vector<char> out(decomposition.subdomains.size(), 0);
   for (size_t s = 0; s < out.size(); ++s) {
     const auto& nodes = decomposition.subdomains[s].nodes;
@@ -121,7 +134,7 @@ std::vector<char> subdomainsThatEliminate(const mesh::Mesh& mesh, const mesh::De
     for (size_t k = 0; k < nodes.size(); ++k) {
       coords.push_back(mesh.coords[nodes[k]]);
       for (int c = 0; c < 3; ++c)
-        if (eliminable(prescribed, 3 * static_cast<size_t>(nodes[k]) + c)) dofs.push_back(static_cast<LO>(3 * k + c));
+        if (eliminable(prescribed, 3 * static_cast<size_t>(nodes[k]) + c, rule)) dofs.push_back(static_cast<LO>(3 * k + c));
     }
     if (dofs.empty()) continue;
     const bool few = static_cast<double>(dofs.size()) < kFewComponents * 3.0 * static_cast<double>(nodes.size());
@@ -146,7 +159,7 @@ void addGluingAndDirichletRows(LO numNodes, const RowContext& ctx, RowList& list
         // subdomain that eliminates its zero components has none (TotalFeti takes it out of K_s).
         for (LO j = 0; j < k; ++j) {
           const Copy& cp = ctx.copies.of(n, j);
-          if (!ctx.eliminateIn.empty() && ctx.eliminateIn[cp.subdomain] && eliminable(ctx.prescribed, dof)) {
+          if (!ctx.eliminateIn.empty() && ctx.eliminateIn[cp.subdomain] && eliminable(ctx.prescribed, dof, ctx.zeroComponents)) {
             list.eliminated.push_back({cp.subdomain, 3 * cp.localNode + c});
             continue;
           }
@@ -260,8 +273,9 @@ ConstraintMatrix buildConstraintMatrix(const mesh::Mesh& mesh, const mesh::Decom
   // (1) Copies of every global node, in ascending subdomain order (ALGORITHMS.md 2).
   const NodeCopies copies = nodeCopies(decomposition, mesh.numNodes());
   const Prescribed prescribed = prescribedComponents(mesh, spec);
-  RowContext ctx{copies, prescribed, decomposition.numSubdomains(), numRanks};
-  if (spec.eliminateZeroComponents) ctx.eliminateIn = subdomainsThatEliminate(mesh, decomposition, prescribed);
+  RowContext ctx{copies, prescribed, decomposition.numSubdomains(), numRanks, spec.zeroComponents};
+  if (spec.zeroComponents != ZeroComponents::Multipliers)
+    ctx.eliminateIn = subdomainsThatEliminate(mesh, decomposition, prescribed, spec.zeroComponents);
   RowList list;
   ConstraintMatrix B;
   B.overlappingConditions.assign(prescribed.overlapping.begin(), prescribed.overlapping.end());

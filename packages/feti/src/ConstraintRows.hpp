@@ -131,8 +131,9 @@ struct RowContext {
   const NodeCopies& copies;
   const Prescribed& prescribed;
   int numSubdomains, numRanks;
-  /// Per subdomain, whether its zero components are eliminated (ConstraintSpec::
-  /// eliminateZeroComponents, where they hold its rigid modes firmly); empty: none.
+  ZeroComponents zeroComponents;  ///< ConstraintSpec::zeroComponents
+  /// Per subdomain, whether its zero components are eliminated (ConstraintSpec::zeroComponents,
+  /// where they hold its rigid modes firmly); empty: none.
   std::vector<char> eliminateIn;
   /// A row belongs to the rank that owns the lowest subdomain it touches (header).
   int ownerOf(const Entry* entries, size_t count) const {

@@ -1,7 +1,7 @@
 #pragma once
 // Internal to feti/: displacement components prescribed to 0 and eliminated from K_s instead
-// of enforced by rows of B (FETI/Displacement Conditions = Eliminated; ConstraintSpec::
-// eliminateZeroComponents). Why: rows u_c = 0 on most nodes of a thin plane-strain slice make
+// of enforced by rows of B (FETI/Displacement Conditions = Automatic or Eliminated;
+// ConstraintSpec::zeroComponents). Why: rows u_c = 0 on most nodes of a thin plane-strain slice make
 // F ill-conditioned however it is preconditioned (the Hertz cylinder at hc 0.05: kappa 4 478
 // with the rows, 20 without them; doc/measurements/curved_iterations.md).
 #include <array>

@@ -369,7 +369,8 @@ Scene buildScene(const ParameterList& tribos, const std::string& source, MPI_Com
   readMesh(meshList, source, comm, scene);
   readMaterials(tribos.sublist("Materials"), source, twoBricks, scene);
   readLoads(tribos.sublist("Loads"), source, twoBricks, scene);
-  scene.eliminateZeroComponents = tribos.sublist("FETI").get<std::string>("Displacement Conditions") == "Eliminated";
+  scene.zeroComponents =
+      core::valueOf(feti::kZeroComponentNames, tribos.sublist("FETI").get<std::string>("Displacement Conditions"));
 
   readBoundary(tribos.sublist("Boundary"), source, twoBricks, scene);
   readLoadSteps(tribos.sublist("Load Steps"), source, scene);

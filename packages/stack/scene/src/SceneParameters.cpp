@@ -254,15 +254,16 @@ void fetiParameters(ParameterList& pl) {
       "preconditioned in face (restricted to the free set)",
       Teuchos::Array<std::string>(core::namesOf(feti::kDualPreconditionerNames)), &pl);
   Teuchos::setStringToIntegralParameter<int>(
-      "Displacement Conditions", "Multipliers",
+      "Displacement Conditions", "Automatic",
       "how a displacement component prescribed to 0 is held (Dirichlet Node Sets; a Boundary/<name> of value 0 "
-      "that holds from the reference): \"Multipliers\" (a row of B per subdomain copy, T-FETI as the paper) or "
+      "that holds from the reference): \"Multipliers\" (a row of B per subdomain copy, T-FETI as the paper), "
       "\"Eliminated\" (removed from K_s; a subdomain's rigid modes are then those the eliminated components "
-      "leave free; a subdomain where they are few and hold a rigid mode only weakly keeps their rows). Eliminated "
-      "keeps F well conditioned where such rows cover most nodes of a thin body (a plane-strain slice); on the "
-      "paper's clamped bricks the rows do better (doc/measurements/curved_iterations.md); other components keep "
-      "their rows",
-      Teuchos::tuple<std::string>("Multipliers", "Eliminated"), &pl);
+      "leave free) or \"Automatic\" (eliminated but at clamped nodes, those held in all three components, which "
+      "keep their rows). In both eliminating modes a subdomain where such components are few and hold a rigid "
+      "mode only weakly keeps their rows. Elimination keeps F well conditioned where the rows cover most nodes "
+      "of a thin body (a plane-strain slice); at clamps the rows do better on the paper's bricks, elimination "
+      "on some curved scenes (doc/measurements/curved_iterations.md); other components keep their rows",
+      Teuchos::Array<std::string>(core::namesOf(feti::kZeroComponentNames)), &pl);
   Teuchos::setStringToIntegralParameter<int>(
       "Coarse Factor Precision", "Auto",
       "contact solves: the factor of G G^T that SMALSE-M's projections use: \"Single\" (rounded to 4 bytes per "

@@ -22,7 +22,7 @@ feti::ConstraintSpec constraintSpec(const Scene& scene) {
   feti::ConstraintSpec spec;
   spec.dirichletNodeSets = scene.dirichletNodeSets;
   spec.displacementConditions = scene.displacementConditions;
-  spec.eliminateZeroComponents = scene.eliminateZeroComponents;
+  spec.zeroComponents = scene.zeroComponents;
   // The conditions of step 1 (Load Steps/<name>/Active; later steps: ConditionSteps.hpp).
   for (const auto& active : scene.conditionActive) spec.presentConditions.push_back(active.front());
   for (const auto& one : scene.contacts) spec.interfaces.push_back(one.rows);

@@ -81,6 +81,17 @@ struct ContactInterfaceSpec {
 
 struct ConstraintMatrix;
 
+/// FETI/Displacement Conditions. Multipliers: rows of B (the paper's T-FETI). Eliminated: every
+/// component prescribed to 0 leaves K_s. Automatic: those of nodes not held in all three
+/// components (symmetry planes, plane-strain faces) leave K_s; a clamped node keeps its rows, so
+/// that a subdomain at a clamp keeps its rigid modes in the coarse space (T-FETI's reason for
+/// Dirichlet rows). In either eliminating mode a subdomain whose zero components are few and hold
+/// a rigid mode only weakly keeps their rows (ConstraintMatrix.cpp).
+enum class ZeroComponents { Multipliers, Automatic, Eliminated };
+inline constexpr core::EnumNames<ZeroComponents, 3> kZeroComponentNames{
+    {{"Multipliers", ZeroComponents::Multipliers}, {"Automatic", ZeroComponents::Automatic},
+     {"Eliminated", ZeroComponents::Eliminated}}};
+
 struct ConstraintSpec {
   std::vector<std::string> dirichletNodeSets;  ///< node sets with u = 0 (all components)
   std::vector<DisplacementCondition> displacementConditions;
@@ -107,11 +118,11 @@ struct ConstraintSpec {
   /// the reference mesh decides.
   const std::vector<std::array<double, 3>>* pairingDisplacement = nullptr;
   const ConstraintMatrix* solvedPairing = nullptr;
-  /// FETI/Displacement Conditions = Eliminated: a component prescribed to 0 (every Dirichlet
-  /// Node Set; a Boundary/<name> with value 0 that starts from the reference) gets no rows; its
-  /// dofs are listed in SubdomainBlock::eliminated and TotalFeti removes them from K_s
+  /// FETI/Displacement Conditions: how a component prescribed to 0 (every Dirichlet Node Set; a
+  /// Boundary/<name> with value 0 that starts from the reference) is held. Eliminated ones get no
+  /// rows; their dofs are listed in SubdomainBlock::eliminated and TotalFeti removes them from K_s
   /// (doc/measurements/curved_iterations.md: the u_y = 0 rows of a thin plane-strain slice).
-  bool eliminateZeroComponents = false;
+  ZeroComponents zeroComponents = ZeroComponents::Multipliers;
 };
 
 /// One slave contact node r with its projection and frame (DESIGN.md conventions).
@@ -176,7 +187,7 @@ struct SubdomainBlock {
   std::vector<LO> dof;       ///< local dof (3 * local node + component)
   std::vector<double> value;
   /// Local dofs prescribed to 0 and eliminated from K_s instead of given rows
-  /// (ConstraintSpec::eliminateZeroComponents), ascending; owned subdomains only.
+  /// (ConstraintSpec::zeroComponents), ascending; owned subdomains only.
   std::vector<LO> eliminated;
 };
 

@@ -79,9 +79,9 @@ struct Scene {
   std::vector<PretensionSection> pretensions;  ///< Pretension/<name> sublists (a load history)
   /// Solver/Pairing Updates for a contact problem; 0 for a linear scene.
   int pairingUpdates = 0;
-  /// FETI/Displacement Conditions = Eliminated: components prescribed to 0 leave K_s instead of
-  /// getting rows of B (feti::ConstraintSpec::eliminateZeroComponents).
-  bool eliminateZeroComponents = false;
+  /// FETI/Displacement Conditions: which components prescribed to 0 leave K_s instead of
+  /// getting rows of B (feti::ConstraintSpec::zeroComponents).
+  feti::ZeroComponents zeroComponents = feti::ZeroComponents::Automatic;
   /// How the subdomain count was chosen where Mesh/Subdomains is 0 (empty where given).
   std::string subdomainChoice;
   double meshSeconds = 0.0, decompositionSeconds = 0.0;
