@@ -3,7 +3,7 @@ numbered from 0 without names: block_0 is the shaft, block_1 the hub; node sets 
 contact surfaces given as node sets). Used by lame_hoop_stress_test.sh with shrink_fit.xml,
 and, thicker and in layers, by push_out_test.sh with push_out.xml (a push-out, not plane strain).
 
-Usage: python3 shrink_fit_mesh.py OUT.exo hex8|tet10 [--layers L] [--thickness T]
+Usage: python3 shrink_fit_mesh.py OUT.exo hex8|tet4|tet10 [--layers L] [--thickness T]
          [--hub-cells RADIAL ANGULAR] [--shaft-cells RADIAL ANGULAR] [--delta DELTA]
 (needs Debian's python3-meshio). Defaults: one layer, T = 2 mm (the plane-strain slab), the
 cells below; push_out_test.sh writes 4 layers, T = 8 mm (and coarser cells for tet10);
@@ -27,7 +27,8 @@ polygon moved out by DELTA along each face's normal (its vertices on the rays of
 vertices lie at r = B + DELTA / cos(half a face's angle), those between them at the faces'
 midpoints): non-matching nodes, the same surface, a uniform interference DELTA.
 
-hex8: hexahedra. tet10: each hexahedron cut into 6 positively oriented tetrahedra (as in
+hex8: hexahedra. tet4: each hexahedron cut into 6 tetrahedra (as below, without the mid-edge
+nodes). tet10: each hexahedron cut into 6 positively oriented tetrahedra (as in
 meshio_two_boxes.py), then a node at the midpoint of each edge (shared; straight edges), in
 meshio's "tetra10" order, which is Exodus's TETRA10: vertices 0-3, then edges 01 12 02 03 13 23.
 Node sets: shaft_outer, hub_bore (the contact surfaces), hub_outer (r = C), shaft_x0, hub_x0,
@@ -114,6 +115,8 @@ def main(path, kind, layers=1, thickness=T, hub_grid=HUB_CELLS, shaft_grid=SHAFT
                                            layers, thickness)
     # The hub's nodes lie on its rays at the polygon's vertices: r = B on the bore, r = C outside.
     hub_points, hub_cells = polar_grid(B, lambda theta: C, hub_grid, layers, thickness)
+    if kind == "tet4":
+        shaft_cells, hub_cells = tetrahedra(shaft_points, shaft_cells), tetrahedra(hub_points, hub_cells)
     if kind == "tet10":
         shaft_points, shaft_cells = quadratic(shaft_points, tetrahedra(shaft_points, shaft_cells))
         hub_points, hub_cells = quadratic(hub_points, tetrahedra(hub_points, hub_cells))
@@ -147,7 +150,7 @@ def main(path, kind, layers=1, thickness=T, hub_grid=HUB_CELLS, shaft_grid=SHAFT
         "hub_z0": where(hub, lambda x, rr: np.abs(x[:, 2]) < eps),
         "hub_z1": where(hub, lambda x, rr: np.abs(x[:, 2] - thickness) < eps),
     }
-    cell_type = "hexahedron" if kind == "hex8" else "tetra10"
+    cell_type = {"hex8": "hexahedron", "tet4": "tetra", "tet10": "tetra10"}[kind]
     mesh = meshio.Mesh(points, [(cell_type, shaft_cells), (cell_type, hub_cells + offset)], point_sets=sets)
     meshio.write(path, mesh, file_format="exodus")
 
@@ -155,7 +158,7 @@ def main(path, kind, layers=1, thickness=T, hub_grid=HUB_CELLS, shaft_grid=SHAFT
 if __name__ == "__main__":
     parser = argparse.ArgumentParser(description="The quarter model of a shrink fit (Exodus, via meshio).")
     parser.add_argument("path", help="the Exodus file to write")
-    parser.add_argument("kind", choices=("hex8", "tet10"), help="element type")
+    parser.add_argument("kind", choices=("hex8", "tet4", "tet10"), help="element type")
     parser.add_argument("--layers", type=int, default=1, help="cells along z (default 1)")
     parser.add_argument("--thickness", type=float, default=T, help="slab thickness along z [mm] (default %g)" % T)
     parser.add_argument("--hub-cells", type=int, nargs=2, default=HUB_CELLS, metavar=("RADIAL", "ANGULAR"),
