@@ -3,6 +3,7 @@
 // found on the reference mesh or on the deformed bodies (DeformedPairing.cpp).
 #include <vector>
 
+#include "ConstraintRows.hpp"
 #include "tribos/feti/ConstraintMatrix.hpp"
 #include "tribos/geometry/ContactSearch.hpp"
 #include "tribos/geometry/MortarCoupling.hpp"
@@ -20,8 +21,13 @@ struct InterfacePairs {
   GO newlyInside = 0, movedOn = 0;  ///< ContactInterfaceRows's counts
 };
 
-/// The search and the master sides of interface `spec` on `mesh` (ContactRows.cpp).
-InterfacePairs pairsOf(const mesh::Mesh& mesh, const ContactInterfaceSpec& spec);
+/// Per node, the axes a displacement condition holds it along while it is free along another
+/// (geometry::HeldAxes: the nodes on symmetry planes, whose contact normals lie in them).
+geometry::HeldAxes heldAxes(const Prescribed& prescribed);
+
+/// The search and the master sides of interface `spec` on `mesh` (ContactRows.cpp); `held` as
+/// heldAxes gives it.
+InterfacePairs pairsOf(const mesh::Mesh& mesh, const ContactInterfaceSpec& spec, const geometry::HeldAxes& held);
 
 /// The pairs of interface `index` of `spec` when the pairing follows the deformed bodies
 /// (ConstraintSpec::pairingDisplacement, solvedPairing): each slave node keeps its pairing or
@@ -31,6 +37,6 @@ InterfacePairs pairsOf(const mesh::Mesh& mesh, const ContactInterfaceSpec& spec)
 mesh::Mesh deformedMesh(const mesh::Mesh& mesh, const std::vector<std::array<double, 3>>& u);
 
 InterfacePairs pairsOnTheDeformedBodies(const mesh::Mesh& mesh, const mesh::Mesh& deformed, const ConstraintSpec& spec,
-                                        int index);
+                                        int index, const geometry::HeldAxes& held);
 
 }  // namespace tribos::feti::rows

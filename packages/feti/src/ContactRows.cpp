@@ -32,17 +32,20 @@ Vec3 tangent(const Vec3& direction, const Vec3& normal) {
   return {1.0, 0.0, 0.0};  // unreachable for a unit normal: one axis is at most 55 degrees off the plane
 }
 
-/// The contact normal of a slave node on a symmetry plane: a node held along an axis e_c
-/// (but free along another) whose normal is within ~11 degrees of that plane gets the normal's
-/// e_c part removed. The smoothed master normal there averages the faces on one side of the
-/// plane only, so it leans out of the plane; the whole (mirrored) body's normal lies in it.
-/// Then t1, t2 align with the plane and the slave's fixed axis, and friction across the
-/// plane is left to the symmetry condition (below).
-Vec3 symmetryPlaneNormal(Vec3 normal, const Prescribed& prescribed, LO slaveNode) {
-  if (!prescribed.any(slaveNode) || prescribed.all(slaveNode)) return normal;
+/// The axes a node is held along while free along another (geometry::HeldAxes: symmetry planes).
+std::uint8_t heldAxesOf(const Prescribed& prescribed, LO node) {
+  if (!prescribed.any(node) || prescribed.all(node)) return 0;
+  std::uint8_t axes = 0;
   for (int c = 0; c < 3; ++c)
-    if (prescribed.fixed[3 * static_cast<size_t>(slaveNode) + c] && std::abs(normal[c]) < 0.2) normal[c] = 0.0;
-  return scaled(normal, 1.0 / norm(normal));
+    if (prescribed.fixed[3 * static_cast<size_t>(node) + c]) axes |= static_cast<std::uint8_t>(1 << c);
+  return axes;
+}
+
+/// The contact normal of a slave node on a symmetry plane lies in it (geometry::inSymmetryPlanes;
+/// the master's nodal normals there already do). Then t1, t2 align with the plane and the
+/// slave's fixed axis, and friction across the plane is left to the symmetry condition (below).
+Vec3 symmetryPlaneNormal(const Vec3& normal, const Prescribed& prescribed, LO slaveNode) {
+  return geometry::inSymmetryPlanes(normal, heldAxesOf(prescribed, slaveNode));
 }
 
 /// The contact node of a slave node paired with `masterSide`: its master nodes and weights,
@@ -295,10 +298,10 @@ void refuseInteriorContactFaces(const mesh::Mesh& mesh, const std::vector<Contac
 /// `unsettledProjections` counts the mortar quadrature points whose projection did not settle.
 std::vector<geometry::MortarRow> masterSidesOf(const mesh::Mesh& mesh, const ContactInterfaceSpec& spec,
                                                const geometry::ContactSearchResult& search,
-                                               long long& unsettledProjections) {
+                                               const geometry::HeldAxes& held, long long& unsettledProjections) {
   std::vector<geometry::MortarRow> masterSides;
   if (spec.discretization == ContactDiscretization::Mortar) {
-    const geometry::MasterSurface master(mesh, spec.masterSideSet);
+    const geometry::MasterSurface master(mesh, spec.masterSideSet, held);
     return geometry::dualMortarRows(mesh, spec.slaveSideSet, master, search, spec.searchDistance,
                                     &unsettledProjections);
   }
@@ -428,11 +431,18 @@ void addContactRows(const mesh::Mesh& mesh, const ConstraintSpec& all, int index
 }
 }  // namespace
 
-InterfacePairs pairsOf(const mesh::Mesh& mesh, const ContactInterfaceSpec& spec) {
+geometry::HeldAxes heldAxes(const Prescribed& prescribed) {
+  geometry::HeldAxes held(prescribed.fixed.size() / 3, 0);
+  for (size_t n = 0; n < held.size(); ++n) held[n] = heldAxesOf(prescribed, static_cast<LO>(n));
+  return held;
+}
+
+InterfacePairs pairsOf(const mesh::Mesh& mesh, const ContactInterfaceSpec& spec, const geometry::HeldAxes& held) {
   InterfacePairs found;
   try {
-    found.search = geometry::searchContactPairs(mesh, spec.slaveSideSet, spec.masterSideSet, spec.searchDistance);
-    found.masterSides = masterSidesOf(mesh, spec, found.search, found.unsettledQuadraturePoints);
+    found.search =
+        geometry::searchContactPairs(mesh, spec.slaveSideSet, spec.masterSideSet, spec.searchDistance, held);
+    found.masterSides = masterSidesOf(mesh, spec, found.search, held, found.unsettledQuadraturePoints);
   } catch (const core::InputError& e) {
     throw core::InputError(spec.label() + ": " + e.what());
   }
@@ -444,12 +454,13 @@ void addAllContactRows(const mesh::Mesh& mesh, const ConstraintSpec& spec, const
   refuseContactsModelledTwice(mesh, spec.interfaces);
   refuseInteriorContactFaces(mesh, spec.interfaces);
   std::vector<InterfacePairs> found;
+  const geometry::HeldAxes held = heldAxes(ctx.prescribed);
   if (spec.pairingDisplacement) {
     const mesh::Mesh deformed = deformedMesh(mesh, *spec.pairingDisplacement);
     for (size_t i = 0; i < spec.interfaces.size(); ++i)
-      found.push_back(pairsOnTheDeformedBodies(mesh, deformed, spec, static_cast<int>(i)));
+      found.push_back(pairsOnTheDeformedBodies(mesh, deformed, spec, static_cast<int>(i), held));
   } else {
-    for (const auto& one : spec.interfaces) found.push_back(pairsOf(mesh, one));
+    for (const auto& one : spec.interfaces) found.push_back(pairsOf(mesh, one, held));
   }
   const std::vector<int> owner = slaveOwners(mesh.numNodes(), found);
   for (size_t i = 0; i < spec.interfaces.size(); ++i)

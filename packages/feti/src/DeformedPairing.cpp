@@ -114,11 +114,11 @@ mesh::Mesh deformedMesh(const mesh::Mesh& mesh, const std::vector<std::array<dou
 }
 
 InterfacePairs pairsOnTheDeformedBodies(const mesh::Mesh& mesh, const mesh::Mesh& deformed, const ConstraintSpec& spec,
-                                        int index) {
+                                        int index, const geometry::HeldAxes& held) {
   const ContactInterfaceSpec& one = spec.interfaces[index];
   const auto& u = *spec.pairingDisplacement;
-  const InterfacePairs reference = pairsOf(mesh, one);
-  const InterfacePairs moved = pairsOf(deformed, widened(deformed, one));
+  const InterfacePairs reference = pairsOf(mesh, one, held);
+  const InterfacePairs moved = pairsOf(deformed, widened(deformed, one), held);
   const auto solved = solvedNodes(spec, index);
   const auto atReference = bySlaveNode(reference), atMoved = bySlaveNode(moved);
   std::set<LO> slaveNodes(reference.search.unpaired.begin(), reference.search.unpaired.end());
@@ -156,11 +156,12 @@ std::array<GO, 2> pairingChanges(const mesh::Mesh& mesh, const ConstraintSpec& s
   using namespace rows;
   const mesh::Mesh deformed = deformedMesh(mesh, *spec.pairingDisplacement);
   InterfacePairs counts;
+  const geometry::HeldAxes held = heldAxes(prescribedComponents(mesh, spec));
   for (size_t i = 0; i < spec.interfaces.size(); ++i) {
     const auto& one = widened(deformed, spec.interfaces[i]);
     geometry::ContactSearchResult moved;
     try {
-      moved = geometry::searchContactPairs(deformed, one.slaveSideSet, one.masterSideSet, one.searchDistance);
+      moved = geometry::searchContactPairs(deformed, one.slaveSideSet, one.masterSideSet, one.searchDistance, held);
     } catch (const core::InputError& e) {
       throw core::InputError(one.label() + ": " + e.what());
     }

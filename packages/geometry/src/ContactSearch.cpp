@@ -24,13 +24,14 @@ LO ContactPair::nearestMasterNode() const {
 }
 
 ContactSearchResult searchContactPairs(const mesh::Mesh& mesh, const std::string& slaveSideSet,
-                                       const std::string& masterSideSet, double searchDistance) {
+                                       const std::string& masterSideSet, double searchDistance,
+                                       const HeldAxes& held) {
   core::requireInput(std::isfinite(searchDistance) && searchDistance >= 0.0,
                      "Contact/Search Distance must be finite and >= 0, got " + str(searchDistance));
   const mesh::SideSet& slaveSet = mesh.sideSet(slaveSideSet);
   const auto slaves = sideSetNodes(mesh, slaveSet);
   const auto masterNodes = sideSetNodes(mesh, mesh.sideSet(masterSideSet));
-  const MasterSurface master(mesh, masterSideSet);
+  const MasterSurface master(mesh, masterSideSet, held);
   const auto slaveNormal = unitNodalNormals(mesh, slaveSet);
   const double zeroGap = 1e-12 * coordinateScale(mesh);
 

@@ -54,7 +54,8 @@ std::vector<std::vector<LO>> faceNeighbours(const std::vector<mesh::FaceNodes>& 
 }
 }  // namespace
 
-MasterSurface::MasterSurface(const mesh::Mesh& mesh, const std::string& masterSideSet) : name_(masterSideSet) {
+MasterSurface::MasterSurface(const mesh::Mesh& mesh, const std::string& masterSideSet, const HeldAxes& held)
+    : name_(masterSideSet) {
   const mesh::SideSet& set = mesh.sideSet(masterSideSet);
   std::vector<std::array<Vec3, 3>> triangles;
   faceNodes_.resize(set.elements.size());
@@ -72,7 +73,7 @@ MasterSurface::MasterSurface(const mesh::Mesh& mesh, const std::string& masterSi
     }
   }
   tree_ = std::make_unique<TriangleTree>(std::move(triangles));
-  nodalNormal_ = unitNodalNormals(mesh, set);
+  nodalNormal_ = unitNodalNormals(mesh, set, held);
   neighbours_ = faceNeighbours(faceNodes_);
   faceSize_.resize(faceNodes_.size());
   for (size_t f = 0; f < faceNodes_.size(); ++f) {

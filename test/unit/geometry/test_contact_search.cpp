@@ -419,3 +419,58 @@ TEST(ContactSearch, masterFacesFacingAwayCannotBeTouched) {
   for (LO n : r.unpaired) EXPECT_EQ(m2.coords[n][2], 0.0);
   EXPECT_EQ(r.pairs.size(), 25u);  // the top's 25 nodes (its x = 0 edge included)
 }
+
+TEST(ContactSearch, nodalNormalsDoNotDependOnHowFacetsAreCut) {
+  // A roof: the top of a box of 2 x 1 x 1 cells of Kuhn tetrahedra, bent along x = 1 into two
+  // flat facets sloping down by 0.3 per unit of x on either side. Every cell's top is cut along
+  // the same diagonal, so a node on the ridge has one triangle of one facet and two of the
+  // other. Weighted by area its normal leaned towards the facet with two (by 1/6 of the angle
+  // between the facets, what read a shrink fit's interference as a tangential slip); weighted by
+  // the faces' angles at the node each facet counts with its 90-degree corner: the bisector,
+  // +z, exactly by the roof's symmetry.
+  auto m = test::boxMesh({0.0, 0.0, 0.0}, {2.0, 1.0, 1.0}, {2, 1, 1}, "roof");
+  for (auto& x : m.coords)
+    if (x[2] == 1.0) x[2] = 1.0 - 0.3 * std::abs(x[0] - 1.0);
+  const auto normals = geometry::unitNodalNormals(m, m.sideSet("roof_z1"));
+  int ridgeNodes = 0;
+  for (size_t n = 0; n < m.coords.size(); ++n) {
+    const Vec3& x = m.coords[n];
+    if (x[0] != 1.0 || x[2] != 1.0) continue;
+    ++ridgeNodes;
+    EXPECT_NEAR(normals[n][0], 0.0, 1e-14) << "ridge node at y = " << x[1];
+    EXPECT_NEAR(normals[n][2], 1.0, 1e-14);
+  }
+  EXPECT_EQ(ridgeNodes, 2);
+  // A node inside a facet's edge (x = 0) has that facet's normal, however many triangles meet.
+  const Vec3 facet = unit({-0.3, 0.0, 1.0});
+  for (size_t n = 0; n < m.coords.size(); ++n)
+    if (m.coords[n][0] == 0.0 && m.coords[n][2] > 0.5)
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(normals[n][c], facet[c], 1e-14);
+}
+
+TEST(ContactSearch, normalsOnSymmetryPlanesLieInThem) {
+  // Held along x (a symmetry plane x = const) with a normal 1.7 degrees out of the plane: the
+  // x part goes; 15 degrees out (more than the ~11.5 degrees of the rule) it stays; a node held
+  // along nothing (0) keeps its normal.
+  const Vec3 lean = unit({0.03, 1.0, 0.0}), far = unit({0.27, 1.0, 0.0});
+  const Vec3 inPlane = geometry::inSymmetryPlanes(lean, 1);
+  EXPECT_EQ(inPlane[0], 0.0);
+  EXPECT_DOUBLE_EQ(inPlane[1], 1.0);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(geometry::inSymmetryPlanes(far, 1)[c], far[c], 1e-15);
+  EXPECT_EQ(geometry::inSymmetryPlanes(lean, 0), lean);
+  EXPECT_EQ(geometry::inSymmetryPlanes(lean, 2), lean);  // held along y: its y part is no lean
+  // On the roof above, its x = 0 edge held along x: the normals there (-0.29, 0, 0.96) stay
+  // (0.29 is past the rule); the same roof sloping by 0.1 gets them to +z.
+  auto m = test::boxMesh({0.0, 0.0, 0.0}, {2.0, 1.0, 1.0}, {2, 1, 1}, "roof");
+  for (auto& x : m.coords)
+    if (x[2] == 1.0) x[2] = 1.0 - 0.1 * std::abs(x[0] - 1.0);
+  geometry::HeldAxes held(m.coords.size(), 0);
+  for (size_t n = 0; n < m.coords.size(); ++n)
+    if (m.coords[n][0] == 0.0) held[n] = 1;
+  const auto normals = geometry::unitNodalNormals(m, m.sideSet("roof_z1"), held);
+  for (size_t n = 0; n < m.coords.size(); ++n)
+    if (m.coords[n][0] == 0.0 && m.coords[n][2] > 0.5) {
+      EXPECT_EQ(normals[n][0], 0.0);
+      EXPECT_DOUBLE_EQ(normals[n][2], 1.0);
+    }
+}

@@ -60,7 +60,9 @@ struct ContactSearchResult {
 /// the default distance; its pair's distance exceeds `searchDistance`). Throws core::InputError naming the set and
 /// node when the surfaces share a node, a surface is folded (zero summed normal at a node),
 /// or the master surface faces away from the slave surface at every reachable slave node.
+/// `held`: the nodes on symmetry planes (SurfaceNormals.hpp), whose master normals lie in them.
 ContactSearchResult searchContactPairs(const mesh::Mesh& mesh, const std::string& slaveSideSet,
-                                       const std::string& masterSideSet, double searchDistance);
+                                       const std::string& masterSideSet, double searchDistance,
+                                       const HeldAxes& held = {});
 
 }  // namespace tribos::geometry

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "tribos/geometry/FaceProjection.hpp"
+#include "tribos/geometry/SurfaceNormals.hpp"
 #include "tribos/mesh/Mesh.hpp"
 
 namespace tribos::geometry {
@@ -34,7 +35,8 @@ inline constexpr double kInsideAlongNormal = 0.9;
 
 class MasterSurface {
  public:
-  MasterSurface(const mesh::Mesh& mesh, const std::string& masterSideSet);
+  /// `held`: the nodes on symmetry planes, whose normals lie in them (SurfaceNormals.hpp).
+  MasterSurface(const mesh::Mesh& mesh, const std::string& masterSideSet, const HeldAxes& held = {});
   ~MasterSurface();
   MasterSurface(const MasterSurface&) = delete;
   MasterSurface& operator=(const MasterSurface&) = delete;
