@@ -7,6 +7,10 @@
 # and the rms errors of the tangential traction (relative to F p0) and of the pressure
 # (relative to p0) within bounds above what was measured (the measured values are in the
 # comments below and in doc/load_history.md). Exit 77 (CTest: skipped) without ncdump.
+# KIND sphereQuadraticTetrahedra: the sphere scene on 10-node tetrahedra
+# (meshes/cattaneo_sphere_tet10_h0.3.exo, non-matching, curved faces; issue 41 asks for a
+# tangential traction within 8 % rms of F p0 on non-matching tetrahedra, which the 4-node ones
+# miss: 0.10-0.17 above).
 # Usage: cattaneo_mindlin_test.sh TRIBOS PYTHON SOURCE_DIR KIND
 set -u
 tribos=$1
@@ -19,10 +23,14 @@ if ! command -v ncdump > /dev/null 2>&1; then
 fi
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
-"$tribos" --input "$source/input/cattaneo_$kind.xml" --set Solver/Verbose=false --output "$dir/r.exo" \
-  --summary "$dir/r.json" || exit 1
+scene=$kind mesh=
+if [ "$kind" = sphereQuadraticTetrahedra ]; then
+  scene=sphere mesh="Mesh/File=meshes/cattaneo_sphere_tet10_h0.3.exo"
+fi
+"$tribos" --input "$source/input/cattaneo_$scene.xml" --set Solver/Verbose=false ${mesh:+--set "$mesh"} \
+  --output "$dir/r.exo" --summary "$dir/r.json" || exit 1
 for step in 1 2 3 4; do
-  "$python" "$source/doc/tools/cattaneo_compare.py" "$kind" "$dir/r.exo" --step $step --json > "$dir/step$step.json" ||
+  "$python" "$source/doc/tools/cattaneo_compare.py" "$scene" "$dir/r.exo" --step $step --json > "$dir/step$step.json" ||
     exit 1
 done
 "$python" - "$dir" "$kind" <<'PY' || exit 1
@@ -34,7 +42,9 @@ folder, kind = sys.argv[1], sys.argv[2]
 #   sphere:   q rms 0.148, 0.173, 0.141, 0.104 of F p0; p rms 0.067-0.069 of p0;
 #             |c computed - c| <= 0.025 against a slave element of 0.136
 #   cylinder: q rms 0.048, 0.062, 0.068, 0.057; p rms 0.037-0.039; |c - c| <= 0.028 against 0.099
-q_bound, p_bound = {"sphere": (0.22, 0.09), "cylinder": (0.10, 0.06)}[kind]
+#   sphere on 10-node tetrahedra (hc 0.3; 2026-12-07): q rms 0.056, 0.055, 0.067, 0.053; p rms
+#             0.040-0.042; |c computed - c| <= 0.018 against a slave element of 0.268
+q_bound, p_bound = {"sphere": (0.22, 0.09), "cylinder": (0.10, 0.06), "sphereQuadraticTetrahedra": (0.08, 0.06)}[kind]
 failed = []
 for step, target in ((1, 0.0), (2, 0.3), (3, 0.6), (4, 0.9)):
     with open("%s/step%d.json" % (folder, step)) as f:

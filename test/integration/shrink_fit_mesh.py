@@ -91,9 +91,10 @@ def tetrahedra(points, hexes):
     return np.array(tets)
 
 
-def quadratic(points, tets):
+def quadratic(points, tets, curved=False):
     """Adds a node at the midpoint of every edge (one per edge); returns the points and the
-    10-node tetrahedra."""
+    10-node tetrahedra. curved: the node of an edge whose ends lie on one circle about the z
+    axis is moved out onto that circle (curved faces, as gmsh's second-order meshes give)."""
     points = list(points)
     middle = {}
 
@@ -101,7 +102,11 @@ def quadratic(points, tets):
         key = (min(p, q), max(p, q))
         if key not in middle:
             middle[key] = len(points)
-            points.append(0.5 * (points[p] + points[q]))
+            mid = 0.5 * (points[p] + points[q])
+            rp, rq = np.hypot(*points[p][:2]), np.hypot(*points[q][:2])
+            if curved and abs(rp - rq) < 1e-9:
+                mid[:2] *= rp / np.hypot(*mid[:2])
+            points.append(mid)
         return middle[key]
 
     tet10 = [list(t) + [node(t[0], t[1]), node(t[1], t[2]), node(t[0], t[2]), node(t[0], t[3]),
@@ -109,17 +114,20 @@ def quadratic(points, tets):
     return np.array(points), np.array(tet10)
 
 
-def main(path, kind, layers=1, thickness=T, hub_grid=HUB_CELLS, shaft_grid=SHAFT_CELLS, delta=DELTA):
+def main(path, kind, layers=1, thickness=T, hub_grid=HUB_CELLS, shaft_grid=SHAFT_CELLS, delta=DELTA,
+         curved=False):
     nt = hub_grid[1]
-    shaft_points, shaft_cells = polar_grid(A, lambda theta: hub_bore_radius(theta, delta, nt), shaft_grid,
-                                           layers, thickness)
+    # The shaft's outer surface: the moved hub polygon, or (curved) the circle r = B + delta.
+    shaft_surface = (lambda theta: B + delta) if curved else (lambda theta: hub_bore_radius(theta, delta, nt))
+    hub_surface = (lambda theta: B) if curved else (lambda theta: hub_bore_radius(theta, 0.0, nt))
+    shaft_points, shaft_cells = polar_grid(A, shaft_surface, shaft_grid, layers, thickness)
     # The hub's nodes lie on its rays at the polygon's vertices: r = B on the bore, r = C outside.
     hub_points, hub_cells = polar_grid(B, lambda theta: C, hub_grid, layers, thickness)
     if kind == "tet4":
         shaft_cells, hub_cells = tetrahedra(shaft_points, shaft_cells), tetrahedra(hub_points, hub_cells)
     if kind == "tet10":
-        shaft_points, shaft_cells = quadratic(shaft_points, tetrahedra(shaft_points, shaft_cells))
-        hub_points, hub_cells = quadratic(hub_points, tetrahedra(hub_points, hub_cells))
+        shaft_points, shaft_cells = quadratic(shaft_points, tetrahedra(shaft_points, shaft_cells), curved)
+        hub_points, hub_cells = quadratic(hub_points, tetrahedra(hub_points, hub_cells), curved)
     offset = len(shaft_points)
     points = np.vstack([shaft_points, hub_points])
     shaft = np.arange(offset)
@@ -131,13 +139,13 @@ def main(path, kind, layers=1, thickness=T, hub_grid=HUB_CELLS, shaft_grid=SHAFT
 
     eps = 1e-9
     # The shaft's outer surface: its outer nodes (the last radial layer of the grid; tet10: and
-    # the midpoints between them), i.e. the nodes on the moved hub polygon.
-    on_shaft_outer = np.array([abs(hub_bore_radius(np.arctan2(y, x), delta, nt) - rr) < 1e-9
+    # the midpoints between them), i.e. the nodes on the moved hub polygon (curved: on r = B + delta).
+    on_shaft_outer = np.array([abs(shaft_surface(np.arctan2(y, x)) - rr) < 1e-9
                                for (x, y, _), rr in zip(points[shaft], r[shaft])])
     sets = {
         "shaft_outer": shaft[on_shaft_outer],
         "hub_bore": where(hub, lambda x, rr: np.abs(
-            np.array([hub_bore_radius(np.arctan2(p[1], p[0]), 0.0, nt) for p in x]) - rr) < 1e-9),
+            np.array([hub_surface(np.arctan2(p[1], p[0])) for p in x]) - rr) < 1e-9),
         "shaft_x0": where(shaft, lambda x, rr: np.abs(x[:, 0]) < eps),
         "shaft_y0": where(shaft, lambda x, rr: np.abs(x[:, 1]) < eps),
         "hub_outer": where(hub, lambda x, rr: rr > C * np.cos(0.25 * np.pi / nt) - 1e-9),
@@ -167,11 +175,17 @@ if __name__ == "__main__":
                         help="the shaft's cells, angular a multiple of the hub's (default %d %d)" % SHAFT_CELLS)
     parser.add_argument("--delta", type=float, default=DELTA,
                         help="the shaft's radial interference [mm] (default %g; 0: nominal geometry)" % DELTA)
+    parser.add_argument("--curved", action="store_true",
+                        help="tet10: the surfaces on circles, r = B + DELTA (shaft) and B (hub), the mid-edge "
+                             "nodes of edges along a circle on it (curved faces, as gmsh's second-order meshes)")
     args = parser.parse_args()
+    if args.curved and args.kind != "tet10":
+        parser.error("--curved is for tet10 (mid-edge nodes on the circles)")
     if args.layers < 1 or not args.thickness > 0:
         parser.error("--layers must be >= 1 and --thickness > 0")
     if min(list(args.hub_cells) + list(args.shaft_cells)) < 1 or args.shaft_cells[1] % args.hub_cells[1]:
         parser.error("cells must be >= 1, the shaft's angular ones a multiple of the hub's")
     if args.delta < 0:
         parser.error("--delta must be >= 0")
-    main(args.path, args.kind, args.layers, args.thickness, tuple(args.hub_cells), tuple(args.shaft_cells), args.delta)
+    main(args.path, args.kind, args.layers, args.thickness, tuple(args.hub_cells), tuple(args.shaft_cells), args.delta,
+         args.curved)

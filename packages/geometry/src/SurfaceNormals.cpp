@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "VectorMath.hpp"
+#include "tribos/mesh/ShapeFunctions.hpp"
 
 namespace tribos::geometry {
 
@@ -33,23 +34,67 @@ double vertexAngle(const mesh::Mesh& mesh, const mesh::FaceNodes& face, int v) {
   if (!(la > 0.0 && lb > 0.0)) return 0.0;
   return std::acos(std::clamp(dot(a, b) / (la * lb), -1.0, 1.0));
 }
+
+/// Adds a face's unit normal times its angle at each node to `normal`. A straight-sided face:
+/// its normal (Mesh::faceNormal) at every node, the corner angles of its outline at the
+/// vertices, pi at a mid-edge node (it lies on its edge).
+void addStraightFace(const mesh::Mesh& mesh, LO element, int side, std::vector<Vec3>& normal) {
+  Vec3 n = mesh.faceNormal(element, side);
+  const double length = norm(n);
+  if (!(length > 0.0)) return;  // a degenerate face has no direction to give
+  for (double& c : n) c /= length;
+  const mesh::FaceNodes face = mesh.faceNodes(element, side);
+  for (int k = 0; k < face.numNodes; ++k) {
+    const double angle = k < face.numVertices ? vertexAngle(mesh, face, k) : kPi;
+    for (int d = 0; d < 3; ++d) normal[face.node[k]][d] += angle * n[d];
+  }
+}
+
+/// The same for a quadratic face (a 6-node triangle), from its own geometry: at each node the
+/// normal of the curved face there (tangent0 x tangent1 at the node's reference point), at a
+/// vertex the angle between its two curved edges' tangents, pi at a mid-edge node. Where the
+/// mid-edge nodes follow a curved surface (gmsh's 10-node tetrahedra on a sphere) the chord
+/// triangle's normal is off the surface's by about half the angle the face spans; the face's own
+/// is off by its second-order error.
+void addQuadraticFace(const mesh::Mesh& mesh, const mesh::FaceNodes& face, const Vec3& outward,
+                      std::vector<Vec3>& normal) {
+  const mesh::FaceType type = mesh::faceType(face.numVertices, face.numNodes);
+  const mesh::FaceTypeShape& shape = mesh::faceTypeShape(type);
+  std::array<Vec3, mesh::kMaxFaceNodes> x{};
+  for (int k = 0; k < face.numNodes; ++k) x[k] = mesh.coords[face.node[k]];
+  for (int k = 0; k < face.numNodes; ++k) {
+    const double* xi = shape.referenceNodes[k];
+    const mesh::FaceGeometry g = mesh::faceGeometry(type, x.data(), xi[0], xi[1]);
+    Vec3 n = g.normal();
+    const double length = norm(n);
+    if (!(length > 0.0)) continue;
+    const double sign = dot(n, outward) < 0.0 ? -1.0 : 1.0;  // the catalogue's orientation is the face's
+    double angle = kPi;
+    if (k < face.numVertices) {
+      auto along = [&](int other) {  // the tangent at vertex k towards vertex `other`
+        const double d0 = shape.referenceNodes[other][0] - xi[0], d1 = shape.referenceNodes[other][1] - xi[1];
+        return Vec3{g.tangent0[0] * d0 + g.tangent1[0] * d1, g.tangent0[1] * d0 + g.tangent1[1] * d1,
+                    g.tangent0[2] * d0 + g.tangent1[2] * d1};
+      };
+      const Vec3 a = along((k + 1) % face.numVertices), b = along((k + face.numVertices - 1) % face.numVertices);
+      const double la = norm(a), lb = norm(b);
+      angle = la > 0.0 && lb > 0.0 ? std::acos(std::clamp(dot(a, b) / (la * lb), -1.0, 1.0)) : 0.0;
+    }
+    for (int d = 0; d < 3; ++d) normal[face.node[k]][d] += sign * angle * n[d] / length;
+  }
+}
 }  // namespace
 
 std::vector<Vec3> summedFaceNormals(const mesh::Mesh& mesh, const mesh::SideSet& set) {
   std::vector<Vec3> normal(mesh.numNodes(), Vec3{0.0, 0.0, 0.0});
   for (size_t f = 0; f < set.elements.size(); ++f) {
-    Vec3 n = mesh.faceNormal(set.elements[f], set.sides[f]);
-    const double length = norm(n);
-    if (!(length > 0.0)) continue;  // a degenerate face has no direction to give
-    for (double& c : n) c /= length;
     // Every node of the face: a 6-node triangle's mid-edge nodes are contact nodes too, and
-    // the master normal is interpolated with its quadratic shape functions. A mid-edge node
-    // lies on its edge (the angle there is a straight one, the same in both faces).
+    // the master normal is interpolated with its quadratic shape functions.
     const mesh::FaceNodes face = mesh.faceNodes(set.elements[f], set.sides[f]);
-    for (int k = 0; k < face.numNodes; ++k) {
-      const double angle = k < face.numVertices ? vertexAngle(mesh, face, k) : kPi;
-      for (int d = 0; d < 3; ++d) normal[face.node[k]][d] += angle * n[d];
-    }
+    if (face.numNodes > face.numVertices)
+      addQuadraticFace(mesh, face, mesh.faceNormal(set.elements[f], set.sides[f]), normal);
+    else
+      addStraightFace(mesh, set.elements[f], set.sides[f], normal);
   }
   return normal;
 }

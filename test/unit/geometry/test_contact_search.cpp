@@ -474,3 +474,29 @@ TEST(ContactSearch, normalsOnSymmetryPlanesLieInThem) {
       EXPECT_DOUBLE_EQ(normals[n][2], 1.0);
     }
 }
+
+TEST(ContactSearch, quadraticFacesGiveTheirOwnNormals) {
+  // The top of a box of 10-node Kuhn tetrahedra mapped onto a sphere of radius 3 (every node of
+  // the top, mid-edge nodes included, on the sphere): 6-node faces that follow it. Each nodal
+  // normal against the sphere's: from the faces' own (quadratic) geometry within 1e-2 rad
+  // (6.3e-3 measured); the chord triangles' normals, the rule before, were off by up to
+  // 0.126 rad (measured with the straight-face rule on this mesh).
+  const double radius = 3.0;
+  auto m = test::boxMesh({-1.0, -1.0, 0.0}, {2.0, 2.0, 1.0}, {4, 4, 1}, "cap",
+                         test::CellElements::QuadraticKuhnTetrahedra);
+  for (auto& x : m.coords)
+    if (x[2] == 1.0) x[2] = 1.0 - radius + std::sqrt(radius * radius - x[0] * x[0] - x[1] * x[1]);
+  const auto normals = geometry::unitNodalNormals(m, m.sideSet("cap_z1"));
+  double worst = 0.0;
+  int onTop = 0;
+  for (size_t n = 0; n < m.coords.size(); ++n) {
+    const Vec3& x = m.coords[n];
+    if (x[2] < 0.6) continue;  // the top reaches down to 0.65; a vertical edge's mid node is at 0.5
+    ++onTop;
+    const Vec3 exact = unit({x[0], x[1], x[2] - (1.0 - radius)});
+    worst = std::max(worst, std::acos(std::min(1.0, dot(normals[n], exact))));
+  }
+  std::printf("largest angle from the sphere's normal: %.3g rad over %d nodes\n", worst, onTop);
+  EXPECT_EQ(onTop, 81);  // (2 x 4 + 1)^2 top nodes, vertices and mid-edge nodes
+  EXPECT_LT(worst, 1e-2);
+}

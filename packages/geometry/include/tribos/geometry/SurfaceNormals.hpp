@@ -15,7 +15,9 @@ std::vector<LO> sideSetNodes(const mesh::Mesh& mesh, const mesh::SideSet& set);
 
 /// Per node: the sum over the faces of `set` that contain it (mid-edge nodes included) of
 /// their outward unit normals, each weighted by the face's interior angle at the node (pi at a
-/// mid-edge node); zero off the set.
+/// mid-edge node); zero off the set. A 6-node triangle gives the normal and the corner angles of
+/// its own quadratic geometry at each node, not its chord triangle's (a face following a sphere:
+/// 6.3e-3 rad from the sphere's normal against 0.126, test quadraticFacesGiveTheirOwnNormals).
 /// Why angles, not areas: the angle-weighted normal does not depend on how a flat region is
 /// cut into faces (a quadrilateral's corner angle is the sum of its triangles' angles there).
 /// Area-weighted, a node where a cylinder's flat facets meet leans towards the facet cut into
