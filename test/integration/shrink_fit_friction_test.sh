@@ -13,7 +13,8 @@
 # without friction). tet10curved: 10-node tetrahedra whose faces follow the circles
 # (shrink_fit_mesh.py --curved, as gmsh's second-order meshes), 8.5 % (the chord normals
 # before: 68 %, 146 of 291 nodes slipping).
-# Needs Debian's python3 with meshio; exit 77 (CTest: skipped) without it.
+# Needs Debian's python3 with meshio and netCDF4 (its Exodus writer); exit 77 (CTest: skipped)
+# without them.
 # Usage: shrink_fit_friction_test.sh TRIBOS SOURCE_DIR hex8|tet4|tet10|tet10curved
 set -u
 tribos=$1 source=$2 kind=$3
@@ -29,8 +30,8 @@ mesh_options=$kind
 [ "$kind" = tet10curved ] && mesh_options="tet10 --curved"
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
-/usr/bin/python3 -c "import meshio" 2>/dev/null ||
-  { echo "skipped: /usr/bin/python3 lacks meshio (python3-meshio)"; exit 77; }
+/usr/bin/python3 -c "import netCDF4, meshio" 2>/dev/null ||
+  { echo "skipped: /usr/bin/python3 lacks netCDF4 or meshio (python3-netcdf4, python3-meshio)"; exit 77; }
 # shellcheck disable=SC2086 # the element type and its option
 /usr/bin/python3 "$here/shrink_fit_mesh.py" "$dir/mesh.exo" $mesh_options || exit 1
 "$tribos" --input "$here/shrink_fit.xml" --set "Mesh/File=$dir/mesh.exo" --set Solver/Verbose=false \

@@ -1,10 +1,11 @@
 """Writes the quarter model of a plane-strain shrink fit as meshio writes Exodus meshes (blocks
 numbered from 0 without names: block_0 is the shaft, block_1 the hub; node sets only, the
-contact surfaces given as node sets). Used by lame_hoop_stress_test.sh with shrink_fit.xml,
-and, thicker and in layers, by push_out_test.sh with push_out.xml (a push-out, not plane strain).
+contact surfaces given as node sets). Used by lame_hoop_stress_test.sh and
+shrink_fit_friction_test.sh with shrink_fit.xml, and, thicker and in layers, by push_out_test.sh
+with push_out.xml (a push-out, not plane strain).
 
 Usage: python3 shrink_fit_mesh.py OUT.exo hex8|tet4|tet10 [--layers L] [--thickness T]
-         [--hub-cells RADIAL ANGULAR] [--shaft-cells RADIAL ANGULAR] [--delta DELTA]
+         [--hub-cells RADIAL ANGULAR] [--shaft-cells RADIAL ANGULAR] [--delta DELTA] [--curved]
 (needs Debian's python3-meshio). Defaults: one layer, T = 2 mm (the plane-strain slab), the
 cells below; push_out_test.sh writes 4 layers, T = 8 mm (and coarser cells for tet10);
 --delta 0 writes the nominal geometry (the shaft's surface on the hub's bore: the interference
@@ -31,6 +32,10 @@ hex8: hexahedra. tet4: each hexahedron cut into 6 tetrahedra (as below, without 
 nodes). tet10: each hexahedron cut into 6 positively oriented tetrahedra (as in
 meshio_two_boxes.py), then a node at the midpoint of each edge (shared; straight edges), in
 meshio's "tetra10" order, which is Exodus's TETRA10: vertices 0-3, then edges 01 12 02 03 13 23.
+--curved (tet10 only): both surfaces on circles instead, the shaft's at r = B + DELTA and the
+hub's bore at r = B (non-matching nodes, a uniform interference), and the node of every edge
+whose ends lie on one circle about the z axis moved out onto it: curved faces, as gmsh's
+second-order meshes of a cylinder give.
 Node sets: shaft_outer, hub_bore (the contact surfaces), hub_outer (r = C), shaft_x0, hub_x0,
 shaft_y0, hub_y0 (symmetry planes), all_z0, all_z1 (the slab's faces), shaft_z0, shaft_z1,
 hub_z0, hub_z1 (each body's end faces).

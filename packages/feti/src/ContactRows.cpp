@@ -455,6 +455,7 @@ void addAllContactRows(const mesh::Mesh& mesh, const ConstraintSpec& spec, const
   refuseInteriorContactFaces(mesh, spec.interfaces);
   std::vector<InterfacePairs> found;
   const geometry::HeldAxes held = heldAxes(ctx.prescribed);
+  B.heldAxes = held;
   if (spec.pairingDisplacement) {
     const mesh::Mesh deformed = deformedMesh(mesh, *spec.pairingDisplacement);
     for (size_t i = 0; i < spec.interfaces.size(); ++i)

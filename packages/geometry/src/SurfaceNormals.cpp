@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "VectorMath.hpp"
 #include "tribos/mesh/ShapeFunctions.hpp"
@@ -25,39 +27,42 @@ std::vector<LO> sideSetNodes(const mesh::Mesh& mesh, const mesh::SideSet& set) {
 namespace {
 constexpr double kPi = 3.14159265358979323846;
 
-/// The interior angle of a face's outline at vertex v (between the edges to its neighbours).
-double vertexAngle(const mesh::Mesh& mesh, const mesh::FaceNodes& face, int v) {
-  const Vec3& x = mesh.coords[face.node[v]];
-  const Vec3 a = minus(mesh.coords[face.node[(v + 1) % face.numVertices]], x);
-  const Vec3 b = minus(mesh.coords[face.node[(v + face.numVertices - 1) % face.numVertices]], x);
+/// The angle between two vectors (0 where one is zero).
+double angleBetween(const Vec3& a, const Vec3& b) {
   const double la = norm(a), lb = norm(b);
   if (!(la > 0.0 && lb > 0.0)) return 0.0;
   return std::acos(std::clamp(dot(a, b) / (la * lb), -1.0, 1.0));
 }
 
-/// Adds a face's unit normal times its angle at each node to `normal`. A straight-sided face:
-/// its normal (Mesh::faceNormal) at every node, the corner angles of its outline at the
-/// vertices, pi at a mid-edge node (it lies on its edge).
+/// The interior angle of a face's outline at vertex v (between the edges to its neighbours).
+double vertexAngle(const mesh::Mesh& mesh, const mesh::FaceNodes& face, int v) {
+  const Vec3& x = mesh.coords[face.node[v]];
+  return angleBetween(minus(mesh.coords[face.node[(v + 1) % face.numVertices]], x),
+                      minus(mesh.coords[face.node[(v + face.numVertices - 1) % face.numVertices]], x));
+}
+
+/// Adds a straight-sided face's unit normal (Mesh::faceNormal) times its corner angle at each
+/// vertex to `normal`.
 void addStraightFace(const mesh::Mesh& mesh, LO element, int side, std::vector<Vec3>& normal) {
   Vec3 n = mesh.faceNormal(element, side);
   const double length = norm(n);
   if (!(length > 0.0)) return;  // a degenerate face has no direction to give
   for (double& c : n) c /= length;
   const mesh::FaceNodes face = mesh.faceNodes(element, side);
-  for (int k = 0; k < face.numNodes; ++k) {
-    const double angle = k < face.numVertices ? vertexAngle(mesh, face, k) : kPi;
-    for (int d = 0; d < 3; ++d) normal[face.node[k]][d] += angle * n[d];
+  for (int v = 0; v < face.numVertices; ++v) {
+    const double angle = vertexAngle(mesh, face, v);
+    for (int d = 0; d < 3; ++d) normal[face.node[v]][d] += angle * n[d];
   }
 }
 
 /// The same for a quadratic face (a 6-node triangle), from its own geometry: at each node the
-/// normal of the curved face there (tangent0 x tangent1 at the node's reference point), at a
-/// vertex the angle between its two curved edges' tangents, pi at a mid-edge node. Where the
+/// normal of the curved face there (tangent0 x tangent1 at the node's reference point: outward,
+/// as the catalogue numbers a face's nodes), at a vertex the angle between its two curved edges'
+/// tangents, pi at a mid-edge node (it lies on its edge: the same in both faces). Where the
 /// mid-edge nodes follow a curved surface (gmsh's 10-node tetrahedra on a sphere) the chord
 /// triangle's normal is off the surface's by about half the angle the face spans; the face's own
-/// is off by its second-order error.
-void addQuadraticFace(const mesh::Mesh& mesh, const mesh::FaceNodes& face, const Vec3& outward,
-                      std::vector<Vec3>& normal) {
+/// by its second-order error.
+void addQuadraticFace(const mesh::Mesh& mesh, const mesh::FaceNodes& face, std::vector<Vec3>& normal) {
   const mesh::FaceType type = mesh::faceType(face.numVertices, face.numNodes);
   const mesh::FaceTypeShape& shape = mesh::faceTypeShape(type);
   std::array<Vec3, mesh::kMaxFaceNodes> x{};
@@ -65,22 +70,17 @@ void addQuadraticFace(const mesh::Mesh& mesh, const mesh::FaceNodes& face, const
   for (int k = 0; k < face.numNodes; ++k) {
     const double* xi = shape.referenceNodes[k];
     const mesh::FaceGeometry g = mesh::faceGeometry(type, x.data(), xi[0], xi[1]);
-    Vec3 n = g.normal();
+    const Vec3 n = g.normal();
     const double length = norm(n);
     if (!(length > 0.0)) continue;
-    const double sign = dot(n, outward) < 0.0 ? -1.0 : 1.0;  // the catalogue's orientation is the face's
-    double angle = kPi;
-    if (k < face.numVertices) {
-      auto along = [&](int other) {  // the tangent at vertex k towards vertex `other`
-        const double d0 = shape.referenceNodes[other][0] - xi[0], d1 = shape.referenceNodes[other][1] - xi[1];
-        return Vec3{g.tangent0[0] * d0 + g.tangent1[0] * d1, g.tangent0[1] * d0 + g.tangent1[1] * d1,
-                    g.tangent0[2] * d0 + g.tangent1[2] * d1};
-      };
-      const Vec3 a = along((k + 1) % face.numVertices), b = along((k + face.numVertices - 1) % face.numVertices);
-      const double la = norm(a), lb = norm(b);
-      angle = la > 0.0 && lb > 0.0 ? std::acos(std::clamp(dot(a, b) / (la * lb), -1.0, 1.0)) : 0.0;
-    }
-    for (int d = 0; d < 3; ++d) normal[face.node[k]][d] += sign * angle * n[d] / length;
+    auto towards = [&](int other) {  // the tangent at node k towards vertex `other`
+      const double d0 = shape.referenceNodes[other][0] - xi[0], d1 = shape.referenceNodes[other][1] - xi[1];
+      return Vec3{g.tangent0[0] * d0 + g.tangent1[0] * d1, g.tangent0[1] * d0 + g.tangent1[1] * d1,
+                  g.tangent0[2] * d0 + g.tangent1[2] * d1};
+    };
+    const int nv = face.numVertices;
+    const double angle = k < nv ? angleBetween(towards((k + 1) % nv), towards((k + nv - 1) % nv)) : kPi;
+    for (int d = 0; d < 3; ++d) normal[face.node[k]][d] += angle * n[d] / length;
   }
 }
 }  // namespace
@@ -92,7 +92,7 @@ std::vector<Vec3> summedFaceNormals(const mesh::Mesh& mesh, const mesh::SideSet&
     // the master normal is interpolated with its quadratic shape functions.
     const mesh::FaceNodes face = mesh.faceNodes(set.elements[f], set.sides[f]);
     if (face.numNodes > face.numVertices)
-      addQuadraticFace(mesh, face, mesh.faceNormal(set.elements[f], set.sides[f]), normal);
+      addQuadraticFace(mesh, face, normal);
     else
       addStraightFace(mesh, set.elements[f], set.sides[f], normal);
   }
@@ -110,13 +110,16 @@ Vec3 inSymmetryPlanes(Vec3 normal, std::uint8_t heldAxes) {
 }
 
 std::vector<Vec3> unitNodalNormals(const mesh::Mesh& mesh, const mesh::SideSet& set, const HeldAxes& held) {
+  if (!held.empty() && held.size() != static_cast<size_t>(mesh.numNodes()))
+    throw std::invalid_argument("unitNodalNormals: held axes for " + std::to_string(held.size()) + " nodes, the mesh has " +
+                                std::to_string(mesh.numNodes()));
   auto n = summedFaceNormals(mesh, set);
   for (size_t node = 0; node < n.size(); ++node) {
     Vec3& v = n[node];
     const double length = norm(v);
     if (length > 0.0)
       for (double& c : v) c /= length;
-    if (node < held.size() && length > 0.0) v = inSymmetryPlanes(v, held[node]);
+    if (!held.empty() && length > 0.0) v = inSymmetryPlanes(v, held[node]);
   }
   return n;
 }

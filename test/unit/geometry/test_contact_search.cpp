@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <stdexcept>
 
 #include "BoxMesh.hpp"
 #include "tribos/core/Errors.hpp"
@@ -473,6 +474,43 @@ TEST(ContactSearch, normalsOnSymmetryPlanesLieInThem) {
       EXPECT_EQ(normals[n][0], 0.0);
       EXPECT_DOUBLE_EQ(normals[n][2], 1.0);
     }
+  auto steep = test::boxMesh({0.0, 0.0, 0.0}, {2.0, 1.0, 1.0}, {2, 1, 1}, "roof");
+  for (auto& x : steep.coords)
+    if (x[2] == 1.0) x[2] = 1.0 - 0.3 * std::abs(x[0] - 1.0);
+  const auto kept = geometry::unitNodalNormals(steep, steep.sideSet("roof_z1"), held);
+  const Vec3 facet = unit({-0.3, 0.0, 1.0});
+  for (size_t n = 0; n < steep.coords.size(); ++n)
+    if (steep.coords[n][0] == 0.0 && steep.coords[n][2] > 0.5)
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(kept[n][c], facet[c], 1e-14);
+  // Held axes for another mesh's nodes are refused.
+  EXPECT_THROW(geometry::unitNodalNormals(m, m.sideSet("roof_z1"), geometry::HeldAxes(3, 1)), std::invalid_argument);
+}
+
+TEST(ContactSearch, pairsOnSymmetryPlanesGetNormalsInThem) {
+  // The gently sloping roof above as the master surface (held along x at x = 0), a flat box
+  // above it as the slave: a slave node over the first facet gets the normal interpolated from
+  // the x = 0 nodes' and the ridge's. With the held axes both are +z, so the pair's is -z
+  // (to round-off); without them the x = 0 nodes lean with their facet and so does the pair's normal.
+  auto roof = test::boxMesh({0.0, 0.0, 0.0}, {2.0, 1.0, 1.0}, {2, 1, 1}, "roof");
+  for (auto& x : roof.coords)
+    if (x[2] == 1.0) x[2] = 1.0 - 0.1 * std::abs(x[0] - 1.0);
+  const auto m = test::mergeMeshes(roof, test::boxMesh({0.0, 0.0, 1.1}, {2.0, 1.0, 0.5}, {4, 2, 1}, "top"));
+  geometry::HeldAxes held(m.coords.size(), 0);
+  for (size_t n = 0; n < m.coords.size(); ++n)
+    if (m.coords[n][0] == 0.0) held[n] = 1;
+  const auto in = geometry::searchContactPairs(m, "top_z0", "roof_z1", 1.0, held);
+  const auto out = geometry::searchContactPairs(m, "top_z0", "roof_z1", 1.0);
+  ASSERT_EQ(in.pairs.size(), 15u);
+  ASSERT_EQ(out.pairs.size(), 15u);
+  int overFirstFacet = 0;
+  for (size_t p = 0; p < in.pairs.size(); ++p) {
+    if (m.coords[in.pairs[p].slaveNode][0] >= 1.0) continue;
+    ++overFirstFacet;
+    EXPECT_NEAR(in.pairs[p].normal[0], 0.0, 1e-14);
+    EXPECT_DOUBLE_EQ(in.pairs[p].normal[2], -1.0);
+    EXPECT_GT(out.pairs[p].normal[0], 0.01);  // leaning with the facet (-0.1, 0, 1), reversed
+  }
+  EXPECT_EQ(overFirstFacet, 6);  // x = 0 and 0.5, three nodes along y each
 }
 
 TEST(ContactSearch, quadraticFacesGiveTheirOwnNormals) {

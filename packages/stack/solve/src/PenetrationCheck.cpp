@@ -31,8 +31,8 @@ bool faceHasRowNode(const geometry::MasterSurface& master, LO face, const std::s
 
 /// The penetration of one interface in the displaced mesh `moved`.
 Penetration interfacePenetration(const mesh::Mesh& moved, const feti::ContactInterfaceSpec& spec,
-                                 const std::map<LO, std::set<LO>>& rows) {
-  const geometry::MasterSurface master(moved, spec.masterSideSet);
+                                 const std::map<LO, std::set<LO>>& rows, const geometry::HeldAxes& held) {
+  const geometry::MasterSurface master(moved, spec.masterSideSet, held);  // the rows' normals
   Penetration found;
   found.interface = spec.label();
   for (LO slave : geometry::sideSetNodes(moved, moved.sideSet(spec.slaveSideSet))) {
@@ -65,7 +65,7 @@ std::vector<Penetration> penetrationsAfterSolve(const Scene& scene, const feti::
   for (size_t i = 0; i < scene.contacts.size(); ++i) {
     const auto& spec = scene.contacts[i].rows;
     if (spec.tied) continue;
-    Penetration p = interfacePenetration(moved, spec, rowMasters(B, static_cast<int>(i)));
+    Penetration p = interfacePenetration(moved, spec, rowMasters(B, static_cast<int>(i)), B.heldAxes);
     if (p.nodes > 0) found.push_back(std::move(p));
   }
   return found;

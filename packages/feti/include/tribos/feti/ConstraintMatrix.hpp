@@ -27,6 +27,7 @@
 /// Within a rank: contact triples (N, T1, T2 consecutive per contact node), then gluing,
 /// then Dirichlet rows.
 #include <array>
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -247,6 +248,10 @@ struct ConstraintMatrix {
   /// non-zero value: a load history must give them the same factors.
   std::vector<std::pair<int, int>> overlappingConditions;
   std::vector<ContactNode> contact;  ///< contact nodes, in row order
+  /// Per mesh node, the axes a displacement condition holds it along while it stays free along
+  /// another (bit c: axis c; geometry::HeldAxes): the contact normals at such nodes lie in those
+  /// planes (geometry::inSymmetryPlanes). Empty without contact interfaces.
+  std::vector<std::uint8_t> heldAxes;
   std::vector<ContactInterfaceRows> interfaces;  ///< per ConstraintSpec::interfaces, same order
   GO unpairedSlaveNodes() const;  ///< over every interface
   std::vector<SubdomainBlock> blocks;  ///< index = global subdomain

@@ -11,7 +11,8 @@
 /// reaches as far as faces deviate from their search triangles.
 ///
 /// The normal is the *smoothed* master normal: the interpolation of the master's nodal
-/// normals (area-weighted means of the outer normals of the faces at each master node) with
+/// normals (the outer normals of the faces at each master node weighted by their angles there,
+/// in the symmetry planes the node is held on: SurfaceNormals.hpp) with
 /// the face's shape functions at the projection. It is continuous over the surface, so the
 /// directions at neighbouring slave nodes on a faceted curved surface do not jump from face to
 /// face; on a flat master it is the exact face normal.

@@ -33,7 +33,9 @@ using HeldAxes = std::vector<std::uint8_t>;
 
 /// The normal of a surface node on symmetry planes: for each axis e_c the node is held along
 /// (`heldAxes`, bit c) where the normal is within ~11 degrees of the plane x_c = const, the
-/// normal's e_c part is removed. The nodal normal there averages the faces on one side of the
+/// normal's e_c part is removed. Any condition that holds some components of a node but not
+/// all counts (a symmetry plane, a roller, a prescribed axial push): a contact normal within
+/// 11 degrees of such a plane is taken to lie in it. The nodal normal there averages the faces on one side of the
 /// plane only, so it leans out of the plane; the whole (mirrored) body's normal lies in it.
 /// On a faceted cylinder's quarter model (test/integration/shrink_fit.xml) the lean of the bore's
 /// node on the plane turned the normal interpolated over the first facet by half a facet
