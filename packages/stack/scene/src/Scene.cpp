@@ -81,8 +81,10 @@ std::string meshPath(const ParameterList& meshList, const std::string& source) {
 int subdomainCount(const ParameterList& meshList, MPI_Comm comm, Scene& scene) {
   int ranks = 1;
   if (comm != MPI_COMM_NULL) MPI_Comm_size(comm, &ranks);
-  const auto choice = chooseSubdomainCount(meshList.get<int>("Subdomains"), scene.mesh.numNodes(),
-                                           scene.mesh.numBlocks(), meshList.get<int>("Nodes Per Subdomain"), ranks);
+  const int requested = meshList.get<int>("Subdomains");
+  const auto choice = chooseSubdomainCount(requested, requested > 0 ? 0 : cornerNodeCount(scene.mesh),
+                                           scene.mesh.numNodes(), scene.mesh.numBlocks(),
+                                           meshList.get<int>("Nodes Per Subdomain"), ranks);
   scene.subdomainChoice = choice.reason;
   return choice.count;
 }

@@ -96,12 +96,13 @@ void meshParameters(ParameterList& pl) {
   pl.set("Subdomains", 0,
          "Exodus, or Decomposition = METIS: number of subdomains (METIS parts, split among bodies "
          "in proportion to their element counts; at least one per body); 0: chosen from the mesh, one per "
-         "Nodes Per Subdomain nodes (at least one per body and one per rank)",
+         "Nodes Per Subdomain corner nodes (at least one per body and one per rank)",
          core::intRange(0, 1000000));
   pl.set("Nodes Per Subdomain", 2000,
-         "Subdomains = 0: the mesh nodes per subdomain the count is chosen for (the measured optimum of the "
-         "curved scenes, doc/measurements/curved_iterations.md); a subdomain's size then stays the same as "
-         "the mesh is refined",
+         "Subdomains = 0: the mesh's corner nodes (element vertices: a quadratic element's mid-edge nodes do "
+         "not count) per subdomain the count is chosen for (the measured optimum of the curved scenes, "
+         "doc/measurements/curved_iterations.md); a subdomain's size in elements, and H/h, then stays the "
+         "same as the mesh is refined",
          core::intRange(1, 100000000));
   Teuchos::setStringToIntegralParameter<int>(
       "Decomposition", "Structured",
