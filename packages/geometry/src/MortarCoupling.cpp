@@ -106,20 +106,55 @@ std::vector<ProjectedPoint> projectAll(std::vector<SlavePoint> points, const Mas
   return projected;
 }
 
+/// A segment point projected along the slave's normal field n on the master face f whose image
+/// holds it (MortarNormalProjection.hpp): false where the line misses f by more than round-off
+/// of the images' straight edges (1e-6 of the reference domain), or the master lies beyond the
+/// pairing's reach (farther than the search distance ahead, or deeper than the face's size).
+bool alongNormalOnItsFace(const MasterSurface& master, LO f, const SlavePoint& q, const Vec3& n,
+                          double searchDistance, MasterSurface::Projection& chi) {
+  constexpr double kImageSlack = 1e-6;
+  std::array<double, 2> eta;
+  if (!masterPointAlongNormal(master, f, q.x, n, chi, eta)) return false;
+  const mesh::FaceNodes& face = master.faceNodes(f);
+  if (!insideReferenceDomain(mesh::faceType(face.numVertices, face.numNodes), eta, kImageSlack)) return false;
+  const double ahead = (chi.point[0] - q.x[0]) * n[0] + (chi.point[1] - q.x[1]) * n[1] + (chi.point[2] - q.x[2]) * n[2];
+  return chi.distance <= (ahead >= 0.0 ? searchDistance : master.faceSize(f));
+}
+
+/// The contact normals of a slave face's nodes where every node is paired and they are not all
+/// alike (MortarNormalProjection.hpp); false otherwise (the closest points serve).
+bool normalFieldOf(const mesh::FaceNodes& face, const std::vector<int>& pairOf, const ContactSearchResult& search,
+                   SlaveNormalField& field) {
+  for (int v = 0; v < face.numNodes; ++v) {
+    const int p = pairOf[face.node[v]];
+    if (p < 0) return false;
+    field.nodal[v] = search.pairs[p].normal;
+  }
+  return normalsVary(field, face.numNodes);
+}
+
 /// The quadrature points of one slave face, projected: segment-based (MortarSegments.hpp), with
 /// the element-based points where no master face's image covers the face; the element-based
 /// rule alone where the segments cannot be formed or a segment point projects on another master
 /// face than its segment's.
 std::vector<ProjectedPoint> mortarPoints(const SlaveBasis& basis, const mesh::FaceNodes& face,
                                          const MasterSurface& master, double searchDistance,
-                                         std::vector<SlavePoint> facePoints, SlaveIntegration& out) {
-  SegmentPoints segments = segmentPoints(basis, master, seedFaces(basis, face, master, searchDistance));
+                                         const SlaveNormalField* field, std::vector<SlavePoint> facePoints,
+                                         SlaveIntegration& out) {
+  SegmentPoints segments = segmentPoints(basis, master, seedFaces(basis, face, master, searchDistance), field);
   bool consistent = segments.usable;
   std::vector<ProjectedPoint> projected;
   for (size_t k = 0; consistent && k < segments.points.size(); ++k) {
-    const auto chi = master.pairingProjection(segments.points[k].x, searchDistance);
-    consistent = chi.face == segments.pointFace[k];
-    projected.push_back({segments.points[k], chi});
+    const SlavePoint& q = segments.points[k];
+    MasterSurface::Projection chi;
+    if (field)
+      consistent = alongNormalOnItsFace(master, segments.pointFace[k], q, field->at(basis, q.xi[0], q.xi[1]),
+                                        searchDistance, chi);
+    else {
+      chi = master.pairingProjection(q.x, searchDistance);
+      consistent = chi.face == segments.pointFace[k];
+    }
+    projected.push_back({q, chi});
   }
   if (!consistent) {
     ++out.elementBasedFaces;
@@ -153,7 +188,10 @@ SlaveIntegration integrateSlaveFaces(const mesh::Mesh& mesh, const std::string& 
     const SlaveBasis basis(face, x);
     std::vector<SlavePoint> facePoints = slaveFacePoints(face, x);
     addTributaryArea(facePoints, face, pairOf, out);
-    for (const auto& [q, chi] : mortarPoints(basis, face, master, searchDistance, std::move(facePoints), out)) {
+    SlaveNormalField field;
+    const bool alongNormals = normalFieldOf(face, pairOf, search, field);
+    for (const auto& [q, chi] : mortarPoints(basis, face, master, searchDistance, alongNormals ? &field : nullptr,
+                                             std::move(facePoints), out)) {
       if (!chi.outcome.settled()) ++out.unsettledProjections;
       addPoint(q, face, chi, pairOf, search, out);
     }

@@ -7,6 +7,7 @@
 #include <deque>
 #include <set>
 
+#include "MortarNormalProjection.hpp"
 #include "VectorMath.hpp"
 
 namespace tribos::geometry {
@@ -71,8 +72,10 @@ bool referencePointOf(const SlaveBasis& basis, const Vec3& y, Point2& xi) {
 }
 
 /// The image of master face f in the slave face's reference domain: its outline (vertices, and
-/// on a 6-node triangle the mid-edge nodes between them) mapped node by node.
-bool imageOf(const SlaveBasis& basis, const MasterSurface& master, LO f, Polygon& image) {
+/// on a 6-node triangle the mid-edge nodes between them) mapped node by node, by closest points
+/// or, where `field` is given, along the slave's normal field (MortarNormalProjection.hpp).
+bool imageOf(const SlaveBasis& basis, const MasterSurface& master, LO f, const SlaveNormalField* field,
+             Polygon& image) {
   const mesh::FaceNodes& face = master.faceNodes(f);
   const FaceCoordinates& x = master.faceCoordinates(f);
   image.clear();
@@ -81,6 +84,7 @@ bool imageOf(const SlaveBasis& basis, const MasterSurface& master, LO f, Polygon
       if (k < 0) continue;
       Point2 xi;
       if (!referencePointOf(basis, x[k], xi)) return false;
+      if (field && !slavePointAlongNormal(basis, *field, x[k], xi)) return false;
       image.push_back(xi);
     }
   }
@@ -144,7 +148,8 @@ bool SegmentPoints::covers(const std::array<double, 2>& xi) const {
   return false;
 }
 
-SegmentPoints segmentPoints(const SlaveBasis& basis, const MasterSurface& master, const std::vector<LO>& seeds) {
+SegmentPoints segmentPoints(const SlaveBasis& basis, const MasterSurface& master, const std::vector<LO>& seeds,
+                            const SlaveNormalField* field) {
   const Polygon domain = referenceDomain(basis.type());
   const double domainArea = signedArea(domain);
   SegmentPoints result;
@@ -157,7 +162,7 @@ SegmentPoints segmentPoints(const SlaveBasis& basis, const MasterSurface& master
     const LO f = queue.front();
     queue.pop_front();
     Polygon image;
-    if (!imageOf(basis, master, f, image)) return SegmentPoints{};
+    if (!imageOf(basis, master, f, field, image)) return SegmentPoints{};
     const bool seed = seedSet.count(f) > 0;
     // A facing master face's image turns the other way round (its outward normal is opposite).
     double area = 0.0;

@@ -12,8 +12,10 @@
 ///
 /// How the master faces are found: from the faces on which the slave face's nodes and centre
 /// project, then outwards through neighbouring faces (sharing a node) as long as their images
-/// meet the slave face. A master face is mapped by the closest points of its outline's nodes
-/// on the slave face, extended beyond its edges (unconstrained Gauss-Newton); a face that turns
+/// meet the slave face. A master face is mapped node by node of its outline onto the slave
+/// face, extended beyond its edges: along the slave's normal field where the face's contact
+/// normals differ (a curved or faceted-curved surface), by closest points where they are all
+/// alike (a flat face; MortarNormalProjection.hpp says why); a face that turns
 /// its back to the slave face there (its image has the slave face's orientation: the far side
 /// of a curved master) does not cover it. Where the images overlap (a master folded over itself
 /// in projection) or a node cannot be mapped, the face is reported unusable and the caller keeps
@@ -26,6 +28,7 @@
 /// with the element-based points that lie there, projected on the master as before.
 #include <vector>
 
+#include "MortarNormalProjection.hpp"
 #include "MortarQuadrature.hpp"
 #include "tribos/geometry/MasterSurface.hpp"
 
@@ -43,7 +46,9 @@ struct SegmentPoints {
 };
 
 /// The segment quadrature of the slave face of `basis`, whose master faces are searched from
-/// `seeds` (faces of `master`).
-SegmentPoints segmentPoints(const SlaveBasis& basis, const MasterSurface& master, const std::vector<LO>& seeds);
+/// `seeds` (faces of `master`). The master nodes are mapped by closest points, or along the
+/// slave's normal field where `field` is given (MortarNormalProjection.hpp).
+SegmentPoints segmentPoints(const SlaveBasis& basis, const MasterSurface& master, const std::vector<LO>& seeds,
+                            const SlaveNormalField* field = nullptr);
 
 }  // namespace tribos::geometry

@@ -26,7 +26,12 @@
 /// where the gap varies much within one slave element (a master curving away, a fillet of
 /// 1.5 slave elements) the weighted gap could be an overlap where the surfaces are apart.
 ///
-/// The integrals are evaluated by quadrature on the slave faces (a triangle cut into
+/// The integrals are segment-based (MortarSegments.hpp): the master faces are mapped onto each
+/// slave face and clipped there, and on a slave face whose nodes' contact normals differ (a
+/// curved surface) the master nodes are mapped, and the segment points projected, along the
+/// normals interpolated over the face (Popp et al. 2010; MortarNormalProjection.hpp), which on
+/// a faceted fit puts a master vertex's image on the slave vertex facing it. Where the segments
+/// cannot be formed the integrals are evaluated by quadrature on the slave faces (a triangle cut into
 /// kSubdivisions^2 sub-triangles, 3-point rule exact for quadratics on each; a quadrilateral
 /// into kSubdivisions^2 sub-squares of its reference square, 2 x 2 Gauss points each), projecting
 /// every quadrature point on the master surface — element-based integration, without
