@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <utility>
 
 #include "tribos/stack/GlobalFields.hpp"
@@ -66,8 +67,9 @@ void printTry(const LoadHistory& history, int k, double position, const contact:
               const std::vector<SectionState>& sections, int solves) {
   char at[64] = "";
   if (position != k) std::snprintf(at, sizeof at, ", cut back to %.6g of the step", position - (k - 1));
+  const std::string outcome = r.converged ? "converged" : "NOT CONVERGED (" + r.message + ")";
   std::printf("  load step %d/%d (%s%s): %s, %d outer, %lld PFP; %d no contact, %d stick, %d slip", k,
-              history.steps(), history.label(k).c_str(), at, r.converged ? "converged" : "NOT CONVERGED",
+              history.steps(), history.label(k).c_str(), at, outcome.c_str(),
               r.counters.outerIterations, r.counters.operatorApplications, r.statusCounts[0], r.statusCounts[1],
               r.statusCounts[2]);
   for (const auto& s : sections) std::printf("; %s %.6g at shortening %.6g", s.name.c_str(), s.force, s.shortening);
