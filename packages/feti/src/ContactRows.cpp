@@ -303,7 +303,7 @@ std::vector<geometry::MortarRow> masterSidesOf(const mesh::Mesh& mesh, const Con
   if (spec.discretization == ContactDiscretization::Mortar) {
     const geometry::MasterSurface master(mesh, spec.masterSideSet, held);
     return geometry::dualMortarRows(mesh, spec.slaveSideSet, master, search, spec.searchDistance,
-                                    &unsettledProjections);
+                                    &unsettledProjections, spec.surfaceGeometry == SurfaceGeometry::Smoothed, held);
   }
   for (const auto& pair : search.pairs) masterSides.push_back(geometry::nodeToSurfaceRow(pair));
   return masterSides;

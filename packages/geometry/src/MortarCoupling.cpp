@@ -6,9 +6,11 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <memory>
 
 #include "MortarQuadrature.hpp"
 #include "MortarSegments.hpp"
+#include "SmoothedFaces.hpp"
 
 namespace tribos::geometry {
 
@@ -39,9 +41,13 @@ struct SlaveIntegration {
 
 /// Adds one quadrature point's contributions to the integrals of the paired nodes of its face
 /// (all but D_i, which the whole face's rule gives: addTributaryArea).
+/// `slaveOffset` and `masterOffset` move the point and its projection onto the smoothed surfaces
+/// for the gap (SmoothedFaces.hpp; zero on faceted surfaces).
 void addPoint(const SlavePoint& q, const mesh::FaceNodes& face, const MasterSurface::Projection& chi,
-              const std::vector<int>& pairOf, const ContactSearchResult& search, SlaveIntegration& out) {
-  const Vec3& xq = q.x;
+              const Vec3& slaveOffset, const Vec3& masterOffset, const std::vector<int>& pairOf,
+              const ContactSearchResult& search, SlaveIntegration& out) {
+  const Vec3 xq{q.x[0] + slaveOffset[0] - masterOffset[0], q.x[1] + slaveOffset[1] - masterOffset[1],
+                q.x[2] + slaveOffset[2] - masterOffset[2]};
   const double omega = q.omega;
   for (int v = 0; v < face.numNodes; ++v) {
     const int p = pairOf[face.node[v]];
@@ -168,9 +174,43 @@ std::vector<ProjectedPoint> mortarPoints(const SlaveBasis& basis, const mesh::Fa
   return projected;
 }
 
+/// The smoothed surfaces of Contact/Surface Geometry = Smoothed (SmoothedFaces.hpp): the slave
+/// face's, and each master face's on first use.
+class SmoothedSurfaces {
+ public:
+  SmoothedSurfaces(const mesh::Mesh& mesh, const mesh::SideSet& slaveSet, const MasterSurface& master,
+                   const HeldAxes& held)
+      : slaveNormals_(unitNodalNormals(mesh, slaveSet, held)), master_(master), masterFaces_(master.numFaces()) {}
+  SmoothedFace slaveFace(const mesh::FaceNodes& face, const FaceCoordinates& x) const {
+    std::array<Vec3, 4> n{};
+    for (int v = 0; v < std::min(face.numVertices, 4); ++v) n[v] = slaveNormals_[face.node[v]];
+    return SmoothedFace(mesh::faceType(face.numVertices, face.numNodes), x, n);
+  }
+  /// The offset of the master's smoothed surface at a projection on it.
+  Vec3 masterOffset(const MasterSurface::Projection& chi) {
+    if (chi.face < 0) return {0.0, 0.0, 0.0};
+    const mesh::FaceNodes& face = master_.faceNodes(chi.face);
+    const mesh::FaceType type = mesh::faceType(face.numVertices, face.numNodes);
+    if (type == mesh::FaceType::Tri6) return {0.0, 0.0, 0.0};
+    auto& smoothed = masterFaces_[chi.face];
+    if (!smoothed) {
+      std::array<Vec3, 4> n{};
+      for (int v = 0; v < face.numVertices; ++v) n[v] = master_.nodalNormal(face.node[v]);
+      smoothed = std::make_unique<SmoothedFace>(type, master_.faceCoordinates(chi.face), n);
+    }
+    const auto eta = referenceFromWeights(type, chi.weights);
+    return smoothed->offset(eta[0], eta[1]);
+  }
+
+ private:
+  std::vector<Vec3> slaveNormals_;
+  const MasterSurface& master_;
+  std::vector<std::unique_ptr<SmoothedFace>> masterFaces_;
+};
+
 SlaveIntegration integrateSlaveFaces(const mesh::Mesh& mesh, const std::string& slaveSideSet,
                                      const MasterSurface& master, const ContactSearchResult& search,
-                                     double searchDistance) {
+                                     double searchDistance, SmoothedSurfaces* smoothed) {
   std::vector<int> pairOf(mesh.numNodes(), -1);
   for (size_t p = 0; p < search.pairs.size(); ++p) pairOf[search.pairs[p].slaveNode] = static_cast<int>(p);
   SlaveIntegration out;
@@ -186,6 +226,7 @@ SlaveIntegration integrateSlaveFaces(const mesh::Mesh& mesh, const std::string& 
     for (int m = 0; face.numNodes == 6 && m < 3; ++m)
       out.edgeEnds[face.node[3 + m]] = {face.node[m], face.node[(m + 1) % 3]};
     const SlaveBasis basis(face, x);
+    const SmoothedFace smoothedSlave = smoothed ? smoothed->slaveFace(face, x) : SmoothedFace();
     std::vector<SlavePoint> facePoints = slaveFacePoints(face, x);
     addTributaryArea(facePoints, face, pairOf, out);
     SlaveNormalField field;
@@ -193,7 +234,9 @@ SlaveIntegration integrateSlaveFaces(const mesh::Mesh& mesh, const std::string& 
     for (const auto& [q, chi] : mortarPoints(basis, face, master, searchDistance, alongNormals ? &field : nullptr,
                                              std::move(facePoints), out)) {
       if (!chi.outcome.settled()) ++out.unsettledProjections;
-      addPoint(q, face, chi, pairOf, search, out);
+      const Vec3 slaveOffset = smoothed ? smoothedSlave.offset(q.xi[0], q.xi[1]) : Vec3{0.0, 0.0, 0.0};
+      const Vec3 masterOffset = smoothed ? smoothed->masterOffset(chi) : Vec3{0.0, 0.0, 0.0};
+      addPoint(q, face, chi, slaveOffset, masterOffset, pairOf, search, out);
     }
   }
   return out;
@@ -269,14 +312,18 @@ bool projectsOnMasterVertices(const ContactSearchResult& search) {
 
 std::vector<MortarRow> dualMortarRows(const mesh::Mesh& mesh, const std::string& slaveSideSet,
                                       const MasterSurface& master, const ContactSearchResult& search,
-                                      double searchDistance, long long* unsettledProjections) {
+                                      double searchDistance, long long* unsettledProjections,
+                                      bool smoothedGeometry, const HeldAxes& held) {
   std::vector<MortarRow> rows;
   if (projectsOnMasterVertices(search)) {
     // Node-matching interface (header): node-to-node rows, whatever the triangles.
     for (const auto& pair : search.pairs) rows.push_back(nodeToSurfaceRow(pair));
     return rows;
   }
-  const SlaveIntegration integration = integrateSlaveFaces(mesh, slaveSideSet, master, search, searchDistance);
+  std::unique_ptr<SmoothedSurfaces> smoothed;
+  if (smoothedGeometry) smoothed = std::make_unique<SmoothedSurfaces>(mesh, mesh.sideSet(slaveSideSet), master, held);
+  const SlaveIntegration integration =
+      integrateSlaveFaces(mesh, slaveSideSet, master, search, searchDistance, smoothed.get());
   if (unsettledProjections) *unsettledProjections += integration.unsettledProjections;
   rows.reserve(search.pairs.size());
   for (size_t p = 0; p < search.pairs.size(); ++p)

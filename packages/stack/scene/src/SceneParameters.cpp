@@ -180,6 +180,13 @@ void interfaceParameters(ParameterList& pl) {
       "slave surface: no pressure oscillation on non-matching meshes; node-to-node on matching ones) or "
       "\"Node To Surface\" (the master displacement interpolated at the node's projection)",
       Teuchos::Array<std::string>(core::namesOf(feti::kContactDiscretizationNames)), &pl);
+  Teuchos::setStringToIntegralParameter<int>(
+      "Surface Geometry", "Faceted",
+      "the surfaces between which the mortar gaps are measured: \"Faceted\" (the faces as meshed) or "
+      "\"Smoothed\" (linear faces curved by their nodal normals, Nagata's patches: for 4-node tetrahedra or "
+      "8-node hexahedra meshed on a curved surface, whose facets' sag h^2 / (8 R) would otherwise count as gap; "
+      "not for a surface meant to be faceted). 6-node faces keep their own quadratic geometry either way",
+      Teuchos::Array<std::string>(core::namesOf(feti::kSurfaceGeometryNames)), &pl);
   pl.set("Search Distance", 1e-6,
          "contact search: a slave node is projected on the nearest master face within this distance [length] "
          "(set it above the largest initial gap that may close); a slave node with no master face that near "
@@ -202,8 +209,8 @@ void contactParameters(ParameterList& pl) {
   ParameterList& named = pl.sublist(
       "*", false,
       "one sublist per contact interface, any name (several bodies and interfaces): its Slave Side Set and Master "
-      "Side Set (required), and any of Friction Model, F1, F2, Slip Bound, T1 Direction, Discretization, Search "
-      "Distance, Interference, which default to the flat Contact list's values. A node may be the slave of one interface only; "
+      "Side Set (required), and any of Friction Model, F1, F2, Slip Bound, T1 Direction, Discretization, Surface "
+      "Geometry, Search Distance, Interference, which default to the flat Contact list's values. A node may be the slave of one interface only; "
       "a body may be the slave of one interface and the master of another; both surfaces of an interface must be "
       "on different bodies (no self-contact). With such sublists the flat Slave/Master Side Set stay empty");
   frictionLawTable().declare(named);
@@ -426,6 +433,8 @@ void readInterfaceRows(const ParameterList& list, feti::ContactInterfaceSpec& ro
   if (list.isParameter("Interference")) rows.interference = list.get<double>("Interference");
   if (list.isParameter("Discretization"))
     rows.discretization = core::valueOf(feti::kContactDiscretizationNames, list.get<std::string>("Discretization"));
+  if (list.isParameter("Surface Geometry"))
+    rows.surfaceGeometry = core::valueOf(feti::kSurfaceGeometryNames, list.get<std::string>("Surface Geometry"));
 }
 
 // The friction law of `list` over `law` (the flat list's, or the defaults): F2 not given in

@@ -53,6 +53,13 @@ enum class ContactDiscretization { Mortar, NodeToSurface };
 inline constexpr core::EnumNames<ContactDiscretization, 2> kContactDiscretizationNames{
     {{"Mortar", ContactDiscretization::Mortar}, {"Node To Surface", ContactDiscretization::NodeToSurface}}};
 
+/// Contact/Surface Geometry: the gaps measured between the faces as meshed, or between their
+/// smoothed surfaces (Nagata's curved faces from the nodal normals: geometry/src/SmoothedFaces.hpp),
+/// for linear faces meshed on a curved surface.
+enum class SurfaceGeometry { Faceted, Smoothed };
+inline constexpr core::EnumNames<SurfaceGeometry, 2> kSurfaceGeometryNames{
+    {{"Faceted", SurfaceGeometry::Faceted}, {"Smoothed", SurfaceGeometry::Smoothed}}};
+
 /// One contact interface (Contact or Contact/<name>): a slave surface paired with a master
 /// surface. A slave node that several interfaces pair (a corner of a body resting on a floor and
 /// against a wall) gets the rows of the one where its gap is smallest (ties: the earlier), and
@@ -74,6 +81,7 @@ struct ContactInterfaceSpec {
   /// (Contact/<name>/Interference); a load history ramps it (ContactNode::interference).
   double interference = 0.0;
   ContactDiscretization discretization = ContactDiscretization::Mortar;
+  SurfaceGeometry surfaceGeometry = SurfaceGeometry::Faceted;
   /// "Contact/<name>", or "Contact" without a name: the parameter list of the interface.
   std::string list() const { return name.empty() ? "Contact" : "Contact/" + name; }
   /// "Contact/<name> (slave -> master)", or "Contact (slave -> master)" without a name.

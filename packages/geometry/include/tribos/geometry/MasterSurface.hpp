@@ -76,6 +76,8 @@ class MasterSurface {
   const mesh::FaceNodes& faceNodes(LO face) const { return faceNodes_[face]; }
   const FaceCoordinates& faceCoordinates(LO face) const { return faceCoords_[face]; }
   const std::vector<LO>& neighbours(LO face) const { return neighbours_[face]; }
+  /// The unit nodal normal (outward of the master body) of a node of the surface.
+  const Vec3& nodalNormal(LO node) const { return nodalNormal_[node]; }
 
  private:
   /// The closest point on the face of a search triangle, from the triangle's closest point

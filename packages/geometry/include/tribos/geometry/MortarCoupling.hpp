@@ -83,10 +83,14 @@ struct MortarRow {
 /// One row per pair of `search` (same order). `master` must be built on the master set
 /// of the search; `searchDistance` as there. `unsettledProjections`, if given, is increased by
 /// the quadrature points whose projection on a curved master face did not settle
-/// (FaceProjection.hpp).
+/// (FaceProjection.hpp). `smoothedGeometry`: the gaps are measured between the smoothed
+/// surfaces of the linear faces (Contact/Surface Geometry = Smoothed; Nagata's curved faces from
+/// the nodal normals, geometry/src/SmoothedFaces.hpp), with the slave's nodal normals in the
+/// symmetry planes of `held`.
 std::vector<MortarRow> dualMortarRows(const mesh::Mesh& mesh, const std::string& slaveSideSet,
                                       const MasterSurface& master, const ContactSearchResult& search,
-                                      double searchDistance, long long* unsettledProjections = nullptr);
+                                      double searchDistance, long long* unsettledProjections = nullptr,
+                                      bool smoothedGeometry = false, const HeldAxes& held = {});
 
 /// True if every pair's projection is a master vertex (weights a unit vector).
 bool projectsOnMasterVertices(const ContactSearchResult& search);
