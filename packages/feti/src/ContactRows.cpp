@@ -339,6 +339,7 @@ ContactInterfaceRows interfaceRows(const mesh::Mesh& mesh, const ContactInterfac
                               search.unpaired.begin() + std::min(kSample, search.unpaired.size()));
   found.searchDistance = spec.searchDistance;
   found.interference = spec.interference;
+  found.smoothedSurfaces = spec.surfaceGeometry == SurfaceGeometry::Smoothed;
   for (const auto& pair : search.pairs) found.pairedInside += pair.distance > spec.searchDistance;
   // The initial overlaps of the rows (weighted where mortar).
   for (const auto& side : masterSides) {
@@ -346,6 +347,7 @@ ContactInterfaceRows interfaceRows(const mesh::Mesh& mesh, const ContactInterfac
       ++found.overlappingPairs;
       found.largestOverlap = std::max(found.largestOverlap, -side.gap);
     }
+    found.largestFacetSag = std::max(found.largestFacetSag, side.facetSag);
     if (side.gapLimited > 0.0) {
       ++found.limitedMortarGaps;
       found.largestGapLimit = std::max(found.largestGapLimit, side.gapLimited);

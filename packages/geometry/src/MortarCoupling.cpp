@@ -174,18 +174,10 @@ std::vector<ProjectedPoint> mortarPoints(const SlaveBasis& basis, const mesh::Fa
   return projected;
 }
 
-/// The smoothed surfaces of Contact/Surface Geometry = Smoothed (SmoothedFaces.hpp): the slave
-/// face's, and each master face's on first use.
-class SmoothedSurfaces {
+/// The master's smoothed faces (SmoothedFaces.hpp), each built on first use.
+class SmoothedMaster {
  public:
-  SmoothedSurfaces(const mesh::Mesh& mesh, const mesh::SideSet& slaveSet, const MasterSurface& master,
-                   const HeldAxes& held)
-      : slaveNormals_(unitNodalNormals(mesh, slaveSet, held)), master_(master), masterFaces_(master.numFaces()) {}
-  SmoothedFace slaveFace(const mesh::FaceNodes& face, const FaceCoordinates& x) const {
-    std::array<Vec3, 4> n{};
-    for (int v = 0; v < std::min(face.numVertices, 4); ++v) n[v] = slaveNormals_[face.node[v]];
-    return SmoothedFace(mesh::faceType(face.numVertices, face.numNodes), x, n);
-  }
+  explicit SmoothedMaster(const MasterSurface& master) : master_(master), masterFaces_(master.numFaces()) {}
   /// The offset of the master's smoothed surface at a projection on it.
   Vec3 masterOffset(const MasterSurface::Projection& chi) {
     if (chi.face < 0) return {0.0, 0.0, 0.0};
@@ -203,10 +195,40 @@ class SmoothedSurfaces {
   }
 
  private:
-  std::vector<Vec3> slaveNormals_;
   const MasterSurface& master_;
   std::vector<std::unique_ptr<SmoothedFace>> masterFaces_;
 };
+
+/// The smoothed surfaces of Contact/Surface Geometry = Smoothed: the master's, and the slave
+/// faces' from the slave's nodal normals (in the symmetry planes of `held`).
+class SmoothedSurfaces : public SmoothedMaster {
+ public:
+  SmoothedSurfaces(const mesh::Mesh& mesh, const mesh::SideSet& slaveSet, const MasterSurface& master,
+                   const HeldAxes& held)
+      : SmoothedMaster(master), slaveNormals_(unitNodalNormals(mesh, slaveSet, held)) {}
+  SmoothedFace slaveFace(const mesh::FaceNodes& face, const FaceCoordinates& x) const {
+    std::array<Vec3, 4> n{};
+    for (int v = 0; v < std::min(face.numVertices, 4); ++v) n[v] = slaveNormals_[face.node[v]];
+    return SmoothedFace(mesh::faceType(face.numVertices, face.numNodes), x, n);
+  }
+
+ private:
+  std::vector<Vec3> slaveNormals_;
+};
+
+/// MortarRow::facetSag of every row: the smoothed master's offset along the pair's normal at
+/// the slave node's own projection.
+void measureFacetSags(const MasterSurface& master, const ContactSearchResult& search, std::vector<MortarRow>& rows) {
+  SmoothedMaster smoothed(master);
+  for (size_t p = 0; p < rows.size(); ++p) {
+    const ContactPair& pair = search.pairs[p];
+    MasterSurface::Projection chi;
+    chi.face = pair.masterFace;
+    chi.weights = pair.weights;
+    const Vec3 o = smoothed.masterOffset(chi);
+    rows[p].facetSag = std::abs(o[0] * pair.normal[0] + o[1] * pair.normal[1] + o[2] * pair.normal[2]);
+  }
+}
 
 SlaveIntegration integrateSlaveFaces(const mesh::Mesh& mesh, const std::string& slaveSideSet,
                                      const MasterSurface& master, const ContactSearchResult& search,
@@ -328,6 +350,7 @@ std::vector<MortarRow> dualMortarRows(const mesh::Mesh& mesh, const std::string&
   rows.reserve(search.pairs.size());
   for (size_t p = 0; p < search.pairs.size(); ++p)
     rows.push_back(rowFromIntegrals(search.pairs[p], integration.integrals[p], integration.edgeEnds));
+  measureFacetSags(master, search, rows);
   return rows;
 }
 

@@ -221,6 +221,11 @@ struct ContactInterfaceRows {
   /// (geometry::MortarRow::gapLimited): slave elements coarse for the master's curvature.
   GO limitedMortarGaps = 0;
   double largestGapLimit = 0.0;  ///< max |weighted gap - gap kept| over them
+  /// The largest geometry::MortarRow::facetSag of its rows, and whether its gaps were measured on
+  /// the smoothed surfaces (Contact/Surface Geometry = Smoothed): a faceted interface whose
+  /// master sags by a fair part of its initial overlaps is reported (stack/RunReport).
+  double largestFacetSag = 0.0;
+  bool smoothedSurfaces = false;
   /// Projections on curved master faces that did not settle (geometry/FaceProjection.hpp):
   /// of slave nodes in the search and of mortar quadrature points; the first slave node's
   /// described (empty if only quadrature points failed).

@@ -78,6 +78,10 @@ struct MortarRow {
   /// (it is kept at its edge; 0 where it did not): the slave elements are coarse for the
   /// master's curvature there.
   double gapLimited = 0.0;
+  /// How far the master's smoothed surface (SmoothedFaces.hpp) lies from its face along the
+  /// normal at the node's projection: the facets' sag there if the surface is meant to be curved
+  /// (measured whatever Contact/Surface Geometry says; 0 on flat masters and at master vertices).
+  double facetSag = 0.0;
 };
 
 /// One row per pair of `search` (same order). `master` must be built on the master set
