@@ -5,7 +5,7 @@
 # h^2 / (8 R) = 0.006 mm between their nodes, as much as the 0.01 mm interference: measured
 # between the faces as meshed (Contact/Surface Geometry = Faceted) the fit force is 43 % (tet4)
 # and 26 % (hex8) above Lame's, with nodes out of contact; between the smoothed surfaces (Nagata,
-# geometry/src/SmoothedFaces.hpp) 0.21 % and 0.10 %.
+# geometry/SmoothedFaces.hpp) 0.21 % and 0.10 %.
 # Checks, Coulomb F = 0.3: Faceted is off by more than 10 % (what the option is for) and its report
 # points to the option (the master's facets sag by most of the initial overlap); Smoothed
 # converged, every contact node sticks, the normal force within 1 % of Lame's, sum |f_t| / (F N)

@@ -10,7 +10,7 @@
 
 #include "MortarQuadrature.hpp"
 #include "MortarSegments.hpp"
-#include "SmoothedFaces.hpp"
+#include "tribos/geometry/SmoothedFaces.hpp"
 
 namespace tribos::geometry {
 

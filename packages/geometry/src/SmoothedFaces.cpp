@@ -1,6 +1,6 @@
 /// \file SmoothedFaces.cpp
 /// Nagata's curved faces (header).
-#include "SmoothedFaces.hpp"
+#include "tribos/geometry/SmoothedFaces.hpp"
 
 #include <cmath>
 

@@ -54,7 +54,7 @@ inline constexpr core::EnumNames<ContactDiscretization, 2> kContactDiscretizatio
     {{"Mortar", ContactDiscretization::Mortar}, {"Node To Surface", ContactDiscretization::NodeToSurface}}};
 
 /// Contact/Surface Geometry: the gaps measured between the faces as meshed, or between their
-/// smoothed surfaces (Nagata's curved faces from the nodal normals: geometry/src/SmoothedFaces.hpp),
+/// smoothed surfaces (Nagata's curved faces from the nodal normals: geometry/SmoothedFaces.hpp),
 /// for linear faces meshed on a curved surface.
 enum class SurfaceGeometry { Faceted, Smoothed };
 inline constexpr core::EnumNames<SurfaceGeometry, 2> kSurfaceGeometryNames{

@@ -89,7 +89,7 @@ struct MortarRow {
 /// the quadrature points whose projection on a curved master face did not settle
 /// (FaceProjection.hpp). `smoothedGeometry`: the gaps are measured between the smoothed
 /// surfaces of the linear faces (Contact/Surface Geometry = Smoothed; Nagata's curved faces from
-/// the nodal normals, geometry/src/SmoothedFaces.hpp), with the slave's nodal normals in the
+/// the nodal normals, geometry/SmoothedFaces.hpp), with the slave's nodal normals in the
 /// symmetry planes of `held`.
 std::vector<MortarRow> dualMortarRows(const mesh::Mesh& mesh, const std::string& slaveSideSet,
                                       const MasterSurface& master, const ContactSearchResult& search,

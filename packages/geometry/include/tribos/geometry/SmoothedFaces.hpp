@@ -1,7 +1,7 @@
 #pragma once
 /// \file SmoothedFaces.hpp
-/// Curved surfaces from faceted ones for the mortar gap (private to the package;
-/// Contact/Surface Geometry = Smoothed, MortarCoupling.hpp). Nagata (2005): each edge of a
+/// Curved surfaces from faceted ones for the mortar gap (Contact/Surface Geometry = Smoothed,
+/// MortarCoupling.hpp). Nagata (2005): each edge of a
 /// linear face (3-node triangle, 4-node quadrilateral) becomes the quadratic curve through its
 /// two nodes whose tangents there are normal to the nodal normals, x(t) = x_a + d t - c t (1 - t)
 /// with d = x_b - x_a and c in the plane of n_a, n_b solving c . n_a = d . n_a, c . n_b = -d . n_b;
