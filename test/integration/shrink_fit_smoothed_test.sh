@@ -7,8 +7,9 @@
 # and 26 % (hex8) above Lame's, with nodes out of contact; between the smoothed surfaces (Nagata,
 # geometry/SmoothedFaces.hpp) 0.21 % and 0.10 %.
 # Checks, Coulomb F = 0.3: Faceted is off by more than 10 % (what the option is for) and its report
-# points to the option (the master's facets sag by most of the initial overlap); Smoothed
-# converged, every contact node sticks, the normal force within 1 % of Lame's, sum |f_t| / (F N)
+# points to the option (the master's facets sag by most of the initial overlap); the default
+# (Surface Geometry = Automatic) chooses the smoothed surfaces, says so, and gives the answer of
+# Smoothed: converged, every contact node sticks, the normal force within 1 % of Lame's, sum |f_t| / (F N)
 # and the nodal pressure spread (max - min) / mean within the kind's bounds (measured: tet4
 # 4.6 % and 8.0 %, hex8 0.51 % and 1.9 %).
 # Needs Debian's python3 with netCDF4 (the nodal pressures); exit 77 (CTest: skipped) without.
@@ -25,9 +26,10 @@ dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 /usr/bin/python3 -c "import netCDF4" 2>/dev/null ||
   { echo "skipped: /usr/bin/python3 lacks netCDF4 (python3-netcdf4)"; exit 77; }
-for geometry in Faceted Smoothed; do
+for geometry in Faceted Smoothed Automatic; do
   "$tribos" --input "$source/test/integration/shrink_fit.xml" --set "Mesh/File=$mesh" --set Solver/Verbose=false \
-    --set "Contact/Friction Model=Coulomb" --set "Contact/F1=0.3" --set "Contact/Surface Geometry=$geometry" \
+    --set "Contact/Friction Model=Coulomb" --set "Contact/F1=0.3" \
+    --set "$([ $geometry = Automatic ] && echo Solver/Verbose=false || echo "Contact/Surface Geometry=$geometry")" \
     --summary "$dir/$geometry.json" --output "$dir/$geometry.exo" > "$dir/$geometry.log" 2>&1 ||
     { cat "$dir/$geometry.log"; echo "tribos failed on the gmsh shrink fit ($kind, $geometry)"; exit 1; }
 done
@@ -36,6 +38,8 @@ done
 grep -q "sag counts as gap; set Contact/Surface Geometry = Smoothed" "$dir/Faceted.log" ||
   { echo "the faceted run does not point to Surface Geometry = Smoothed"; exit 1; }
 if grep -q "sag counts as gap" "$dir/Smoothed.log"; then echo "the smoothed run reports a facet sag"; exit 1; fi
+grep -q "gaps measured on the smoothed surfaces (Contact/Surface Geometry = Automatic" "$dir/Automatic.log" ||
+  { echo "the default run does not say it chose the smoothed surfaces"; exit 1; }
 /usr/bin/python3 - "$dir" "$kind" "$friction" "$spread" <<'PY'
 import json
 import math
@@ -57,7 +61,7 @@ def outcome(geometry):
     pressure = numpy.array(exo.variables["vals_nod_var%d" % (names.index("contact_pressure") + 1)][-1, :])
     pressure = pressure[pressure > 0.0]
     normal = interface["normal_force"]
-    result = {"converged": summary["converged"], "force": normal / LAME_FORCE - 1,
+    result = {"converged": summary["converged"], "geometry": summary["contact_search"][0]["surface_geometry"], "force": normal / LAME_FORCE - 1,
               "friction": interface["friction_force"] / (F * normal),
               "spread": (pressure.max() - pressure.min()) / pressure.mean(),
               "stick": interface["stick"], "slip": interface["slip"], "open": interface["no_contact"]}
@@ -67,8 +71,9 @@ def outcome(geometry):
     return result
 
 
-faceted, smoothed = outcome("Faceted"), outcome("Smoothed")
+faceted, smoothed, automatic = outcome("Faceted"), outcome("Smoothed"), outcome("Automatic")
 ok = abs(faceted["force"]) > 0.10
+ok &= automatic["geometry"] == "Smoothed" and automatic["force"] == smoothed["force"]
 ok &= smoothed["converged"] and smoothed["slip"] == 0 and smoothed["open"] == 0 and smoothed["stick"] > 0
 ok &= abs(smoothed["force"]) <= 0.01 and smoothed["friction"] <= friction_bound and smoothed["spread"] <= spread_bound
 sys.exit(0 if ok else "%s: the smoothed shrink fit is not Lame's (bounds: force 1 %%, friction %.3g %%, spread %.3g %%)"

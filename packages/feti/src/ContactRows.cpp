@@ -296,14 +296,16 @@ void refuseInteriorContactFaces(const mesh::Mesh& mesh, const std::vector<Contac
 
 /// The master side of every pair of an interface (dual mortar or node-to-surface weights).
 /// `unsettledProjections` counts the mortar quadrature points whose projection did not settle.
+/// `smoothed`: the gaps measured between the smoothed surfaces (mortar only).
 std::vector<geometry::MortarRow> masterSidesOf(const mesh::Mesh& mesh, const ContactInterfaceSpec& spec,
                                                const geometry::ContactSearchResult& search,
-                                               const geometry::HeldAxes& held, long long& unsettledProjections) {
+                                               const geometry::HeldAxes& held, bool smoothed,
+                                               long long& unsettledProjections) {
   std::vector<geometry::MortarRow> masterSides;
   if (spec.discretization == ContactDiscretization::Mortar) {
     const geometry::MasterSurface master(mesh, spec.masterSideSet, held);
     return geometry::dualMortarRows(mesh, spec.slaveSideSet, master, search, spec.searchDistance,
-                                    &unsettledProjections, spec.surfaceGeometry == SurfaceGeometry::Smoothed, held);
+                                    &unsettledProjections, smoothed, held);
   }
   for (const auto& pair : search.pairs) masterSides.push_back(geometry::nodeToSurfaceRow(pair));
   return masterSides;
@@ -321,13 +323,18 @@ double diameter(const mesh::Mesh& mesh, const std::vector<LO>& nodes) {
   return norm(minus(high, low));
 }
 
-/// What the search and the mortar integration found on an interface, every pair on every rank.
-/// An overlap is counted where it exceeds round-off (1e-12 of the slave surface's size): the
+/// An initial overlap counts where it exceeds round-off (1e-12 of the slave surface's size): the
 /// weighted gaps of coincident flat surfaces are +-1e-17, not overlaps a user should hear of.
+double overlapRoundOff(const mesh::Mesh& mesh, const ContactInterfaceSpec& spec) {
+  return 1e-12 * diameter(mesh, geometry::sideSetNodes(mesh, mesh.sideSet(spec.slaveSideSet)));
+}
+
+/// What the search and the mortar integration found on an interface, every pair on every rank.
 ContactInterfaceRows interfaceRows(const mesh::Mesh& mesh, const ContactInterfaceSpec& spec,
-                                   const geometry::ContactSearchResult& search,
-                                   const std::vector<geometry::MortarRow>& masterSides) {
-  const double roundOff = 1e-12 * diameter(mesh, geometry::sideSetNodes(mesh, mesh.sideSet(spec.slaveSideSet)));
+                                   const InterfacePairs& pairs) {
+  const auto& search = pairs.search;
+  const auto& masterSides = pairs.masterSides;
+  const double roundOff = overlapRoundOff(mesh, spec);
   ContactInterfaceRows found;
   found.label = spec.label();
   found.list = spec.list();
@@ -339,7 +346,8 @@ ContactInterfaceRows interfaceRows(const mesh::Mesh& mesh, const ContactInterfac
                               search.unpaired.begin() + std::min(kSample, search.unpaired.size()));
   found.searchDistance = spec.searchDistance;
   found.interference = spec.interference;
-  found.smoothedSurfaces = spec.surfaceGeometry == SurfaceGeometry::Smoothed;
+  found.smoothedSurfaces = pairs.smoothed;
+  found.smoothedByChoice = pairs.smoothedByChoice;
   for (const auto& pair : search.pairs) found.pairedInside += pair.distance > spec.searchDistance;
   // The initial overlaps of the rows (weighted where mortar).
   for (const auto& side : masterSides) {
@@ -394,7 +402,7 @@ void addContactRows(const mesh::Mesh& mesh, const ConstraintSpec& all, int index
   }
   search.pairs.resize(keep);
   masterSides.resize(keep);
-  B.interfaces.push_back(interfaceRows(mesh, spec, search, masterSides));
+  B.interfaces.push_back(interfaceRows(mesh, spec, found));
   B.interfaces.back().unsettledProjections = search.unsettledProjections + found.unsettledQuadraturePoints;
   B.interfaces.back().firstUnsettled = search.firstUnsettled;
   B.interfaces.back().sharedSlaveNodes = shared;
@@ -439,12 +447,58 @@ geometry::HeldAxes heldAxes(const Prescribed& prescribed) {
   return held;
 }
 
+namespace {
+/// The fit the rows of an interface close: over the pairs whose initial gap less the
+/// Interference is an overlap beyond round-off, the largest and the smallest overlap.
+struct Fit {
+  double largest = 0.0, smallest = std::numeric_limits<double>::infinity();
+  double range() const { return largest > 0.0 ? largest - smallest : 0.0; }
+};
+
+Fit fitOf(const std::vector<geometry::MortarRow>& rows, const ContactInterfaceSpec& spec, double roundOff) {
+  Fit fit;
+  for (const auto& side : rows) {
+    const double overlap = spec.interference - side.gap;
+    if (overlap <= roundOff) continue;
+    fit.largest = std::max(fit.largest, overlap);
+    fit.smallest = std::min(fit.smallest, overlap);
+  }
+  return fit;
+}
+}  // namespace
+
+bool facetsDominate(const mesh::Mesh& mesh, const ContactInterfaceSpec& spec,
+                    const std::vector<geometry::MortarRow>& faceted) {
+  if (spec.tied || spec.discretization != ContactDiscretization::Mortar) return false;
+  double sag = 0.0;
+  for (const auto& side : faceted) sag = std::max(sag, side.facetSag);
+  const Fit fit = fitOf(faceted, spec, overlapRoundOff(mesh, spec));
+  return fit.largest > 0.0 && sag >= 0.1 * fit.largest;
+}
+
+bool smoothedFitsBetter(const mesh::Mesh& mesh, const ContactInterfaceSpec& spec,
+                        const std::vector<geometry::MortarRow>& faceted,
+                        const std::vector<geometry::MortarRow>& smoothed) {
+  const double roundOff = overlapRoundOff(mesh, spec);
+  return fitOf(smoothed, spec, roundOff).range() < fitOf(faceted, spec, roundOff).range();
+}
+
 InterfacePairs pairsOf(const mesh::Mesh& mesh, const ContactInterfaceSpec& spec, const geometry::HeldAxes& held) {
   InterfacePairs found;
   try {
     found.search =
         geometry::searchContactPairs(mesh, spec.slaveSideSet, spec.masterSideSet, spec.searchDistance, held);
-    found.masterSides = masterSidesOf(mesh, spec, found.search, held, found.unsettledQuadraturePoints);
+    found.smoothed = spec.surfaceGeometry == SurfaceGeometry::Smoothed;
+    found.masterSides = masterSidesOf(mesh, spec, found.search, held, found.smoothed, found.unsettledQuadraturePoints);
+    if (spec.surfaceGeometry == SurfaceGeometry::Automatic && facetsDominate(mesh, spec, found.masterSides)) {
+      long long unsettled = 0;
+      auto smoothed = masterSidesOf(mesh, spec, found.search, held, true, unsettled);
+      if (smoothedFitsBetter(mesh, spec, found.masterSides, smoothed)) {
+        found.smoothed = found.smoothedByChoice = true;
+        found.unsettledQuadraturePoints = unsettled;
+        found.masterSides = std::move(smoothed);
+      }
+    }
   } catch (const core::InputError& e) {
     throw core::InputError(spec.label() + ": " + e.what());
   }

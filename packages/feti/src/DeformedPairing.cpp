@@ -118,7 +118,11 @@ InterfacePairs pairsOnTheDeformedBodies(const mesh::Mesh& mesh, const mesh::Mesh
   const ContactInterfaceSpec& one = spec.interfaces[index];
   const auto& u = *spec.pairingDisplacement;
   const InterfacePairs reference = pairsOf(mesh, one, held);
-  const InterfacePairs moved = pairsOf(deformed, widened(deformed, one), held);
+  ContactInterfaceSpec atDeformed = widened(deformed, one);
+  // Surface Geometry = Automatic decides on the reference mesh, where the fit is; the rows
+  // found at x + u measure their gaps on the same surfaces.
+  atDeformed.surfaceGeometry = reference.smoothed ? SurfaceGeometry::Smoothed : SurfaceGeometry::Faceted;
+  const InterfacePairs moved = pairsOf(deformed, atDeformed, held);
   const auto solved = solvedNodes(spec, index);
   const auto atReference = bySlaveNode(reference), atMoved = bySlaveNode(moved);
   std::set<LO> slaveNodes(reference.search.unpaired.begin(), reference.search.unpaired.end());
@@ -127,6 +131,8 @@ InterfacePairs pairsOnTheDeformedBodies(const mesh::Mesh& mesh, const mesh::Mesh
   out.search.unsettledProjections = reference.search.unsettledProjections + moved.search.unsettledProjections;
   out.search.firstUnsettled = reference.search.firstUnsettled + moved.search.firstUnsettled;
   out.unsettledQuadraturePoints = reference.unsettledQuadraturePoints + moved.unsettledQuadraturePoints;
+  out.smoothed = reference.smoothed;
+  out.smoothedByChoice = reference.smoothedByChoice;
   for (LO n : slaveNodes) {
     const auto r = atReference.find(n), d = atMoved.find(n);
     const geometry::ContactPair* pair = d == atMoved.end() ? nullptr : &moved.search.pairs[d->second];

@@ -255,6 +255,7 @@ nlohmann::json setupSummary(const Scene& scene, const SetupReport& report, const
                                    {"limited_mortar_gaps", i.limitedMortarGaps},
                                    {"largest_gap_limit", i.largestGapLimit},
                                    {"largest_facet_sag", i.largestFacetSag},
+                                   {"surface_geometry", i.smoothedSurfaces ? "Smoothed" : "Faceted"},
                                    {"unsettled_projections", i.unsettledProjections}});
   }
   j["contact_nodes_paired"] = B.contact.size();
@@ -299,6 +300,17 @@ std::string facetSagWarning(const feti::ContactInterfaceRows& i) {
   return line.str();
 }
 
+/// A line where Surface Geometry = Automatic measured the gaps on the smoothed surfaces
+/// (ContactInterfaceRows::smoothedByChoice), with the sag that decided it; empty otherwise.
+std::string smoothedByChoiceLine(const feti::ContactInterfaceRows& i) {
+  if (!i.smoothedByChoice) return "";
+  std::ostringstream line;
+  line << "  " << i.label << ": the master's facets sag up to " << i.largestFacetSag
+       << " between its nodes, a tenth or more of the fit to close: gaps measured on the smoothed surfaces ("
+       << i.list << "/Surface Geometry = Automatic; Faceted keeps the faces, doc/contact_surfaces.md)\n";
+  return line.str();
+}
+
 /// A line where projections on curved master faces did not settle (geometry/FaceProjection.hpp),
 /// naming the interface and the first slave node; empty where all settled.
 std::string unsettledProjectionsWarning(const feti::ContactInterfaceRows& i) {
@@ -330,7 +342,8 @@ std::string contactSearchLines(const feti::ConstraintMatrix& B) {
     if (i.sharedSlaveNodes > 0)
       out << "; " << i.sharedSlaveNodes << " more paired here have the rows of another interface, where their gap "
           << "is smaller (a slave node has the rows of one interface)";
-    out << "\n" << limitedGapsWarning(i) << facetSagWarning(i) << unsettledProjectionsWarning(i);
+    out << "\n" << limitedGapsWarning(i) << facetSagWarning(i) << smoothedByChoiceLine(i)
+        << unsettledProjectionsWarning(i);
   }
   return out.str();
 }

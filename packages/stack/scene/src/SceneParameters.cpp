@@ -181,11 +181,15 @@ void interfaceParameters(ParameterList& pl) {
       "\"Node To Surface\" (the master displacement interpolated at the node's projection)",
       Teuchos::Array<std::string>(core::namesOf(feti::kContactDiscretizationNames)), &pl);
   Teuchos::setStringToIntegralParameter<int>(
-      "Surface Geometry", "Faceted",
-      "the surfaces between which the mortar gaps are measured: \"Faceted\" (the faces as meshed) or "
+      "Surface Geometry", "Automatic",
+      "the surfaces between which the mortar gaps are measured: \"Faceted\" (the faces as meshed), "
       "\"Smoothed\" (linear faces curved by their nodal normals, Nagata's patches: for 4-node tetrahedra or "
       "8-node hexahedra meshed on a curved surface, whose facets' sag h^2 / (8 R) would otherwise count as gap; "
-      "not for a surface meant to be faceted). 6-node faces keep their own quadratic geometry either way",
+      "not for a surface meant to be faceted) or \"Automatic\" (Smoothed on an interface whose master's "
+      "facets sag by a tenth or more of the fit it closes, its largest initial overlap plus its Interference, "
+      "and whose overlaps are more even between the smoothed surfaces than between the faces: a fit meshed on "
+      "a curved surface; Faceted elsewhere, and on bonded interfaces). 6-node faces keep their own quadratic "
+      "geometry either way",
       Teuchos::Array<std::string>(core::namesOf(feti::kSurfaceGeometryNames)), &pl);
   pl.set("Search Distance", 1e-6,
          "contact search: a slave node is projected on the nearest master face within this distance [length] "

@@ -55,10 +55,14 @@ inline constexpr core::EnumNames<ContactDiscretization, 2> kContactDiscretizatio
 
 /// Contact/Surface Geometry: the gaps measured between the faces as meshed, or between their
 /// smoothed surfaces (Nagata's curved faces from the nodal normals: geometry/SmoothedFaces.hpp),
-/// for linear faces meshed on a curved surface.
-enum class SurfaceGeometry { Faceted, Smoothed };
-inline constexpr core::EnumNames<SurfaceGeometry, 2> kSurfaceGeometryNames{
-    {{"Faceted", SurfaceGeometry::Faceted}, {"Smoothed", SurfaceGeometry::Smoothed}}};
+/// for linear faces meshed on a curved surface; Automatic: smoothed where the master's facets
+/// sag by a fair part of the fit the interface is to close (rows::facetsDominate), faceted
+/// elsewhere.
+enum class SurfaceGeometry { Automatic, Faceted, Smoothed };
+inline constexpr core::EnumNames<SurfaceGeometry, 3> kSurfaceGeometryNames{
+    {{"Automatic", SurfaceGeometry::Automatic},
+     {"Faceted", SurfaceGeometry::Faceted},
+     {"Smoothed", SurfaceGeometry::Smoothed}}};
 
 /// One contact interface (Contact or Contact/<name>): a slave surface paired with a master
 /// surface. A slave node that several interfaces pair (a corner of a body resting on a floor and
@@ -81,7 +85,7 @@ struct ContactInterfaceSpec {
   /// (Contact/<name>/Interference); a load history ramps it (ContactNode::interference).
   double interference = 0.0;
   ContactDiscretization discretization = ContactDiscretization::Mortar;
-  SurfaceGeometry surfaceGeometry = SurfaceGeometry::Faceted;
+  SurfaceGeometry surfaceGeometry = SurfaceGeometry::Automatic;
   /// "Contact/<name>", or "Contact" without a name: the parameter list of the interface.
   std::string list() const { return name.empty() ? "Contact" : "Contact/" + name; }
   /// "Contact/<name> (slave -> master)", or "Contact (slave -> master)" without a name.
@@ -222,10 +226,13 @@ struct ContactInterfaceRows {
   GO limitedMortarGaps = 0;
   double largestGapLimit = 0.0;  ///< max |weighted gap - gap kept| over them
   /// The largest geometry::MortarRow::facetSag of its rows, and whether its gaps were measured on
-  /// the smoothed surfaces (Contact/Surface Geometry = Smoothed): a faceted interface whose
-  /// master sags by a fair part of its initial overlaps is reported (stack/RunReport).
+  /// the smoothed surfaces (Contact/Surface Geometry = Smoothed, or Automatic where it chose
+  /// them): a faceted interface whose master sags by a fair part of its initial overlaps is
+  /// reported (stack/RunReport).
   double largestFacetSag = 0.0;
   bool smoothedSurfaces = false;
+  /// Whether Surface Geometry = Automatic chose the smoothed surfaces (rows::facetsDominate).
+  bool smoothedByChoice = false;
   /// Projections on curved master faces that did not settle (geometry/FaceProjection.hpp):
   /// of slave nodes in the search and of mortar quadrature points; the first slave node's
   /// described (empty if only quadrature points failed).
