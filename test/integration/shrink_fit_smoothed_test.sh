@@ -6,22 +6,31 @@
 # between the faces as meshed (Contact/Surface Geometry = Faceted) the fit force is 43 % (tet4)
 # and 26 % (hex8) above Lame's, with nodes out of contact; between the smoothed surfaces (Nagata,
 # geometry/SmoothedFaces.hpp) 0.21 % and 0.10 %.
-# Checks, Coulomb F = 0.3: Faceted is off by more than 10 % (what the option is for) and its report
-# points to the option (the master's facets sag by most of the initial overlap); the default
+# Checks, Coulomb F = 0.3: Faceted is off by more than 5 % (9.6 % on tet4fine; what the option
+# is for) and its report points to the option (the master's facets sag by most of the initial overlap); the default
 # (Surface Geometry = Automatic) chooses the smoothed surfaces, says so, and gives the answer of
 # Smoothed: converged, every contact node sticks, the normal force within 1 % of Lame's, sum |f_t| / (F N)
 # and the nodal pressure spread (max - min) / mean within the kind's bounds (measured: tet4
 # 4.6 % and 8.0 %, hex8 0.51 % and 1.9 %).
+# Two more meshes hold the issue's acceptance bounds (spread 5 %, friction 2 %):
+# - tet4fine: 4-node tetrahedra at half the sizes with 4 layers through T (hs 0.5, hh 0.65, nl 4;
+#   measured 4.7 % and 1.77 %; at h = 1 the tetrahedra's own tangential displacements exceed them:
+#   doc/contact_surfaces.md);
+# - tet10: gmsh's 10-node tetrahedra (-order 2, mid-edge nodes on the circles, h = 1): their 6-node
+#   faces keep their quadratic geometry, so the default stays faceted (measured 2.4 %, 0.65 %).
 # Needs Debian's python3 with netCDF4 (the nodal pressures); exit 77 (CTest: skipped) without.
-# Usage: shrink_fit_smoothed_test.sh TRIBOS SOURCE_DIR tet4|hex8
+# Usage: shrink_fit_smoothed_test.sh TRIBOS SOURCE_DIR tet4|hex8|tet4fine|tet10
 set -u
 tribos=$1 source=$2 kind=$3
+meshes=$source/input/meshes
+# the mesh, the bounds on friction and spread, the surfaces the default chooses
 case $kind in
-tet4) friction=0.06 spread=0.10 ;;
-hex8) friction=0.01 spread=0.03 ;;
-*) echo "unknown element type $kind (tet4 or hex8)"; exit 1 ;;
+tet4) mesh=$meshes/shrink_fit_gmsh_tet4_h1.exo friction=0.06 spread=0.10 chosen=Smoothed ;;
+hex8) mesh=$meshes/shrink_fit_gmsh_hex8_h1.exo friction=0.01 spread=0.03 chosen=Smoothed ;;
+tet4fine) mesh=$meshes/shrink_fit_gmsh_tet4_h0.5.exo friction=0.02 spread=0.05 chosen=Smoothed ;;
+tet10) mesh=$meshes/shrink_fit_gmsh_tet10_h1.exo friction=0.02 spread=0.05 chosen=Faceted ;;
+*) echo "unknown mesh $kind (tet4, hex8, tet4fine or tet10)"; exit 1 ;;
 esac
-mesh=$source/input/meshes/shrink_fit_gmsh_${kind}_h1.exo
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 /usr/bin/python3 -c "import netCDF4" 2>/dev/null ||
@@ -33,14 +42,16 @@ for geometry in Faceted Smoothed Automatic; do
     --summary "$dir/$geometry.json" --output "$dir/$geometry.exo" > "$dir/$geometry.log" 2>&1 ||
     { cat "$dir/$geometry.log"; echo "tribos failed on the gmsh shrink fit ($kind, $geometry)"; exit 1; }
 done
-# The faceted run says what to set (the master's sag is most of the interference); the smoothed
-# one does not.
-grep -q "sag counts as gap; set Contact/Surface Geometry = Smoothed" "$dir/Faceted.log" ||
-  { echo "the faceted run does not point to Surface Geometry = Smoothed"; exit 1; }
-if grep -q "sag counts as gap" "$dir/Smoothed.log"; then echo "the smoothed run reports a facet sag"; exit 1; fi
-grep -q "gaps measured on the smoothed surfaces (Contact/Surface Geometry = Automatic" "$dir/Automatic.log" ||
-  { echo "the default run does not say it chose the smoothed surfaces"; exit 1; }
-/usr/bin/python3 - "$dir" "$kind" "$friction" "$spread" <<'PY'
+# Linear faces: the faceted run says what to set (the master's sag is most of the interference);
+# the smoothed one does not; the default says it chose the smoothed surfaces.
+if [ $chosen = Smoothed ]; then
+  grep -q "sag counts as gap; set Contact/Surface Geometry = Smoothed" "$dir/Faceted.log" ||
+    { echo "the faceted run does not point to Surface Geometry = Smoothed"; exit 1; }
+  if grep -q "sag counts as gap" "$dir/Smoothed.log"; then echo "the smoothed run reports a facet sag"; exit 1; fi
+  grep -q "gaps measured on the smoothed surfaces (Contact/Surface Geometry = Automatic" "$dir/Automatic.log" ||
+    { echo "the default run does not say it chose the smoothed surfaces"; exit 1; }
+fi
+/usr/bin/python3 - "$dir" "$kind" "$friction" "$spread" "$chosen" <<'PY'
 import json
 import math
 import sys
@@ -48,7 +59,8 @@ import sys
 import netCDF4
 import numpy
 
-folder, kind, friction_bound, spread_bound = sys.argv[1], sys.argv[2], float(sys.argv[3]), float(sys.argv[4])
+folder, kind, chosen = sys.argv[1], sys.argv[2], sys.argv[5]
+friction_bound, spread_bound = float(sys.argv[3]), float(sys.argv[4])
 LAME_FORCE = 34.615 * 0.5 * math.pi * 20.0 * 2.0  # Lame's pressure on the quarter bore, T = 2
 F = 0.3
 
@@ -72,8 +84,11 @@ def outcome(geometry):
 
 
 faceted, smoothed, automatic = outcome("Faceted"), outcome("Smoothed"), outcome("Automatic")
-ok = abs(faceted["force"]) > 0.10
-ok &= automatic["geometry"] == "Smoothed" and automatic["force"] == smoothed["force"]
+ok = automatic["geometry"] == chosen and automatic["force"] == (smoothed if chosen == "Smoothed" else faceted)["force"]
+if chosen == "Smoothed":
+    ok &= abs(faceted["force"]) > 0.05
+else:  # 6-node faces: the option changes nothing
+    ok &= faceted["force"] == smoothed["force"]
 ok &= smoothed["converged"] and smoothed["slip"] == 0 and smoothed["open"] == 0 and smoothed["stick"] > 0
 ok &= abs(smoothed["force"]) <= 0.01 and smoothed["friction"] <= friction_bound and smoothed["spread"] <= spread_bound
 sys.exit(0 if ok else "%s: the smoothed shrink fit is not Lame's (bounds: force 1 %%, friction %.3g %%, spread %.3g %%)"
