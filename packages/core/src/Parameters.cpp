@@ -10,6 +10,7 @@
 
 #include "tribos/core/Errors.hpp"
 #include "tribos/core/Validators.hpp"
+#include "tribos/core/XmlParameters.hpp"
 
 namespace tribos::core {
 
@@ -84,7 +85,7 @@ void validateLevel(Teuchos::ParameterList& user, const Teuchos::ParameterList& v
       try {
         validEntry.validator()->validateAndModify(name, path, &user.getEntry(name));
       } catch (const std::exception& e) {
-        throw InputError(where + ": parameter \"" + here + "\" is invalid: " + e.what());
+        throw InputError(where + ": parameter \"" + here + "\" is invalid: " + teuchosReason(e.what()));
       }
     }
   }

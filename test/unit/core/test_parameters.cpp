@@ -76,3 +76,24 @@ TEST(Parameters, badOverridesNameTheAssignment) {
     }
   }
 }
+
+#include <Teuchos_StandardParameterEntryValidators.hpp>
+
+TEST(Parameters, aValueOutsideAChoiceIsOneLineWithoutTeuchosBookkeeping) {
+  Teuchos::ParameterList valid = validList();
+  Teuchos::setStringToIntegralParameter<int>("Friction Model", "Coulomb", "friction",
+                                             Teuchos::tuple<std::string>("None", "Coulomb"),
+                                             &valid.sublist("Contact"));
+  Teuchos::ParameterList user("Tribos");
+  user.sublist("Contact").set("Friction Model", std::string("Frictionless"));
+  try {
+    tribos::core::validateAndSetDefaults(user, valid, "scene.xml");
+    FAIL() << "expected InputError";
+  } catch (const tribos::core::InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("\"Contact/Friction Model\" is invalid"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("\"None\" \"Coulomb\""), std::string::npos) << msg;  // the choices, on the line
+    EXPECT_EQ(msg.find("Throw number"), std::string::npos) << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+  }
+}
