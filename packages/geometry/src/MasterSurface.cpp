@@ -6,6 +6,7 @@
 #include <cmath>
 #include <map>
 
+#include "SurfaceBoundary.hpp"
 #include "TriangleTree.hpp"
 #include "VectorMath.hpp"
 #include "tribos/geometry/SurfaceNormals.hpp"
@@ -75,6 +76,7 @@ MasterSurface::MasterSurface(const mesh::Mesh& mesh, const std::string& masterSi
   tree_ = std::make_unique<TriangleTree>(std::move(triangles));
   nodalNormal_ = unitNodalNormals(mesh, set, held);
   neighbours_ = faceNeighbours(faceNodes_);
+  boundaryEdges_ = boundaryEdges(faceNodes_);
   faceSize_.resize(faceNodes_.size());
   for (size_t f = 0; f < faceNodes_.size(); ++f) {
     for (int a = 0; a < faceNodes_[f].numNodes; ++a)
@@ -154,11 +156,16 @@ MasterSurface::Projection MasterSurface::onFace(LO triangle, const std::array<do
 MasterSurface::Projection MasterSurface::pairingProjection(const Vec3& x, double searchDistance,
                                                            long long* facesTested) const {
   const Projection p = project(x, std::max(searchDistance, largestFaceSize_), facesTested);
-  if (p.face < 0 || p.distance <= searchDistance) return p;
   Projection none;
   none.outcome = p.outcome;
-  if (p.distance > faceSize_[p.face]) return none;
+  if (p.face < 0) return p;
   const Vec3 n = normalAt(p);  // outward of the master body
+  const double beside =
+      besideTheSurface(faceNodes_[p.face], faceCoords_[p.face], boundaryEdges_[p.face], p.weights, p.point, n, x);
+  const double along = std::abs(dot(minus(x, p.point), n));
+  if (beside > kBesideTheSurface * faceSize_[p.face] + kBesideSlope * along) return none;
+  if (p.distance <= searchDistance) return p;
+  if (p.distance > faceSize_[p.face]) return none;
   const double depth = -dot(minus(x, p.point), n);
   return depth >= kInsideAlongNormal * p.distance ? p : none;
 }

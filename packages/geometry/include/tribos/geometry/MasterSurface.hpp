@@ -17,6 +17,7 @@
 /// directions at neighbouring slave nodes on a faceted curved surface do not jump from face to
 /// face; on a flat master it is the exact face normal.
 #include <array>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -28,6 +29,17 @@
 namespace tribos::geometry {
 
 class TriangleTree;
+
+/// A point lies beside the surface, not over it, where its closest point is on the surface's
+/// boundary (the rim of a hole, the edge of a plate) and it lies beyond that edge by more than
+/// this fraction of the face's size plus kBesideSlope times its offset along the normal
+/// (SurfaceBoundary.hpp; the slope absorbs a curved face's normal, which the co-normal is
+/// taken against, leaning from the direction in which the point was found):
+/// MasterSurface::pairingProjection pairs it with no face. A slave node or mortar point over a hole's clearance is then no contact with
+/// the rim (it had the rim's closest point, with a gap along the rim's normal: a bolt head's
+/// nodes over the clearance of its hole carried 68 % of the head's pretension).
+inline constexpr double kBesideTheSurface = 1e-3;
+inline constexpr double kBesideSlope = 0.1;
 
 /// A point is inside the master body where its offset from its closest point makes at most
 /// acos(0.9) = 26 degrees with the inward normal there (MasterSurface::pairingProjection): a point
@@ -55,8 +67,8 @@ class MasterSurface {
   /// The closest point within `radius` (ties: the lower face index). `facesTested` counts
   /// the closest-point evaluations.
   Projection project(const Vec3& x, double radius, long long* facesTested = nullptr) const;
-  /// The projection that pairs a point with the surface (issue 41): the closest point within
-  /// `searchDistance`, or, whatever `searchDistance` says, the closest point of a point inside
+  /// The projection that pairs a point with the surface (issue 41): none for a point beside
+  /// the surface (kBesideTheSurface); the closest point within `searchDistance`, or, whatever `searchDistance` says, the closest point of a point inside
   /// the master body: behind the surface along its normal (the offset within
   /// acos(kInsideAlongNormal) of the inward smoothed normal) and at most the size of the face it
   /// projects on deep. A deeper overlap is not a contact this small-strain model can resolve;
@@ -101,6 +113,7 @@ class MasterSurface {
   std::vector<Vec3> nodalNormal_;  ///< unit, per global node (zero off the set)
   std::vector<std::vector<LO>> neighbours_;  ///< per face, the faces sharing a node with it
   std::vector<double> faceSize_;             ///< per face, the largest distance between its nodes
+  std::vector<std::uint8_t> boundaryEdges_;  ///< per face, its edges on the surface's boundary (SurfaceBoundary.hpp)
   double largestFaceSize_ = 0.0;
 };
 
