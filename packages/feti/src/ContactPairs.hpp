@@ -22,7 +22,14 @@ struct InterfacePairs {
   /// The gaps measured on the smoothed surfaces (ContactInterfaceRows::smoothedSurfaces), and
   /// whether Surface Geometry = Automatic chose them (facetsDominate).
   bool smoothed = false, smoothedByChoice = false;
+  double searchDistance = 0.0;  ///< the reach its search had (searchReach)
 };
+
+/// The search distance of interface `spec` on `mesh`: its Search Distance, or where that is 0
+/// (the default), the size of the slave surface's largest face (the largest distance between
+/// two nodes of a face): a gap that may close within the elements' own scale is searched, a
+/// node a face or more away is not (a clearance larger than that is given by the user).
+double searchReach(const mesh::Mesh& mesh, const ContactInterfaceSpec& spec);
 
 /// Per node, the axes a displacement condition holds it along while it is free along another
 /// (geometry::HeldAxes: the nodes on symmetry planes, whose contact normals lie in them).

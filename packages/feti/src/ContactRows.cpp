@@ -344,11 +344,11 @@ ContactInterfaceRows interfaceRows(const mesh::Mesh& mesh, const ContactInterfac
   constexpr size_t kSample = 5;
   found.unpairedSample.assign(search.unpaired.begin(),
                               search.unpaired.begin() + std::min(kSample, search.unpaired.size()));
-  found.searchDistance = spec.searchDistance;
+  found.searchDistance = pairs.searchDistance;
   found.interference = spec.interference;
   found.smoothedSurfaces = pairs.smoothed;
   found.smoothedByChoice = pairs.smoothedByChoice;
-  for (const auto& pair : search.pairs) found.pairedInside += pair.distance > spec.searchDistance;
+  for (const auto& pair : search.pairs) found.pairedInside += pair.distance > pairs.searchDistance;
   // The initial overlaps of the rows (weighted where mortar).
   for (const auto& side : masterSides) {
     if (side.gap < -roundOff) {
@@ -483,9 +483,24 @@ bool smoothedFitsBetter(const mesh::Mesh& mesh, const ContactInterfaceSpec& spec
   return fitOf(smoothed, spec, roundOff).range() < fitOf(faceted, spec, roundOff).range();
 }
 
-InterfacePairs pairsOf(const mesh::Mesh& mesh, const ContactInterfaceSpec& spec, const geometry::HeldAxes& held) {
+double searchReach(const mesh::Mesh& mesh, const ContactInterfaceSpec& spec) {
+  if (spec.searchDistance > 0.0) return spec.searchDistance;
+  const mesh::SideSet& set = mesh.sideSet(spec.slaveSideSet);
+  double largest = 0.0;
+  for (size_t f = 0; f < set.elements.size(); ++f) {
+    const mesh::FaceNodes face = mesh.faceNodes(set.elements[f], set.sides[f]);
+    for (int a = 0; a < face.numVertices; ++a)
+      for (int b = 0; b < a; ++b)
+        largest = std::max(largest, norm(minus(mesh.coords[face.node[a]], mesh.coords[face.node[b]])));
+  }
+  return largest;
+}
+
+InterfacePairs pairsOf(const mesh::Mesh& mesh, const ContactInterfaceSpec& given, const geometry::HeldAxes& held) {
   InterfacePairs found;
+  ContactInterfaceSpec spec = given;
   try {
+    spec.searchDistance = found.searchDistance = searchReach(mesh, given);
     found.search =
         geometry::searchContactPairs(mesh, spec.slaveSideSet, spec.masterSideSet, spec.searchDistance, held);
     found.smoothed = spec.surfaceGeometry == SurfaceGeometry::Smoothed;

@@ -131,6 +131,7 @@ InterfacePairs pairsOnTheDeformedBodies(const mesh::Mesh& mesh, const mesh::Mesh
   out.search.unsettledProjections = reference.search.unsettledProjections + moved.search.unsettledProjections;
   out.search.firstUnsettled = reference.search.firstUnsettled + moved.search.firstUnsettled;
   out.unsettledQuadraturePoints = reference.unsettledQuadraturePoints + moved.unsettledQuadraturePoints;
+  out.searchDistance = reference.searchDistance;
   out.smoothed = reference.smoothed;
   out.smoothedByChoice = reference.smoothedByChoice;
   for (LO n : slaveNodes) {

@@ -191,9 +191,10 @@ void interfaceParameters(ParameterList& pl) {
       "a curved surface; Faceted elsewhere, and on bonded interfaces). 6-node faces keep their own quadratic "
       "geometry either way",
       Teuchos::Array<std::string>(core::namesOf(feti::kSurfaceGeometryNames)), &pl);
-  pl.set("Search Distance", 1e-6,
+  pl.set("Search Distance", 0.0,
          "contact search: a slave node is projected on the nearest master face within this distance [length] "
-         "(set it above the largest initial gap that may close); a slave node with no master face that near "
+         "(set it above the largest initial gap that may close; 0, the default: the size of the slave surface's "
+         "largest face); a slave node with no master face that near "
          "gets no contact rows (it cannot touch), except one inside the master body (an interference, up to a "
          "master face's size deep), which is always paired. The initial gap d is the signed distance along the "
          "master normal (negative: initial overlap). After the solve a slave node without rows found inside the "

@@ -79,8 +79,9 @@ struct ContactInterfaceSpec {
   bool tied = false;
   std::array<double, 3> t1Direction{1.0, 0.0, 0.0};  ///< t1 = this projected on the tangent plane
   /// A slave node is projected on the master surface within this distance (the mesh's
-  /// units); a slave node farther from every master face gets no contact rows.
-  double searchDistance = 1e-6;
+  /// units); a slave node farther from every master face gets no contact rows. 0: derived from
+  /// the mesh, the size of the slave surface's largest face (rows::searchReach).
+  double searchDistance = 0.0;
   /// An overlap to close (> 0) or a clearance (< 0), subtracted from every pair's gap
   /// (Contact/<name>/Interference); a load history ramps it (ContactNode::interference).
   double interference = 0.0;
